@@ -1,0 +1,173 @@
+//! Design (§3): two planar guide curves that meet at 90° and the angle θ.
+//!
+//! A [`Design`] is plain data (it deserialises from the design-file format,
+//! JSON or TOML, in `monge-io`). Nothing is validated here: [`crate::generate`]
+//! validates everything and says what is wrong, where, and by how much.
+
+use serde::{Deserialize, Serialize};
+
+/// A point or vector as written in a design file.
+pub type Xyz = [f64; 3];
+
+/// A design: the input of the generator (§3).
+///
+/// θ convention (see the README): in the characteristic case the pencil axis in
+/// the plane of guide_v's Gauss circle is the line `{tan(θ/2)·N_p + s·t_v}`,
+/// where `N_p = t_u × t_v / |t_u × t_v|` and `t_u`, `t_v` are the unit start
+/// tangents; θ = 0 makes guide_u the rail of a moulding surface; θ = +90° is
+/// singular (every Gauss circle passes through the corner normal).
+///
+/// ```
+/// use monge_core::design::{Design, GuideSpec};
+/// let d = Design {
+///     theta_deg: 30.0,
+///     guide_u: GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]]),
+///     guide_v: GuideSpec::points(vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]),
+///     tolerance: None,
+/// };
+/// assert_eq!(d.guide_u.sample_count(), 3);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Design {
+    /// The angle θ in degrees, in (−180, 180] (other values are taken modulo 360).
+    pub theta_deg: f64,
+    /// The guide along which the first grid index `i` runs (rows).
+    pub guide_u: GuideSpec,
+    /// The guide along which the second grid index `j` runs (columns).
+    pub guide_v: GuideSpec,
+    /// Tolerances for validating the input; `None` means [`Tolerances::default`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<Tolerances>,
+}
+
+/// Relative tolerances used to accept a design (all relative to the size of the
+/// guide, or in radians for angles).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Tolerances {
+    /// Largest distance of a guide sample from the guide's best-fit plane,
+    /// relative to the guide's bounding-box diagonal. Default `1e-9`.
+    /// Samples within it are projected onto the plane, so the output stays exact.
+    pub planarity: f64,
+    /// Largest deviation, in radians, of the angle between the two start
+    /// tangents from 90°. Default `1e-9`.
+    pub angle: f64,
+    /// Largest distance between the two guides' start points, relative to the
+    /// larger guide's bounding-box diagonal. Default `1e-9`.
+    pub start: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances {
+            planarity: 1e-9,
+            angle: 1e-9,
+            start: 1e-9,
+        }
+    }
+}
+
+/// One guide curve as written in a design file: exactly one of `points`,
+/// `bspline`, `arc` or `parabola`.
+///
+/// `tangent` is only allowed with `points`: the start tangent of a polyline
+/// (without it, the tangent of the circle through the first three points, or
+/// the first chord if there are only two).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GuideSpec {
+    /// A polyline, used exactly as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<Vec<Xyz>>,
+    /// Start tangent of a `points` guide.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangent: Option<Xyz>,
+    /// A clamped B-spline or NURBS curve.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bspline: Option<BSplineSpec>,
+    /// A circular arc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arc: Option<ArcSpec>,
+    /// A parabola arc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parabola: Option<ParabolaSpec>,
+}
+
+/// A clamped B-spline / NURBS guide, sampled at `samples` uniformly spaced
+/// parameter values from the first to the last knot, inclusive.
+/// Its start tangent is `P1 − P0`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BSplineSpec {
+    /// Polynomial degree (≥ 1).
+    pub degree: usize,
+    /// Control points P0 … Pn (at least `degree + 1`).
+    pub control_points: Vec<Xyz>,
+    /// Knot vector (`n + degree + 2` values, non-decreasing, clamped);
+    /// default: clamped uniform.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knots: Option<Vec<f64>>,
+    /// Positive weights, one per control point; default: all 1 (a B-spline).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
+    /// Number of samples (≥ 2).
+    pub samples: usize,
+}
+
+/// A circular arc from `start`, turning about the axis through `center` along
+/// `normal` by `angle_deg` (right-hand rule), sampled at `samples` uniformly
+/// spaced angles, ends included. Its start tangent is `normal × (start − center)`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArcSpec {
+    /// Centre of the circle.
+    pub center: Xyz,
+    /// First point of the arc (the guides' common start point).
+    pub start: Xyz,
+    /// Normal of the arc's plane (need not be unit; orthogonal to `start − center`).
+    pub normal: Xyz,
+    /// Swept angle in degrees (non-zero, |angle| < 360).
+    pub angle_deg: f64,
+    /// Number of samples (≥ 2).
+    pub samples: usize,
+}
+
+/// The parabola `P(t) = start + t·tangent + t²·quadratic`, `t ∈ [0, 1]`,
+/// sampled at `samples` uniformly spaced values of `t`, ends included.
+/// Its start tangent is `tangent`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParabolaSpec {
+    /// `P(0)`.
+    pub start: Xyz,
+    /// `P'(0)` (non-zero).
+    pub tangent: Xyz,
+    /// Half the second derivative (not parallel to `tangent`, or zero for a segment).
+    pub quadratic: Xyz,
+    /// Number of samples (≥ 2).
+    pub samples: usize,
+}
+
+impl GuideSpec {
+    /// A polyline guide given point by point.
+    pub fn points(points: Vec<Xyz>) -> Self {
+        GuideSpec {
+            points: Some(points),
+            ..Default::default()
+        }
+    }
+
+    /// Number of samples the guide will have, known without sampling it
+    /// (so that a grid too large for memory is refused before any allocation).
+    /// For a malformed spec (no kind, or several), 0.
+    pub fn sample_count(&self) -> usize {
+        match (&self.points, &self.bspline, &self.arc, &self.parabola) {
+            (Some(p), None, None, None) => p.len(),
+            (None, Some(b), None, None) => b.samples,
+            (None, None, Some(a), None) => a.samples,
+            (None, None, None, Some(p)) => p.samples,
+            _ => 0,
+        }
+    }
+}

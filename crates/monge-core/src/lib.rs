@@ -1,0 +1,18 @@
+//! # monge-core
+//!
+//! Pure geometry of *Surfaces with planar curvature lines* (Mesnil et al.):
+//! circular quad meshes whose curvature lines are planar, generated exactly from
+//! two planar guide curves and one angle θ. No I/O, no printing.
+//!
+//! The pipeline, one module per concept of the paper:
+//! [`guide`] (sampled, validated guide curves, §3) →
+//! [`gauss_map`] (normals along the guides, pencil axes, the discrete Gauss map, §2.1.2, §2.2.1, §3.2) →
+//! [`combescure`] (the discrete Combescure transform, §2.2.3) → a [`QuadGrid`].
+//! [`measure`] measures any quad mesh independently of how it was made.
+
+pub mod design;
+pub mod grid;
+pub mod guide;
+
+pub use design::{Design, GuideSpec, Tolerances};
+pub use grid::QuadGrid;
