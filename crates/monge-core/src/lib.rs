@@ -16,3 +16,5 @@ pub mod guide;
 
 pub use design::{Design, GuideSpec, Tolerances};
 pub use grid::QuadGrid;
+pub mod generate;
+pub use generate::{generate, GenerateError, GenerateOptions, Generated};
