@@ -1,1 +1,61 @@
-pub fn x(){}
+//! File input and output for monge: design files, mesh exporters and readers.
+//!
+//! * Design files ([`read_design`], [`parse_design`], [`write_design`]): a
+//!   [`Design`](monge_core::Design) as JSON or TOML, chosen by extension. Errors
+//!   name the file, the line and column, and what was expected; NaN and
+//!   infinities (which TOML allows) are refused.
+//! * Mesh writers ([`write_mesh`], [`write_obj`], [`write_ply`],
+//!   [`write_mesh_json`]): a [`QuadGrid`](monge_core::QuadGrid) as OBJ, ASCII
+//!   PLY or JSON, every coordinate written so that it parses back to the same
+//!   `f64`. Files are written atomically ([`write_atomic`]); `-` is standard output.
+//! * Mesh readers ([`read_mesh`], [`read_mesh_from`]) for the same three formats,
+//!   checking that the file really is a row-major quad grid.
+//!
+//! Every fallible function returns an [`IoError`].
+//!
+//! ```
+//! use monge_io::{parse_design, DesignFormat};
+//! let design = parse_design(r#"{
+//!     "theta_deg": 30.0,
+//!     "guide_u": { "points": [[0, 0, 0], [1, 0, 0.2], [2, 0, 0.7]] },
+//!     "guide_v": { "bspline": { "degree": 3, "control_points": [[0, 0, 0], [0, 1, 0], [0, 2, 0.5], [0, 3, 1.5]], "samples": 41 } }
+//! }"#, DesignFormat::Json).unwrap();
+//! assert_eq!(design.guide_v.sample_count(), 41);
+//! ```
+
+#![warn(missing_docs)]
+
+mod atomic;
+mod design;
+mod error;
+mod mesh_read;
+mod mesh_write;
+
+use std::io;
+use std::path::Path;
+
+pub use atomic::{is_stdio, write_atomic, write_output};
+pub use design::{parse_design, read_design, write_design, write_design_to, DesignFormat};
+pub use error::IoError;
+pub use mesh_read::{read_mesh, read_mesh_from};
+pub use mesh_write::{
+    write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, MeshFormat, MESH_JSON_KEYS,
+};
+
+/// The whole file as text; [`IoError::NotFound`] or [`IoError::Read`] naming it.
+fn read_to_string(path: &Path) -> Result<String, IoError> {
+    std::fs::read_to_string(path).map_err(|source| match source.kind() {
+        io::ErrorKind::NotFound => IoError::NotFound {
+            path: path.to_owned(),
+        },
+        _ => IoError::Read {
+            path: path.to_owned(),
+            source,
+        },
+    })
+}
+
+/// The path as shown in error messages.
+fn path_name(path: &Path) -> String {
+    path.display().to_string()
+}

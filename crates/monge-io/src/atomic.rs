@@ -1,0 +1,88 @@
+//! Atomic file writes, and `-` for standard output.
+
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::error::IoError;
+
+/// Buffer size of the writers handed to the closures.
+const BUFFER: usize = 1 << 16;
+
+/// Writes a file atomically: `f` writes into a temporary file in the same
+/// directory, which is flushed, synced and then renamed to `path`.
+///
+/// If `f` (or anything else) fails, the temporary file is removed and nothing
+/// exists at `path` that was not there before: a pre-existing file is left
+/// untouched. The writer given to `f` is buffered. A new file gets the usual
+/// permissions (`0o666` less the umask on Unix). Errors are
+/// [`IoError::Write`] naming `path`.
+///
+/// ```
+/// # let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("hello.txt");
+/// monge_io::write_atomic(&path, |w| w.write_all(b"hello\n")).unwrap();
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "hello\n");
+/// ```
+pub fn write_atomic(
+    path: &Path,
+    f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), IoError> {
+    let err = |source| IoError::Write {
+        path: path.to_owned(),
+        source,
+    };
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let prefix = match path.file_name() {
+        Some(name) => format!(".{}.", name.to_string_lossy()),
+        None => {
+            return Err(err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "not a file name",
+            )))
+        }
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let tmp = builder.tempfile_in(dir).map_err(err)?;
+    {
+        let mut w = BufWriter::with_capacity(BUFFER, tmp.as_file());
+        f(&mut w).map_err(err)?;
+        w.flush().map_err(err)?;
+    }
+    tmp.as_file().sync_all().map_err(err)?;
+    tmp.persist(path).map_err(|e| err(e.error))?;
+    Ok(())
+}
+
+/// Writes to `path` with [`write_atomic`], or to standard output if `path` is `-`.
+///
+/// Errors on standard output are [`IoError::Write`] with the path `<stdout>`.
+pub fn write_output(
+    path: &Path,
+    f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), IoError> {
+    if !is_stdio(path) {
+        return write_atomic(path, f);
+    }
+    let stdout = io::stdout();
+    let mut w = BufWriter::with_capacity(BUFFER, stdout.lock());
+    f(&mut w)
+        .and_then(|()| w.flush())
+        .map_err(|source| IoError::Write {
+            path: PathBuf::from("<stdout>"),
+            source,
+        })
+}
+
+/// Whether `path` is `-`, standing for standard input or output.
+pub fn is_stdio(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}

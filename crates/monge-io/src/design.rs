@@ -1,0 +1,216 @@
+//! Design files: a [`Design`] as JSON or TOML.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use monge_core::design::{Design, GuideSpec};
+
+use crate::atomic::write_atomic;
+use crate::error::IoError;
+use crate::path_name;
+
+/// File name used in error messages for text that did not come from a file.
+const NO_FILE: &str = "<input>";
+const ACCEPTED: &str = "`.json` or `.toml`";
+
+/// The two design-file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DesignFormat {
+    /// JSON (`.json`).
+    Json,
+    /// TOML (`.toml`).
+    Toml,
+}
+
+impl DesignFormat {
+    /// The format named by the path's extension (`.json` or `.toml`, any case).
+    ///
+    /// ```
+    /// use monge_io::DesignFormat;
+    /// use std::path::Path;
+    /// assert_eq!(DesignFormat::from_path(Path::new("a/b.TOML")).unwrap(), DesignFormat::Toml);
+    /// assert!(DesignFormat::from_path(Path::new("b.yaml")).is_err());
+    /// ```
+    pub fn from_path(path: &Path) -> Result<DesignFormat, IoError> {
+        match extension(path).as_deref() {
+            Some("json") => Ok(DesignFormat::Json),
+            Some("toml") => Ok(DesignFormat::Toml),
+            _ => Err(unknown_extension(path, ACCEPTED)),
+        }
+    }
+}
+
+/// The lower-case extension of `path`, if any.
+pub(crate) fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+}
+
+/// The [`IoError::UnknownExtension`] for `path`.
+pub(crate) fn unknown_extension(path: &Path, accepted: &'static str) -> IoError {
+    let found = match path.extension() {
+        Some(e) => format!("extension `.{}`", e.to_string_lossy()),
+        None => "file name without extension".to_owned(),
+    };
+    IoError::UnknownExtension {
+        path: path.to_owned(),
+        found,
+        accepted,
+    }
+}
+
+/// Reads a design file, JSON or TOML by its extension.
+///
+/// Errors: [`IoError::UnknownExtension`], [`IoError::NotFound`],
+/// [`IoError::Read`], [`IoError::Parse`] (with line, column and what was
+/// expected) and [`IoError::NonFinite`].
+pub fn read_design(path: &Path) -> Result<Design, IoError> {
+    let format = DesignFormat::from_path(path)?;
+    let text = crate::read_to_string(path)?;
+    parse_design_named(&text, format, &path_name(path))
+}
+
+/// Parses the text of a design file.
+///
+/// Error messages name the file `<input>`.
+///
+/// ```
+/// use monge_io::{parse_design, DesignFormat};
+/// let d = parse_design(r#"
+/// theta_deg = 30.0
+/// guide_u.points = [[0, 0, 0], [1, 0, 0.2], [2, 0, 0.7]]
+/// guide_v.arc = { center = [0, 0, -1], start = [0, 0, 0], normal = [-1, 0, 0], angle_deg = 60, samples = 5 }
+/// "#, DesignFormat::Toml).unwrap();
+/// assert_eq!(d.theta_deg, 30.0);
+/// assert_eq!(d.guide_v.sample_count(), 5);
+/// ```
+pub fn parse_design(text: &str, format: DesignFormat) -> Result<Design, IoError> {
+    parse_design_named(text, format, NO_FILE)
+}
+
+fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
+    let design: Design = match format {
+        DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e))?,
+        DesignFormat::Toml => toml::from_str(text).map_err(|e| {
+            let offset = e.span().map(|s| s.start);
+            IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
+        })?,
+    };
+    check_finite(&design, file)?;
+    Ok(design)
+}
+
+/// An [`IoError::Parse`] from a serde_json error on `text`.
+pub(crate) fn json_error(file: &str, text: &str, e: &serde_json::Error) -> IoError {
+    // serde_json's Display appends " at line L column C"; keep the message only.
+    let full = e.to_string();
+    let suffix = format!(" at line {} column {}", e.line(), e.column());
+    let message = full.strip_suffix(&suffix).unwrap_or(&full).to_owned();
+    IoError::parse_at_line(file, text, e.line(), e.column(), message)
+}
+
+/// Writes a design file, pretty JSON or TOML by the path's extension, atomically.
+///
+/// Refuses non-finite numbers ([`IoError::NonFinite`]), which neither format
+/// could read back.
+pub fn write_design(design: &Design, path: &Path) -> Result<(), IoError> {
+    let format = DesignFormat::from_path(path)?;
+    check_finite(design, &path_name(path))?;
+    write_atomic(path, |w| write_design_to(design, format, w))
+}
+
+/// Writes a design to `w` as pretty JSON or TOML (non-finite numbers are written
+/// as JSON's `null` or TOML's `nan`/`inf`: check first if that matters).
+pub fn write_design_to<W: Write + ?Sized>(
+    design: &Design,
+    format: DesignFormat,
+    w: &mut W,
+) -> io::Result<()> {
+    match format {
+        DesignFormat::Json => {
+            serde_json::to_writer_pretty(&mut *w, design)?;
+            w.write_all(b"\n")
+        }
+        DesignFormat::Toml => {
+            let text = toml::to_string_pretty(design)
+                .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
+            w.write_all(text.as_bytes())
+        }
+    }
+}
+
+/// [`IoError::NonFinite`] naming the first non-finite number of `design`.
+fn check_finite(design: &Design, file: &str) -> Result<(), IoError> {
+    let mut bad = None;
+    let mut check = |key: &dyn Fn() -> String, x: f64| {
+        if bad.is_none() && !x.is_finite() {
+            bad = Some(key());
+        }
+    };
+    check(&|| "theta_deg".to_owned(), design.theta_deg);
+    if let Some(t) = &design.tolerance {
+        check(&|| "tolerance.planarity".to_owned(), t.planarity);
+        check(&|| "tolerance.angle".to_owned(), t.angle);
+        check(&|| "tolerance.start".to_owned(), t.start);
+    }
+    for (name, guide) in [("guide_u", &design.guide_u), ("guide_v", &design.guide_v)] {
+        visit_guide(name, guide, &mut check);
+    }
+    match bad {
+        Some(key) => Err(IoError::NonFinite {
+            file: file.to_owned(),
+            key,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// A callback receiving each number with a function that names its key path.
+type Check<'a> = dyn FnMut(&dyn Fn() -> String, f64) + 'a;
+
+/// Calls `check` on every number of a guide.
+fn visit_guide(name: &str, g: &GuideSpec, check: &mut Check<'_>) {
+    fn xyz(check: &mut Check<'_>, key: &dyn Fn() -> String, p: &[f64; 3]) {
+        for (k, &x) in p.iter().enumerate() {
+            check(&|| format!("{}[{k}]", key()), x);
+        }
+    }
+    fn list(check: &mut Check<'_>, key: &dyn Fn() -> String, ps: &[[f64; 3]]) {
+        for (n, p) in ps.iter().enumerate() {
+            xyz(check, &|| format!("{}[{n}]", key()), p);
+        }
+    }
+    if let Some(p) = &g.points {
+        list(check, &|| format!("{name}.points"), p);
+    }
+    if let Some(t) = &g.tangent {
+        xyz(check, &|| format!("{name}.tangent"), t);
+    }
+    if let Some(b) = &g.bspline {
+        list(
+            check,
+            &|| format!("{name}.bspline.control_points"),
+            &b.control_points,
+        );
+        for (key, values) in [("knots", &b.knots), ("weights", &b.weights)] {
+            for (n, &x) in values.iter().flatten().enumerate() {
+                check(&|| format!("{name}.bspline.{key}[{n}]"), x);
+            }
+        }
+    }
+    if let Some(a) = &g.arc {
+        xyz(check, &|| format!("{name}.arc.center"), &a.center);
+        xyz(check, &|| format!("{name}.arc.start"), &a.start);
+        xyz(check, &|| format!("{name}.arc.normal"), &a.normal);
+        check(&|| format!("{name}.arc.angle_deg"), a.angle_deg);
+    }
+    if let Some(p) = &g.parabola {
+        xyz(check, &|| format!("{name}.parabola.start"), &p.start);
+        xyz(check, &|| format!("{name}.parabola.tangent"), &p.tangent);
+        xyz(
+            check,
+            &|| format!("{name}.parabola.quadratic"),
+            &p.quadratic,
+        );
+    }
+}

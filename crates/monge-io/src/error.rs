@@ -1,0 +1,191 @@
+//! The error type of this crate.
+
+use std::io;
+use std::path::PathBuf;
+
+/// Everything that can go wrong reading or writing design and mesh files.
+///
+/// Messages are written for the person who wrote the file: they name the file,
+/// give the line and column where known, and say what was expected.
+#[derive(Debug, thiserror::Error)]
+pub enum IoError {
+    /// The file to read does not exist.
+    #[error("file not found: `{}`", path.display())]
+    NotFound {
+        /// The missing file.
+        path: PathBuf,
+    },
+
+    /// Reading a file (or standard input) failed for another reason.
+    #[error("cannot read `{}`: {source}", path.display())]
+    Read {
+        /// The file being read (`<stdin>` for standard input).
+        path: PathBuf,
+        /// The underlying error.
+        source: io::Error,
+    },
+
+    /// Writing a file (or standard output) failed; an existing file at the
+    /// path is left as it was.
+    #[error("cannot write `{}`: {source}", path.display())]
+    Write {
+        /// The file being written (`<stdout>` for standard output).
+        path: PathBuf,
+        /// The underlying error.
+        source: io::Error,
+    },
+
+    /// The file format cannot be told from the path's extension.
+    #[error("`{}`: unsupported {found}; expected {accepted}", path.display())]
+    UnknownExtension {
+        /// The path.
+        path: PathBuf,
+        /// What was found, e.g. "extension `.stl`" or "file name without extension".
+        found: String,
+        /// The accepted extensions, e.g. "`.json` or `.toml`".
+        accepted: &'static str,
+    },
+
+    /// `-` (standard input or output) was given without saying which format to use.
+    #[error("`-` (standard input/output) needs an explicit format: {accepted}")]
+    NeedFormat {
+        /// The formats that could be given.
+        accepted: &'static str,
+    },
+
+    /// A JSON or TOML file is not valid, or does not have the expected fields.
+    #[error("{}", fmt_parse(file, *line, *column, message, snippet))]
+    Parse {
+        /// The file name (`<input>` for text without a file).
+        file: String,
+        /// 1-based line of the error; 0 when the parser gave no position.
+        line: usize,
+        /// 1-based column (in characters) of the error; 0 when unknown.
+        column: usize,
+        /// What is wrong, e.g. "unknown field `thetadeg`, expected one of …".
+        message: String,
+        /// The offending line with a caret under the column (empty when unknown).
+        snippet: String,
+    },
+
+    /// A number in a design is NaN or infinite (TOML allows `nan` and `inf`).
+    #[error("{file}: a number is not finite at `{key}`")]
+    NonFinite {
+        /// The file name (`<input>` for text without a file).
+        file: String,
+        /// Where the number is, e.g. `theta_deg` or `guide_u.points[2][1]`.
+        key: String,
+    },
+
+    /// A line of an OBJ or PLY file cannot be understood.
+    #[error("{file}:{line}: {message}")]
+    Syntax {
+        /// The file name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+
+    /// A count in a mesh file does not match the grid shape.
+    #[error("{file}: {what}: expected {expected}, found {found}")]
+    CountMismatch {
+        /// The file name.
+        file: String,
+        /// What was counted, e.g. "vertices (rows × cols = 4 × 5)".
+        what: String,
+        /// The count the grid shape requires.
+        expected: usize,
+        /// The count in the file.
+        found: usize,
+    },
+
+    /// The faces of a mesh file do not form a regular row-major quad grid.
+    #[error("{file}: not a regular row-major quad grid: {message}")]
+    NotAGrid {
+        /// The file name.
+        file: String,
+        /// Which face is wrong and why.
+        message: String,
+    },
+}
+
+fn fmt_parse(file: &str, line: usize, column: usize, message: &str, snippet: &str) -> String {
+    let mut s = if line == 0 {
+        format!("{file}: {message}")
+    } else {
+        format!("{file}:{line}:{column}: {message}")
+    };
+    if !snippet.is_empty() {
+        s.push('\n');
+        s.push_str(snippet);
+    }
+    s
+}
+
+impl IoError {
+    /// A [`IoError::Parse`] at byte `offset` of `text` (line, column and snippet computed).
+    pub(crate) fn parse_at(file: &str, text: &str, offset: Option<usize>, message: String) -> Self {
+        let Some(offset) = offset else {
+            return IoError::Parse {
+                file: file.to_owned(),
+                line: 0,
+                column: 0,
+                message,
+                snippet: String::new(),
+            };
+        };
+        let mut offset = offset.min(text.len());
+        while !text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let line_start = text[..offset].rfind('\n').map_or(0, |p| p + 1);
+        let line = text[..line_start].matches('\n').count() + 1;
+        let column = text[line_start..offset].chars().count() + 1;
+        IoError::Parse {
+            file: file.to_owned(),
+            line,
+            column,
+            message,
+            snippet: snippet(text, line, column),
+        }
+    }
+
+    /// A [`IoError::Parse`] at a 1-based line and column of `text`.
+    pub(crate) fn parse_at_line(
+        file: &str,
+        text: &str,
+        line: usize,
+        column: usize,
+        message: String,
+    ) -> Self {
+        IoError::Parse {
+            file: file.to_owned(),
+            line,
+            column,
+            message,
+            snippet: snippet(text, line, column),
+        }
+    }
+}
+
+/// Widest part of a line shown in a snippet (mesh JSON can be one long line).
+const SNIPPET_WIDTH: usize = 72;
+
+/// The 1-based `line` of `text`, cut to a window around `column`, with a caret
+/// under the column. Empty if the line does not exist.
+fn snippet(text: &str, line: usize, column: usize) -> String {
+    let Some(src) = line.checked_sub(1).and_then(|l| text.lines().nth(l)) else {
+        return String::new();
+    };
+    let len = src.chars().count();
+    let col = column.max(1) - 1;
+    let start = col.saturating_sub(SNIPPET_WIDTH / 2).min(len);
+    let end = (start + SNIPPET_WIDTH).min(len);
+    let prefix = if start > 0 { "…" } else { "" };
+    let suffix = if end < len { "…" } else { "" };
+    let shown: String = src.chars().skip(start).take(end - start).collect();
+    let pad = " ".repeat(col - start + prefix.chars().count());
+    format!("  | {prefix}{shown}{suffix}\n  | {pad}^")
+}

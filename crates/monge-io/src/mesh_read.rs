@@ -1,0 +1,491 @@
+//! Mesh readers: the JSON, OBJ and ASCII PLY files written by this crate, and
+//! OBJ/PLY quad grids from elsewhere whose vertices are in row-major order.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use monge_core::QuadGrid;
+use serde::Deserialize;
+
+use crate::design::json_error;
+use crate::error::IoError;
+use crate::mesh_write::MeshFormat;
+use crate::path_name;
+
+/// Reads a quad grid from a `.json`, `.obj` or `.ply` file (by its extension).
+///
+/// * JSON: `rows`, `cols`, `vertices` and optional `normals`; other keys are ignored.
+/// * OBJ: `v`, optional `vn` (one per vertex, in vertex order) and quad `f` lines.
+/// * PLY (ASCII): a `vertex` element with `x y z` and optional `nx ny nz`, and a
+///   `face` element with `vertex_indices` (or `vertex_index`).
+///
+/// For OBJ and PLY the grid shape comes from the comment `monge quad grid
+/// rows=R cols=C` if present, else from the first face, which must be
+/// `(0, C, C+1, 1)` (0-based) up to rotation and orientation. All faces are
+/// then checked to be exactly the faces of the `R × C` grid, in any order.
+///
+/// `-` is refused with [`IoError::NeedFormat`]: use [`read_mesh_from`].
+pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
+    let format = MeshFormat::from_path(path)?;
+    let text = crate::read_to_string(path)?;
+    parse_mesh(&text, format, &path_name(path))
+}
+
+/// Reads a quad grid in `format` from a reader such as standard input (see [`read_mesh`]).
+///
+/// Errors name the input `<stdin>`.
+///
+/// ```
+/// use monge_io::{read_mesh_from, MeshFormat};
+/// let text = r#"{"rows": 1, "cols": 2, "vertices": [[0, 0, 0], [1, 0, 0]], "note": "ignored"}"#;
+/// let grid = read_mesh_from(text.as_bytes(), MeshFormat::Json).unwrap();
+/// assert_eq!((grid.rows, grid.cols), (1, 2));
+/// ```
+pub fn read_mesh_from(mut reader: impl Read, format: MeshFormat) -> Result<QuadGrid, IoError> {
+    const NAME: &str = "<stdin>";
+    let mut text = String::new();
+    reader
+        .read_to_string(&mut text)
+        .map_err(|source| IoError::Read {
+            path: PathBuf::from(NAME),
+            source,
+        })?;
+    parse_mesh(&text, format, NAME)
+}
+
+fn parse_mesh(text: &str, format: MeshFormat, file: &str) -> Result<QuadGrid, IoError> {
+    match format {
+        MeshFormat::Json => parse_json(text, file),
+        MeshFormat::Obj => parse_obj(text, file)?.into_grid(file),
+        MeshFormat::Ply => parse_ply(text, file)?.into_grid(file),
+    }
+}
+
+#[derive(Deserialize)]
+struct MeshJson {
+    rows: usize,
+    cols: usize,
+    vertices: Vec<[f64; 3]>,
+    #[serde(default)]
+    normals: Vec<[f64; 3]>,
+}
+
+fn parse_json(text: &str, file: &str) -> Result<QuadGrid, IoError> {
+    let m: MeshJson = serde_json::from_str(text).map_err(|e| json_error(file, text, &e))?;
+    let vertices = m.vertices.into_iter().map(DVec3::from_array).collect();
+    let normals = m.normals.into_iter().map(DVec3::from_array).collect();
+    grid(file, m.rows, m.cols, vertices, normals)
+}
+
+/// The grid after checking the counts.
+fn grid(
+    file: &str,
+    rows: usize,
+    cols: usize,
+    vertices: Vec<DVec3>,
+    normals: Vec<DVec3>,
+) -> Result<QuadGrid, IoError> {
+    let mismatch = |what: String, expected, found| IoError::CountMismatch {
+        file: file.to_owned(),
+        what,
+        expected,
+        found,
+    };
+    let n = rows.checked_mul(cols).ok_or_else(|| IoError::NotAGrid {
+        file: file.to_owned(),
+        message: format!("rows × cols = {rows} × {cols} is too large"),
+    })?;
+    if vertices.len() != n {
+        let what = format!("vertices (rows × cols = {rows} × {cols})");
+        return Err(mismatch(what, n, vertices.len()));
+    }
+    if !normals.is_empty() && normals.len() != n {
+        return Err(mismatch(
+            "normals (one per vertex)".to_owned(),
+            n,
+            normals.len(),
+        ));
+    }
+    Ok(QuadGrid::new(rows, cols, vertices, normals))
+}
+
+/// What an OBJ or PLY file says, before the grid shape is known.
+#[derive(Default)]
+struct RawMesh {
+    /// From a `monge quad grid rows=R cols=C` comment.
+    shape: Option<(usize, usize)>,
+    vertices: Vec<DVec3>,
+    normals: Vec<DVec3>,
+    /// 0-based corners.
+    faces: Vec<[usize; 4]>,
+}
+
+impl RawMesh {
+    fn into_grid(self, file: &str) -> Result<QuadGrid, IoError> {
+        let not_a_grid = |message: String| IoError::NotAGrid {
+            file: file.to_owned(),
+            message,
+        };
+        let n = self.vertices.len();
+        let (rows, cols) = match (self.shape, self.faces.first()) {
+            (Some(shape), _) => shape,
+            (None, Some(first)) => {
+                let cols = first_face_cols(first).ok_or_else(|| {
+                    not_a_grid(format!(
+                        "the first face is {} (0-based); the first face of a row-major grid \
+                         with C columns is (0, C, C+1, 1), and there is no \
+                         `monge quad grid rows=R cols=C` comment",
+                        fmt_face(first)
+                    ))
+                })?;
+                if n % cols != 0 {
+                    return Err(not_a_grid(format!(
+                        "the first face {} implies {cols} columns, but {n} vertices are not whole rows of {cols}",
+                        fmt_face(first)
+                    )));
+                }
+                (n / cols, cols)
+            }
+            (None, None) => {
+                return Err(not_a_grid(
+                    "no faces and no `monge quad grid rows=R cols=C` comment: the grid shape is unknown".to_owned(),
+                ))
+            }
+        };
+        let grid = grid(file, rows, cols, self.vertices, self.normals)?;
+        if self.shape.is_none() || !self.faces.is_empty() {
+            check_faces(&self.faces, rows, cols).map_err(not_a_grid)?;
+        }
+        Ok(grid)
+    }
+}
+
+fn fmt_face(f: &[usize; 4]) -> String {
+    format!("({}, {}, {}, {})", f[0], f[1], f[2], f[3])
+}
+
+/// The column count `C ≥ 2` if `f` is `(0, C, C+1, 1)` up to rotation and orientation.
+fn first_face_cols(f: &[usize; 4]) -> Option<usize> {
+    let p = f.iter().position(|&c| c == 0)?;
+    let g = [f[p], f[(p + 1) % 4], f[(p + 2) % 4], f[(p + 3) % 4]];
+    let cols = if g[3] == 1 { g[1] } else { g[3] };
+    (cols >= 2 && face_matches(&g, 0, cols)).then_some(cols)
+}
+
+/// Whether `f` is the face with lowest corner `k` of a grid with `cols`
+/// columns, up to rotation and orientation.
+fn face_matches(f: &[usize; 4], k: usize, cols: usize) -> bool {
+    let Some(p) = f.iter().position(|&c| c == k) else {
+        return false;
+    };
+    let g = [f[p], f[(p + 1) % 4], f[(p + 2) % 4], f[(p + 3) % 4]];
+    let (a, b) = (k + cols, k + 1);
+    g[2] == k + cols + 1 && ((g[1] == a && g[3] == b) || (g[1] == b && g[3] == a))
+}
+
+/// Checks that `faces` are exactly the faces of a `rows × cols` grid, each once.
+fn check_faces(faces: &[[usize; 4]], rows: usize, cols: usize) -> Result<(), String> {
+    let n = rows * cols;
+    let expected = rows.saturating_sub(1) * cols.saturating_sub(1);
+    let mut seen = vec![false; expected];
+    for (number, f) in faces.iter().enumerate() {
+        let face = || format!("face {} {}", number + 1, fmt_face(f));
+        if let Some(&c) = f.iter().find(|&&c| c >= n) {
+            return Err(format!(
+                "{} refers to vertex {c}, but there are {n} vertices (0-based)",
+                face()
+            ));
+        }
+        let k = *f.iter().min().expect("four corners");
+        let (i, j) = (k / cols, k % cols);
+        if i + 1 >= rows || j + 1 >= cols || !face_matches(f, k, cols) {
+            return Err(format!(
+                "{} is not a quad (i, j), (i+1, j), (i+1, j+1), (i, j+1) of a {rows} × {cols} grid (0-based)",
+                face()
+            ));
+        }
+        let s = &mut seen[i * (cols - 1) + j];
+        if *s {
+            return Err(format!("{} repeats grid face ({i}, {j})", face()));
+        }
+        *s = true;
+    }
+    if faces.len() != expected {
+        return Err(format!(
+            "{} faces, but a {rows} × {cols} grid has {expected}",
+            faces.len()
+        ));
+    }
+    Ok(())
+}
+
+/// `Some(shape)` if `comment` is `monge quad grid rows=R cols=C`.
+fn parse_shape(
+    comment: &str,
+    syntax: &dyn Fn(String) -> IoError,
+) -> Result<Option<(usize, usize)>, IoError> {
+    let Some(rest) = comment.trim().strip_prefix("monge quad grid") else {
+        return Ok(None);
+    };
+    let mut it = rest.split_whitespace();
+    let rows = it
+        .next()
+        .and_then(|s| s.strip_prefix("rows="))
+        .and_then(|s| s.parse().ok());
+    let cols = it
+        .next()
+        .and_then(|s| s.strip_prefix("cols="))
+        .and_then(|s| s.parse().ok());
+    match (rows, cols) {
+        (Some(r), Some(c)) => Ok(Some((r, c))),
+        _ => Err(syntax(format!(
+            "expected `monge quad grid rows=R cols=C` with whole numbers, found `{}`",
+            comment.trim()
+        ))),
+    }
+}
+
+/// A finite `f64`.
+fn parse_f64(token: &str) -> Result<f64, String> {
+    match token.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(format!("`{token}` is not a finite number")),
+        Err(_) => Err(format!("expected a number, found `{token}`")),
+    }
+}
+
+/// `x y z` from the first three of `tokens`.
+fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<DVec3, String> {
+    let mut p = [0.0; 3];
+    for x in &mut p {
+        *x = parse_f64(tokens.next().ok_or("expected three coordinates x y z")?)?;
+    }
+    Ok(DVec3::from_array(p))
+}
+
+fn parse_obj(text: &str, file: &str) -> Result<RawMesh, IoError> {
+    let mut raw = RawMesh::default();
+    for (number, line) in text.lines().enumerate() {
+        let syntax = |message: String| IoError::Syntax {
+            file: file.to_owned(),
+            line: number + 1,
+            message,
+        };
+        let line = line.trim();
+        if let Some(comment) = line.strip_prefix('#') {
+            if let Some(shape) = parse_shape(comment, &syntax)? {
+                raw.shape = Some(shape);
+            }
+            continue;
+        }
+        let mut tokens = line.split_whitespace();
+        match tokens.next() {
+            Some("v") => raw.vertices.push(parse_xyz(&mut tokens).map_err(syntax)?),
+            Some("vn") => raw.normals.push(parse_xyz(&mut tokens).map_err(syntax)?),
+            Some("f") => {
+                let corners: Vec<&str> = tokens.collect();
+                if corners.len() != 4 {
+                    return Err(syntax(format!(
+                        "a face with {} corners; a quad grid has faces with 4",
+                        corners.len()
+                    )));
+                }
+                let mut face = [0; 4];
+                for (slot, corner) in face.iter_mut().zip(corners) {
+                    *slot = obj_corner(corner, raw.vertices.len()).map_err(syntax)?;
+                }
+                raw.faces.push(face);
+            }
+            _ => {}
+        }
+    }
+    Ok(raw)
+}
+
+/// The 0-based vertex of an OBJ face corner `v`, `v/t`, `v//n` or `v/t/n`
+/// (negative `v` counts back from the last of `count` vertices so far).
+/// A normal index must equal the vertex index: normals are read in vertex order.
+fn obj_corner(corner: &str, count: usize) -> Result<usize, String> {
+    let mut parts = corner.split('/');
+    let index = |s: &str| -> Result<usize, String> {
+        let bad = || format!("bad face corner `{corner}`");
+        let k: i64 = s.parse().map_err(|_| bad())?;
+        let k = if k < 0 { count as i64 + k } else { k - 1 };
+        usize::try_from(k).map_err(|_| bad())
+    };
+    let v = index(parts.next().unwrap_or(""))?;
+    if let Some(n) = parts.nth(1).filter(|s| !s.is_empty()) {
+        let n = index(n)?;
+        if n != v {
+            return Err(format!(
+                "face corner `{corner}` uses normal {} for vertex {}; normals must be in vertex order",
+                n + 1,
+                v + 1
+            ));
+        }
+    }
+    Ok(v)
+}
+
+/// A PLY element declared in the header.
+struct Element {
+    name: String,
+    count: usize,
+    /// Property names; `true` for list properties.
+    properties: Vec<(String, bool)>,
+}
+
+fn parse_ply(text: &str, file: &str) -> Result<RawMesh, IoError> {
+    let mut raw = RawMesh::default();
+    let mut lines = text.lines().enumerate();
+    let syntax_at = |number: usize, message: String| IoError::Syntax {
+        file: file.to_owned(),
+        line: number + 1,
+        message,
+    };
+    if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
+        return Err(syntax_at(0, "expected `ply` on the first line".to_owned()));
+    }
+    let mut elements: Vec<Element> = Vec::new();
+    let mut number = 0;
+    loop {
+        let Some((n, line)) = lines.next() else {
+            return Err(syntax_at(
+                number + 1,
+                "the header has no `end_header`".to_owned(),
+            ));
+        };
+        number = n;
+        let syntax = |message: String| syntax_at(n, message);
+        let mut tokens = line.split_whitespace();
+        match tokens.next() {
+            Some("format") => {
+                let format = tokens.next().unwrap_or("");
+                if format != "ascii" {
+                    return Err(syntax(format!(
+                        "only ASCII PLY can be read, this file is `{format}`"
+                    )));
+                }
+            }
+            Some("comment") => {
+                let comment = line.trim_start().strip_prefix("comment").unwrap_or("");
+                if let Some(shape) = parse_shape(comment, &syntax)? {
+                    raw.shape = Some(shape);
+                }
+            }
+            Some("element") => {
+                let name = tokens.next().unwrap_or("").to_owned();
+                let count = tokens
+                    .next()
+                    .and_then(|c| c.parse().ok())
+                    .ok_or_else(|| syntax(format!("expected `element {name} COUNT`")))?;
+                elements.push(Element {
+                    name,
+                    count,
+                    properties: Vec::new(),
+                });
+            }
+            Some("property") => {
+                let element = elements
+                    .last_mut()
+                    .ok_or_else(|| syntax("a property before any element".to_owned()))?;
+                let words: Vec<&str> = tokens.collect();
+                let (name, list) = match words.as_slice() {
+                    ["list", _, _, name] => (name, true),
+                    [_, name] => (name, false),
+                    _ => return Err(syntax(format!("cannot read `{}`", line.trim()))),
+                };
+                element.properties.push(((*name).to_owned(), list));
+            }
+            Some("end_header") => break,
+            _ => {}
+        }
+    }
+    for element in &elements {
+        let find = |name: &str| element.properties.iter().position(|(p, _)| p == name);
+        let xyz = [find("x"), find("y"), find("z")];
+        let nxyz = [find("nx"), find("ny"), find("nz")];
+        let indices = find("vertex_indices").or_else(|| find("vertex_index"));
+        for _ in 0..element.count {
+            let Some((n, line)) = lines.next() else {
+                return Err(syntax_at(
+                    number + 1,
+                    format!(
+                        "the file ends before all {} `{}` lines",
+                        element.count, element.name
+                    ),
+                ));
+            };
+            number = n;
+            let syntax = |message: String| syntax_at(n, message);
+            let values = ply_values(line, &element.properties).map_err(syntax)?;
+            if element.name == "vertex" {
+                let get = |slots: [Option<usize>; 3]| -> Result<Option<DVec3>, String> {
+                    let [Some(a), Some(b), Some(c)] = slots else {
+                        return Ok(None);
+                    };
+                    let mut p = [0.0; 3];
+                    for (x, k) in p.iter_mut().zip([a, b, c]) {
+                        *x = parse_f64(values[k][0])?;
+                    }
+                    Ok(Some(DVec3::from_array(p)))
+                };
+                let p = get(xyz)
+                    .map_err(&syntax)?
+                    .ok_or_else(|| syntax("the vertex element has no x, y and z".to_owned()))?;
+                raw.vertices.push(p);
+                if let Some(normal) = get(nxyz).map_err(&syntax)? {
+                    raw.normals.push(normal);
+                }
+            } else if element.name == "face" {
+                let k = indices
+                    .ok_or_else(|| syntax("the face element has no vertex_indices".to_owned()))?;
+                let corners = &values[k][1..];
+                if corners.len() != 4 {
+                    return Err(syntax(format!(
+                        "a face with {} corners; a quad grid has faces with 4",
+                        corners.len()
+                    )));
+                }
+                let mut face = [0; 4];
+                for (slot, c) in face.iter_mut().zip(corners) {
+                    *slot = c
+                        .parse()
+                        .map_err(|_| syntax(format!("expected a vertex index, found `{c}`")))?;
+                }
+                raw.faces.push(face);
+            }
+        }
+    }
+    Ok(raw)
+}
+
+/// The tokens of each property of one element line (a list property's
+/// tokens include its length first).
+fn ply_values<'a>(
+    line: &'a str,
+    properties: &[(String, bool)],
+) -> Result<Vec<Vec<&'a str>>, String> {
+    let mut tokens = line.split_whitespace();
+    let mut next = || {
+        tokens
+            .next()
+            .ok_or_else(|| "too few values on the line".to_owned())
+    };
+    let mut values = Vec::with_capacity(properties.len());
+    for (_, list) in properties {
+        let first = next()?;
+        let mut v = vec![first];
+        if *list {
+            let len: usize = first
+                .parse()
+                .map_err(|_| format!("expected a list length, found `{first}`"))?;
+            for _ in 0..len {
+                v.push(next()?);
+            }
+        }
+        values.push(v);
+    }
+    Ok(values)
+}

@@ -1,0 +1,92 @@
+//! Atomic writes: a failure never leaves a half-written or empty file.
+
+use std::io;
+use std::path::Path;
+
+use monge_io::{write_atomic, write_output, IoError};
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn failing_closure_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.obj");
+    let err = write_atomic(&path, |w| {
+        w.write_all(&[b'x'; 100_000])?; // more than the buffer: reaches the temporary file
+        Err(io::Error::other("generator failed"))
+    })
+    .unwrap_err();
+    assert!(matches!(err, IoError::Write { .. }), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        format!("cannot write `{}`: generator failed", path.display())
+    );
+    assert!(!path.exists());
+    assert!(
+        entries(dir.path()).is_empty(),
+        "temporary file left: {:?}",
+        entries(dir.path())
+    );
+}
+
+#[test]
+fn failing_closure_leaves_an_existing_file_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.json");
+    std::fs::write(&path, "previous").unwrap();
+    let err = write_atomic(&path, |w| {
+        w.write_all(b"partial")?;
+        Err(io::Error::other("boom"))
+    });
+    assert!(err.is_err());
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "previous");
+    assert_eq!(entries(dir.path()), ["out.json"]);
+
+    write_atomic(&path, |w| w.write_all(b"new")).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    assert_eq!(entries(dir.path()), ["out.json"]);
+}
+
+#[test]
+fn missing_directory_is_a_write_error_naming_the_path() {
+    let path = Path::new("/nonexistent-monge-dir/out.ply");
+    let err = write_atomic(path, |w| w.write_all(b"x")).unwrap_err();
+    assert!(matches!(err, IoError::Write { .. }), "{err:?}");
+    assert!(
+        err.to_string()
+            .starts_with("cannot write `/nonexistent-monge-dir/out.ply`: "),
+        "{err}"
+    );
+}
+
+#[test]
+fn relative_paths_without_a_directory_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("rel.txt");
+    // write_output on a real path is write_atomic.
+    write_output(&path, |w| w.write_all(b"ok")).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "ok");
+    let err = write_atomic(Path::new(""), |w| w.write_all(b"x")).unwrap_err();
+    assert!(matches!(err, IoError::Write { .. }), "{err:?}");
+}
+
+#[cfg(unix)]
+#[test]
+fn new_files_get_ordinary_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("perm.txt");
+    write_atomic(&path, |w| w.write_all(b"x")).unwrap();
+    let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+    // The same as `File::create` (0o666 less the umask), not tempfile's 0o600.
+    let reference = dir.path().join("reference.txt");
+    std::fs::write(&reference, "x").unwrap();
+    assert_eq!(mode(&path), mode(&reference));
+}

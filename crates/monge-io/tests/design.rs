@@ -1,0 +1,309 @@
+//! Design files: JSON and TOML, errors for architects, round trips.
+
+use std::path::Path;
+
+use monge_core::design::{ArcSpec, BSplineSpec, Design, GuideSpec, ParabolaSpec, Tolerances};
+use monge_io::{parse_design, read_design, write_design, DesignFormat, IoError};
+
+const JSON: &str = r#"{ "theta_deg": 30.0, "guide_u": { "points": [[0,0,0],[1,0,0.2],[2,0,0.7]] }, "guide_v": { "bspline": { "degree": 3, "control_points": [[0,0,0],[0,1,0],[0,2,0.5],[0,3,1.5]], "samples": 41 } } }"#;
+
+const TOML: &str = r#"theta_deg = 30.0
+
+[guide_u]
+points = [[0, 0, 0], [1, 0, 0.2], [2, 0, 0.7]]
+
+[guide_v.bspline]
+degree = 3
+control_points = [[0, 0, 0], [0, 1, 0], [0, 2, 0.5], [0, 3, 1.5]]
+samples = 41
+"#;
+
+fn expected() -> Design {
+    Design {
+        theta_deg: 30.0,
+        guide_u: GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]]),
+        guide_v: GuideSpec {
+            bspline: Some(BSplineSpec {
+                degree: 3,
+                control_points: vec![
+                    [0.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 2.0, 0.5],
+                    [0.0, 3.0, 1.5],
+                ],
+                knots: None,
+                weights: None,
+                samples: 41,
+            }),
+            ..Default::default()
+        },
+        tolerance: None,
+    }
+}
+
+/// A design using every kind of guide and every optional field.
+fn full() -> Design {
+    Design {
+        theta_deg: -12.5,
+        guide_u: GuideSpec {
+            points: Some(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.1]]),
+            tangent: Some([1.0, 0.0, 0.0]),
+            ..Default::default()
+        },
+        guide_v: GuideSpec {
+            bspline: Some(BSplineSpec {
+                degree: 2,
+                control_points: vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 2.0, 0.5]],
+                knots: Some(vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]),
+                weights: Some(vec![1.0, 0.5, 1.0]),
+                samples: 9,
+            }),
+            ..Default::default()
+        },
+        tolerance: Some(Tolerances {
+            planarity: 1e-8,
+            angle: 2e-9,
+            start: 3e-10,
+        }),
+    }
+}
+
+fn others() -> [GuideSpec; 2] {
+    [
+        GuideSpec {
+            arc: Some(ArcSpec {
+                center: [0.0, 0.0, -1.0],
+                start: [0.0, 0.0, 0.0],
+                normal: [-1.0, 0.0, 0.0],
+                angle_deg: 60.0,
+                samples: 5,
+            }),
+            ..Default::default()
+        },
+        GuideSpec {
+            parabola: Some(ParabolaSpec {
+                start: [0.0, 0.0, 0.0],
+                tangent: [1.0, 0.0, 0.0],
+                quadratic: [0.0, 0.0, 0.3],
+                samples: 7,
+            }),
+            ..Default::default()
+        },
+    ]
+}
+
+#[test]
+fn json_and_toml_examples_parse() {
+    assert_eq!(parse_design(JSON, DesignFormat::Json).unwrap(), expected());
+    assert_eq!(parse_design(TOML, DesignFormat::Toml).unwrap(), expected());
+}
+
+#[test]
+fn read_design_by_extension() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in [("a.json", JSON), ("b.toml", TOML), ("C.JSON", JSON)] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        assert_eq!(read_design(&path).unwrap(), expected(), "{name}");
+    }
+}
+
+#[test]
+fn write_design_round_trips_in_both_formats() {
+    let dir = tempfile::tempdir().unwrap();
+    let [arc, parabola] = others();
+    let with_arc = Design {
+        guide_u: arc,
+        guide_v: parabola,
+        ..full()
+    };
+    for design in [expected(), full(), with_arc] {
+        for name in ["d.json", "d.toml"] {
+            let path = dir.path().join(name);
+            write_design(&design, &path).unwrap();
+            assert_eq!(read_design(&path).unwrap(), design, "{name}");
+        }
+    }
+    let text = std::fs::read_to_string(dir.path().join("d.json")).unwrap();
+    assert!(text.contains("\n  \"theta_deg\""), "pretty JSON: {text}");
+}
+
+#[test]
+fn unknown_field_in_json_names_file_line_column_and_expected_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("typo.json");
+    std::fs::write(&path, "{\n  \"thetadeg\": 30.0,\n  \"guide_u\": {}\n}\n").unwrap();
+    let err = read_design(&path).unwrap_err();
+    let IoError::Parse {
+        file,
+        line,
+        column,
+        message,
+        snippet,
+    } = &err
+    else {
+        panic!("{err:?}")
+    };
+    assert_eq!(file, &path.display().to_string());
+    assert_eq!((*line, *column), (2, 12));
+    assert!(
+        message.starts_with("unknown field `thetadeg`, expected one of `theta_deg`"),
+        "{message}"
+    );
+    assert!(snippet.contains("\"thetadeg\": 30.0"), "{snippet}");
+    let shown = err.to_string();
+    assert!(
+        shown.starts_with(&format!("{}:2:12: unknown field", path.display())),
+        "{shown}"
+    );
+}
+
+#[test]
+fn json_syntax_error_has_position() {
+    let err = parse_design(
+        "{\"theta_deg\": 30.0\n \"guide_u\": {}}",
+        DesignFormat::Json,
+    )
+    .unwrap_err();
+    let IoError::Parse {
+        file,
+        line,
+        message,
+        ..
+    } = &err
+    else {
+        panic!("{err:?}")
+    };
+    assert_eq!(file, "<input>");
+    assert_eq!(*line, 2);
+    assert_eq!(message, "expected `,` or `}`");
+}
+
+#[test]
+fn toml_unknown_field_shows_line_column_and_caret() {
+    let text = "theta_deg = 30.0\n[guide_u]\npoint = [[0, 0, 0]]\n";
+    let err = parse_design(text, DesignFormat::Toml).unwrap_err();
+    let IoError::Parse {
+        line,
+        column,
+        message,
+        snippet,
+        ..
+    } = &err
+    else {
+        panic!("{err:?}")
+    };
+    assert_eq!((*line, *column), (3, 1));
+    assert!(message.contains("unknown field `point`"), "{message}");
+    assert!(message.contains("`points`"), "{message}");
+    assert_eq!(snippet, "  | point = [[0, 0, 0]]\n  | ^");
+}
+
+#[test]
+fn toml_missing_field_and_wrong_type() {
+    let err = parse_design(
+        "theta_deg = 30.0\n[guide_u]\npoints = []\n",
+        DesignFormat::Toml,
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("missing field `guide_v`"), "{err}");
+    let err = parse_design("theta_deg = \"thirty\"\n", DesignFormat::Toml).unwrap_err();
+    let IoError::Parse { line, message, .. } = &err else {
+        panic!("{err:?}")
+    };
+    assert_eq!(*line, 1);
+    assert!(message.contains("expected f64"), "{message}");
+}
+
+#[test]
+fn toml_nan_and_inf_are_refused_with_key_path() {
+    let err = parse_design(
+        &TOML.replace("theta_deg = 30.0", "theta_deg = nan"),
+        DesignFormat::Toml,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&err, IoError::NonFinite { key, .. } if key == "theta_deg"),
+        "{err:?}"
+    );
+    assert_eq!(
+        err.to_string(),
+        "<input>: a number is not finite at `theta_deg`"
+    );
+
+    let text = TOML.replace("[2, 0, 0.7]", "[2, 0, -inf]");
+    let err = parse_design(&text, DesignFormat::Toml).unwrap_err();
+    assert!(
+        matches!(&err, IoError::NonFinite { key, .. } if key == "guide_u.points[2][2]"),
+        "{err:?}"
+    );
+
+    let text = TOML.replace("samples = 41", "samples = 41\nweights = [1, 1, +inf, 1]");
+    let err = parse_design(&text, DesignFormat::Toml).unwrap_err();
+    assert!(
+        matches!(&err, IoError::NonFinite { key, .. } if key == "guide_v.bspline.weights[2]"),
+        "{err:?}"
+    );
+
+    let text = format!("{TOML}\n[tolerance]\nangle = nan\n");
+    let err = parse_design(&text, DesignFormat::Toml).unwrap_err();
+    assert!(
+        matches!(&err, IoError::NonFinite { key, .. } if key == "tolerance.angle"),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn writing_a_non_finite_design_is_refused_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("nan.json");
+    let mut design = full();
+    design.guide_v.bspline.as_mut().unwrap().control_points[1][0] = f64::NAN;
+    let err = write_design(&design, &path).unwrap_err();
+    assert!(
+        matches!(&err, IoError::NonFinite { key, .. } if key == "guide_v.bspline.control_points[1][0]"),
+        "{err:?}"
+    );
+    assert!(!path.exists());
+}
+
+#[test]
+fn missing_file_is_said_plainly() {
+    let err = read_design(Path::new("/nonexistent/dir/design.toml")).unwrap_err();
+    assert!(matches!(err, IoError::NotFound { .. }), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        "file not found: `/nonexistent/dir/design.toml`"
+    );
+}
+
+#[test]
+fn unreadable_file_is_a_read_error() {
+    // A directory named like a design file cannot be read as one.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dir.json");
+    std::fs::create_dir(&path).unwrap();
+    let err = read_design(&path).unwrap_err();
+    assert!(matches!(err, IoError::Read { .. }), "{err:?}");
+    assert!(
+        err.to_string()
+            .starts_with(&format!("cannot read `{}`", path.display())),
+        "{err}"
+    );
+}
+
+#[test]
+fn wrong_extension_names_it_and_the_accepted_ones() {
+    let err = read_design(Path::new("design.yaml")).unwrap_err();
+    assert!(matches!(err, IoError::UnknownExtension { .. }), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        "`design.yaml`: unsupported extension `.yaml`; expected `.json` or `.toml`"
+    );
+    let err = read_design(Path::new("design")).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "`design`: unsupported file name without extension; expected `.json` or `.toml`"
+    );
+    assert!(write_design(&expected(), Path::new("out.txt")).is_err());
+}

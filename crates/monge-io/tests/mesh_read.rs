@@ -1,0 +1,372 @@
+//! Mesh readers: grid shape, checks, and clear errors.
+
+mod common;
+
+use std::io::{self, Read};
+use std::path::Path;
+
+use common::{assert_bits_eq, random_grid};
+use glam::DVec3;
+use monge_io::{read_mesh, read_mesh_from, IoError, MeshFormat};
+
+fn obj(text: &str) -> Result<monge_core::QuadGrid, IoError> {
+    read_mesh_from(text.as_bytes(), MeshFormat::Obj)
+}
+
+fn ply(text: &str) -> Result<monge_core::QuadGrid, IoError> {
+    read_mesh_from(text.as_bytes(), MeshFormat::Ply)
+}
+
+/// OBJ `v` lines for `n` vertices `(k, 0, 0)`.
+fn v_lines(n: usize) -> String {
+    (0..n).map(|k| format!("v {k} 0 0\n")).collect()
+}
+
+/// The faces of a `rows × cols` grid, 1-based, each transformed by `f`.
+fn f_lines(rows: usize, cols: usize, f: impl Fn([usize; 4]) -> [usize; 4]) -> String {
+    let mut s = String::new();
+    for i in 0..rows - 1 {
+        for j in 0..cols - 1 {
+            let k = i * cols + j + 1;
+            let [a, b, c, d] = f([k, k + cols, k + cols + 1, k + 1]);
+            s += &format!("f {a} {b} {c} {d}\n");
+        }
+    }
+    s
+}
+
+#[test]
+fn obj_shape_is_inferred_from_faces_without_the_comment() {
+    let rotate = |[a, b, c, d]: [usize; 4]| [c, d, a, b];
+    let reverse = |[a, b, c, d]: [usize; 4]| [a, d, c, b];
+    for f in [
+        &(|x| x) as &dyn Fn([usize; 4]) -> [usize; 4],
+        &rotate,
+        &reverse,
+    ] {
+        let text = format!("o thing\n{}vt 0 0\n{}", v_lines(12), f_lines(3, 4, f));
+        let grid = obj(&text).unwrap();
+        assert_eq!((grid.rows, grid.cols), (3, 4));
+        assert_eq!(grid.vertex(2, 1), DVec3::new(9.0, 0.0, 0.0));
+        assert!(grid.normals.is_empty());
+    }
+}
+
+#[test]
+fn obj_faces_may_come_in_any_order_with_any_index_style() {
+    let mut faces: Vec<String> = f_lines(3, 3, |x| x).lines().map(String::from).collect();
+    faces.swap(1, 3);
+    faces[2] = "f 4/1 5/1 -2/2 -3/3".to_owned(); // face (1, 0), reversed, with texture and relative indices
+    let text = format!(
+        "# monge quad grid rows=3 cols=3\n{}{}\n",
+        v_lines(9),
+        faces.join("\r\n")
+    );
+    let grid = obj(&text).unwrap();
+    assert_eq!((grid.rows, grid.cols), (3, 3));
+}
+
+#[test]
+fn obj_with_comment_needs_no_faces() {
+    let grid = obj(&format!("# monge quad grid rows=2 cols=3\n{}", v_lines(6))).unwrap();
+    assert_eq!((grid.rows, grid.cols), (2, 3));
+}
+
+#[test]
+fn obj_normals_are_read_in_vertex_order() {
+    let grid = random_grid(3, 2, true, 8);
+    let mut out = Vec::new();
+    monge_io::write_obj(&grid, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert_bits_eq(&obj(&text).unwrap(), &grid);
+
+    let swapped = text.replacen("f 1//1 ", "f 1//2 ", 1);
+    let err = obj(&swapped).unwrap_err();
+    assert!(matches!(err, IoError::Syntax { .. }), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "<stdin>:{}: face corner `1//2` uses normal 2 for vertex 1; normals must be in vertex order",
+            text.lines().position(|l| l.starts_with("f ")).unwrap() + 1
+        )
+    );
+}
+
+#[test]
+fn obj_not_a_grid() {
+    // First face is not the corner face of a row-major grid.
+    let err = obj(&format!("{}f 2 6 7 3\n", v_lines(8))).unwrap_err();
+    assert!(matches!(err, IoError::NotAGrid { .. }), "{err:?}");
+    assert!(
+        err.to_string().starts_with(
+            "<stdin>: not a regular row-major quad grid: the first face is (1, 5, 6, 2)"
+        ),
+        "{err}"
+    );
+
+    // A face that is not a grid quad.
+    let text = format!("{}{}f 2 6 8 3\n", v_lines(8), f_lines(2, 4, |x| x));
+    let err = obj(&text).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>: not a regular row-major quad grid: face 4 (1, 5, 7, 2) is not a quad \
+         (i, j), (i+1, j), (i+1, j+1), (i, j+1) of a 2 × 4 grid (0-based)"
+    );
+
+    // A repeated face, a missing face, a vertex out of range.
+    let faces = f_lines(3, 3, |x| x);
+    let first = faces.lines().next().unwrap();
+    let err = obj(&format!("{}{faces}{first}\n", v_lines(9))).unwrap_err();
+    assert!(
+        err.to_string()
+            .ends_with("face 5 (0, 3, 4, 1) repeats grid face (0, 0)"),
+        "{err}"
+    );
+    let three: String = faces.lines().take(3).map(|l| format!("{l}\n")).collect();
+    let err = obj(&format!("{}{three}", v_lines(9))).unwrap_err();
+    assert!(
+        err.to_string().ends_with("3 faces, but a 3 × 3 grid has 4"),
+        "{err}"
+    );
+    let err = obj(&format!(
+        "# monge quad grid rows=2 cols=2\n{}f 1 3 4 9\n",
+        v_lines(4)
+    ))
+    .unwrap_err();
+    assert!(
+        err.to_string().ends_with(
+            "face 1 (0, 2, 3, 8) refers to vertex 8, but there are 4 vertices (0-based)"
+        ),
+        "{err}"
+    );
+
+    // Vertex count not a whole number of rows.
+    let err = obj(&format!("{}{}", v_lines(9), f_lines(2, 4, |x| x))).unwrap_err();
+    assert!(
+        err.to_string().ends_with(
+            "the first face (0, 4, 5, 1) implies 4 columns, but 9 vertices are not whole rows of 4"
+        ),
+        "{err}"
+    );
+
+    // No shape at all.
+    let err = obj(&v_lines(4)).unwrap_err();
+    assert!(
+        err.to_string().contains("the grid shape is unknown"),
+        "{err}"
+    );
+}
+
+#[test]
+fn obj_count_mismatch_with_comment() {
+    let err = obj(&format!("# monge quad grid rows=3 cols=4\n{}", v_lines(11))).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            IoError::CountMismatch {
+                expected: 12,
+                found: 11,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert_eq!(
+        err.to_string(),
+        "<stdin>: vertices (rows × cols = 3 × 4): expected 12, found 11"
+    );
+    let err = obj(&format!(
+        "# monge quad grid rows=1 cols=2\n{}vn 0 0 1\n",
+        v_lines(2)
+    ))
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>: normals (one per vertex): expected 2, found 1"
+    );
+}
+
+#[test]
+fn obj_syntax_errors_name_the_line() {
+    let err = obj("v 0 0 0\nv 1 x 0\n").unwrap_err();
+    assert!(matches!(err, IoError::Syntax { line: 2, .. }), "{err:?}");
+    assert_eq!(err.to_string(), "<stdin>:2: expected a number, found `x`");
+    assert_eq!(
+        obj("v 1 2\n").unwrap_err().to_string(),
+        "<stdin>:1: expected three coordinates x y z"
+    );
+    assert_eq!(
+        obj("v 1 2 nan\n").unwrap_err().to_string(),
+        "<stdin>:1: `nan` is not a finite number"
+    );
+    let err = obj(&format!("{}f 1 2 3\n", v_lines(3))).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>:4: a face with 3 corners; a quad grid has faces with 4"
+    );
+    let err = obj(&format!("{}f 1 2 3 0\n", v_lines(4))).unwrap_err();
+    assert_eq!(err.to_string(), "<stdin>:5: bad face corner `0`");
+    let err = obj("# monge quad grid rows=2\n").unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>:1: expected `monge quad grid rows=R cols=C` with whole numbers, found `monge quad grid rows=2`"
+    );
+}
+
+#[test]
+fn json_counts_are_checked_and_extra_keys_ignored() {
+    let json = |s: &str| read_mesh_from(s.as_bytes(), MeshFormat::Json);
+    let grid = json(r#"{"rows": 1, "cols": 2, "vertices": [[0,0,0],[1,0,0]], "normals": [[0,0,1],[0,0,1]], "x": {"y": 1}}"#).unwrap();
+    assert_eq!(grid.normals, vec![DVec3::Z; 2]);
+    let err = json(r#"{"rows": 2, "cols": 2, "vertices": [[0,0,0],[1,0,0]]}"#).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            IoError::CountMismatch {
+                expected: 4,
+                found: 2,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    let err =
+        json(r#"{"rows": 1, "cols": 2, "vertices": [[0,0,0],[1,0,0]], "normals": [[0,0,1]]}"#)
+            .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>: normals (one per vertex): expected 2, found 1"
+    );
+    let err = json(r#"{"rows": 1, "cols": 2, "vertices": [[0,0,0],[1,0]]}"#).unwrap_err();
+    assert!(matches!(err, IoError::Parse { line: 1, .. }), "{err:?}");
+    assert!(
+        err.to_string()
+            .contains("invalid length 2, expected an array of length 3"),
+        "{err}"
+    );
+    let err = json(r#"{"rows": 1, "cols": 2}"#).unwrap_err();
+    assert!(
+        err.to_string().contains("missing field `vertices`"),
+        "{err}"
+    );
+    let err = json(r#"{"rows": 4294967296, "cols": 4294967296, "vertices": []}"#).unwrap_err();
+    assert!(matches!(err, IoError::NotAGrid { .. }), "{err:?}");
+}
+
+#[test]
+fn json_errors_in_long_lines_show_a_short_snippet() {
+    let vertices = vec!["[0.125,0.25,0.5]"; 1000].join(",");
+    let text = format!(r#"{{"rows": 1, "cols": 1000, "vertices": [{vertices},oops]}}"#);
+    let err = read_mesh_from(text.as_bytes(), MeshFormat::Json).unwrap_err();
+    let IoError::Parse {
+        snippet, column, ..
+    } = &err
+    else {
+        panic!("{err:?}")
+    };
+    assert!(*column > 17_000);
+    assert!(snippet.len() < 200, "{snippet}");
+    assert!(snippet.contains(",oops]"), "{snippet}");
+    let caret = snippet.lines().nth(1).unwrap();
+    let line = snippet.lines().next().unwrap();
+    let o = line.chars().position(|c| c == 'o').unwrap();
+    assert_eq!(
+        caret.chars().position(|c| c == '^').unwrap(),
+        o,
+        "{snippet}"
+    );
+}
+
+#[test]
+fn ply_from_elsewhere_with_extra_properties() {
+    let text = "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 4\n\
+        property float x\nproperty float y\nproperty float z\nproperty uchar red\n\
+        element face 1\nproperty list uchar uint vertex_index\nproperty int flags\n\
+        element edge 1\nproperty int a\nproperty int b\nend_header\n\
+        0 0 0 255\n0 1 0 255\n1 0 0 255\n1 1 0.5 255\n4 2 3 1 0 7\n0 1\n";
+    let grid = ply(text).unwrap();
+    assert_eq!((grid.rows, grid.cols), (2, 2));
+    assert_eq!(grid.vertex(1, 1), DVec3::new(1.0, 1.0, 0.5));
+}
+
+#[test]
+fn ply_errors() {
+    let header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\nproperty double z\n";
+    let err = ply("ply\nformat binary_little_endian 1.0\nend_header\n").unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>:2: only ASCII PLY can be read, this file is `binary_little_endian`"
+    );
+    assert_eq!(
+        ply("solid x\n").unwrap_err().to_string(),
+        "<stdin>:1: expected `ply` on the first line"
+    );
+    let err = ply(header).unwrap_err();
+    assert_eq!(err.to_string(), "<stdin>:7: the header has no `end_header`");
+    let err = ply(&format!("{header}end_header\n0 0 0\n")).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "<stdin>:9: the file ends before all 2 `vertex` lines"
+    );
+    let err = ply(&format!("{header}end_header\n0 0 0\n0 0\n")).unwrap_err();
+    assert_eq!(err.to_string(), "<stdin>:9: too few values on the line");
+    let err = ply(&format!(
+        "{header}comment monge quad grid rows=1 cols=2\nend_header\n0 0 0\n0 0 inf\n"
+    ))
+    .unwrap_err();
+    assert_eq!(err.to_string(), "<stdin>:10: `inf` is not a finite number");
+    let grid = ply(&format!(
+        "{header}comment monge quad grid rows=1 cols=2\nend_header\n0 0 0\n0 0 1\n"
+    ))
+    .unwrap();
+    assert_eq!((grid.rows, grid.cols), (1, 2));
+    let err = ply(&format!(
+        "{header}comment monge quad grid rows=2 cols=2\nend_header\n0 0 0\n0 0 1\n"
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            IoError::CountMismatch {
+                expected: 4,
+                found: 2,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn read_mesh_by_extension_and_its_errors() {
+    let err = read_mesh(Path::new("-")).unwrap_err();
+    assert!(matches!(err, IoError::NeedFormat { .. }), "{err:?}");
+    let err = read_mesh(Path::new("mesh.stl")).unwrap_err();
+    assert!(matches!(err, IoError::UnknownExtension { .. }), "{err:?}");
+    let err = read_mesh(Path::new("/nonexistent/mesh.obj")).unwrap_err();
+    assert!(matches!(err, IoError::NotFound { .. }), "{err:?}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.obj");
+    std::fs::write(&path, "v 0 0\n").unwrap();
+    let err = read_mesh(&path).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        format!("{}:1: expected three coordinates x y z", path.display())
+    );
+}
+
+#[test]
+fn a_failing_reader_is_a_read_error() {
+    struct Failing;
+    impl Read for Failing {
+        fn read(&mut self, _: &mut [u8]) -> io::Result<usize> {
+            Err(io::Error::other("pipe closed"))
+        }
+    }
+    let err = read_mesh_from(Failing, MeshFormat::Obj).unwrap_err();
+    assert!(matches!(err, IoError::Read { .. }), "{err:?}");
+    assert_eq!(err.to_string(), "cannot read `<stdin>`: pipe closed");
+    let err = read_mesh_from(&[0xff, 0xfe][..], MeshFormat::Obj).unwrap_err();
+    assert!(matches!(err, IoError::Read { .. }), "{err:?}");
+}

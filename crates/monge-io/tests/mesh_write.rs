@@ -1,0 +1,357 @@
+//! Mesh writers: exact round trips through independent readers.
+
+mod common;
+
+use std::io::Write;
+
+use common::{assert_bits_eq, random_grid};
+use glam::DVec3;
+use monge_core::QuadGrid;
+use monge_io::{
+    read_mesh, read_mesh_from, write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply,
+    IoError, MeshFormat,
+};
+use serde_json::{Map, Value};
+
+const FORMATS: [MeshFormat; 3] = [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Json];
+
+fn to_string(grid: &QuadGrid, format: MeshFormat) -> String {
+    let mut out = Vec::new();
+    write_mesh_to(grid, format, &mut out).unwrap();
+    String::from_utf8(out).unwrap()
+}
+
+#[test]
+fn json_matches_the_contract_and_round_trips_f64_exactly() {
+    for normals in [false, true] {
+        let grid = random_grid(7, 5, normals, 0x9e37_79b9_7f4a_7c15);
+        let mut extra = Map::new();
+        extra.insert("theta_deg".into(), 30.0.into());
+        extra.insert("design".into(), serde_json::json!({"nested": [1, 2]}));
+        let mut out = Vec::new();
+        write_mesh_json(&grid, &extra, &mut out).unwrap();
+
+        // Read it with serde_json alone, as another tool would.
+        let v: Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(v["rows"], 7);
+        assert_eq!(v["cols"], 5);
+        assert_eq!(v["theta_deg"], 30.0);
+        assert_eq!(v["design"]["nested"][1], 2);
+        let read = |key: &str| -> Vec<DVec3> {
+            v[key]
+                .as_array()
+                .map(|a| {
+                    a.iter()
+                        .map(|p| DVec3::from_array(std::array::from_fn(|k| p[k].as_f64().unwrap())))
+                        .collect()
+                })
+                .unwrap_or_default()
+        };
+        assert_eq!(v.get("normals").is_some(), normals);
+        let independent = QuadGrid::new(7, 5, read("vertices"), read("normals"));
+        assert_bits_eq(&independent, &grid);
+
+        // And with our own reader (extra keys ignored).
+        assert_bits_eq(
+            &read_mesh_from(out.as_slice(), MeshFormat::Json).unwrap(),
+            &grid,
+        );
+    }
+}
+
+#[test]
+fn special_values_round_trip_in_every_format() {
+    let vertices = vec![
+        DVec3::new(-0.0, 0.0, f64::MIN_POSITIVE),
+        DVec3::new(5e-324, -5e-324, f64::MAX),
+        DVec3::new(f64::MIN, 0.1 + 0.2, 1e-7),
+        DVec3::new(123_456_789.012_345_67, -1e300, 2.0f64.sqrt()),
+    ];
+    let grid = QuadGrid::new(2, 2, vertices, vec![DVec3::Z; 4]);
+    for format in FORMATS {
+        let text = to_string(&grid, format);
+        assert_bits_eq(&read_mesh_from(text.as_bytes(), format).unwrap(), &grid);
+    }
+}
+
+#[test]
+fn obj_reads_back_identically_with_tobj() {
+    for normals in [false, true] {
+        let grid = random_grid(6, 9, normals, 42);
+        let text = to_string(&grid, MeshFormat::Obj);
+        assert!(text.starts_with("# monge quad grid rows=6 cols=9\n"));
+        let (models, _) =
+            tobj::load_obj_buf(&mut text.as_bytes(), &tobj::LoadOptions::default(), |_| {
+                unreachable!("no materials")
+            })
+            .unwrap();
+        assert_eq!(models.len(), 1);
+        let mesh = &models[0].mesh;
+        // tobj renumbers vertices in order of first use by a face: compare
+        // corner by corner.
+        assert_eq!(mesh.face_arities, vec![4; grid.face_count()]);
+        assert_eq!(mesh.positions.len(), 3 * grid.vertices.len());
+        let mut expected = Vec::new();
+        for i in 0..grid.rows - 1 {
+            for j in 0..grid.cols - 1 {
+                let k = i * grid.cols + j;
+                let c = grid.cols;
+                expected.extend([k, k + c, k + c + 1, k + 1]);
+            }
+        }
+        let at = |values: &[f64], k: u32| -> [u64; 3] {
+            let k = 3 * k as usize;
+            [
+                values[k].to_bits(),
+                values[k + 1].to_bits(),
+                values[k + 2].to_bits(),
+            ]
+        };
+        for (n, &v) in expected.iter().enumerate() {
+            let bits = grid.vertices[v].to_array().map(f64::to_bits);
+            assert_eq!(at(&mesh.positions, mesh.indices[n]), bits, "corner {n}");
+            if normals {
+                let bits = grid.normals[v].to_array().map(f64::to_bits);
+                assert_eq!(
+                    at(&mesh.normals, mesh.normal_indices[n]),
+                    bits,
+                    "normal {n}"
+                );
+            }
+        }
+        if normals {
+            assert!(text.contains("\nf 1//1 10//10 11//11 2//2\n"), "{text}");
+        } else {
+            assert!(text.contains("\nf 1 10 11 2\n"), "{text}");
+        }
+    }
+}
+
+#[test]
+fn ply_reads_back_identically_with_ply_rs() {
+    use ply_rs_bw::{parser::Parser, ply::DefaultElement, ply::Property};
+    for normals in [false, true] {
+        let grid = random_grid(4, 3, normals, 7);
+        let text = to_string(&grid, MeshFormat::Ply);
+        let ply = Parser::<DefaultElement>::new()
+            .read_ply(&mut text.as_bytes())
+            .unwrap();
+        assert!(ply
+            .header
+            .comments
+            .iter()
+            .any(|c| c == "monge quad grid rows=4 cols=3"));
+        let double = |p: &Property| match p {
+            Property::Double(x) => *x,
+            other => panic!("not a double: {other:?}"),
+        };
+        let vertices = &ply.payload["vertex"];
+        assert_eq!(vertices.len(), 12);
+        for (k, e) in vertices.iter().enumerate() {
+            let p = DVec3::new(double(&e["x"]), double(&e["y"]), double(&e["z"]));
+            assert_eq!(
+                p.to_array().map(f64::to_bits),
+                grid.vertices[k].to_array().map(f64::to_bits)
+            );
+            assert_eq!(e.contains_key("nx"), normals);
+            if normals {
+                let n = DVec3::new(double(&e["nx"]), double(&e["ny"]), double(&e["nz"]));
+                assert_eq!(n, grid.normals[k]);
+            }
+        }
+        let faces = &ply.payload["face"];
+        assert_eq!(faces.len(), 6);
+        assert_eq!(
+            faces[0]["vertex_indices"],
+            Property::ListInt(vec![0, 3, 4, 1])
+        );
+        assert_eq!(
+            faces[5]["vertex_indices"],
+            Property::ListInt(vec![7, 10, 11, 8])
+        );
+    }
+}
+
+#[test]
+fn files_by_extension_and_explicit_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = random_grid(3, 4, true, 5);
+    for format in FORMATS {
+        let path = dir
+            .path()
+            .join(format!("mesh.{}", format.extension().to_uppercase()));
+        write_mesh(&grid, &path, None).unwrap();
+        assert_bits_eq(&read_mesh(&path).unwrap(), &grid);
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            to_string(&grid, format)
+        );
+    }
+    // An explicit format wins over the extension.
+    let path = dir.path().join("mesh.txt");
+    write_mesh(&grid, &path, Some(MeshFormat::Ply)).unwrap();
+    assert!(std::fs::read_to_string(&path).unwrap().starts_with("ply\n"));
+    let err = write_mesh(&grid, &path, None).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "`{}`: unsupported extension `.txt`; expected `.obj`, `.ply` or `.json`",
+            path.display()
+        )
+    );
+}
+
+#[test]
+fn stdout_needs_a_format() {
+    let grid = random_grid(2, 2, false, 1);
+    let err = write_mesh(&grid, std::path::Path::new("-"), None).unwrap_err();
+    assert!(matches!(err, IoError::NeedFormat { .. }), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        "`-` (standard input/output) needs an explicit format: obj, ply or json"
+    );
+}
+
+#[test]
+fn degenerate_grids_round_trip() {
+    for (rows, cols) in [(0, 0), (1, 1), (1, 5), (5, 1), (2, 2)] {
+        let grid = random_grid(rows, cols, true, 11);
+        for format in [MeshFormat::Json, MeshFormat::Obj, MeshFormat::Ply] {
+            let text = to_string(&grid, format);
+            assert_bits_eq(&read_mesh_from(text.as_bytes(), format).unwrap(), &grid);
+        }
+    }
+}
+
+#[test]
+fn non_finite_or_inconsistent_grids_are_refused_before_writing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut grid = random_grid(3, 3, true, 3);
+    grid.vertices[5].y = f64::NAN;
+    for format in FORMATS {
+        let mut out = Vec::new();
+        let err = write_mesh_to(&grid, format, &mut out).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+        let message = err.to_string();
+        assert!(
+            message.starts_with("vertex (1, 2) is not finite: [") && message.contains("NaN"),
+            "{message}"
+        );
+        assert!(out.is_empty());
+        let path = dir.path().join(format!("bad.{}", format.extension()));
+        let err = write_mesh(&grid, &path, None).unwrap_err();
+        assert!(matches!(err, IoError::Write { .. }), "{err:?}");
+        assert!(err.to_string().contains("is not finite"), "{err}");
+        assert!(!path.exists());
+    }
+    let mut grid = random_grid(3, 3, true, 3);
+    grid.normals.pop();
+    let err = write_obj(&grid, &mut std::io::sink()).unwrap_err();
+    assert_eq!(err.to_string(), "the grid has 8 normals for 9 vertices");
+    grid.vertices.pop();
+    let err = write_ply(&grid, &mut std::io::sink()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "the grid has 8 vertices but rows × cols = 3 × 3"
+    );
+}
+
+#[test]
+fn extra_json_keys_may_not_replace_mesh_keys() {
+    let grid = random_grid(2, 2, false, 1);
+    let mut extra = Map::new();
+    extra.insert("rows".into(), 3.into());
+    let err = write_mesh_json(&grid, &extra, &mut Vec::new()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "extra key `rows` would replace the mesh's own `rows`"
+    );
+}
+
+#[test]
+fn large_grids_formatted_on_a_second_thread_are_identical() {
+    // Above the size where formatting moves to a second thread.
+    let grid = random_grid(129, 131, true, 77);
+    for format in FORMATS {
+        let text = to_string(&grid, format);
+        assert_bits_eq(&read_mesh_from(text.as_bytes(), format).unwrap(), &grid);
+    }
+}
+
+#[test]
+fn a_failing_writer_stops_a_large_write() {
+    /// Accepts `budget` bytes, then fails.
+    struct Failing {
+        budget: usize,
+    }
+    impl Write for Failing {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            if self.budget < buf.len() {
+                return Err(std::io::Error::other("disk full"));
+            }
+            self.budget -= buf.len();
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let grid = random_grid(200, 200, true, 78);
+    for format in FORMATS {
+        for budget in [0, 10, 100_000] {
+            let err = write_mesh_to(&grid, format, &mut Failing { budget }).unwrap_err();
+            assert_eq!(err.to_string(), "disk full");
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("big.obj");
+    std::fs::write(&path, "old").unwrap();
+    // A failure after megabytes of output keeps the old file.
+    let err = monge_io::write_atomic(&path, |w| {
+        write_obj(&grid, w)?;
+        Err(std::io::Error::other("disk full"))
+    })
+    .unwrap_err();
+    assert!(err.to_string().ends_with("disk full"), "{err}");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+}
+
+/// Run with `cargo test --release -p monge-io -- --ignored` (debug builds are slower).
+#[test]
+#[ignore]
+fn writes_a_1001_by_1001_grid_in_well_under_a_second() {
+    // A smooth surface of architectural size, with normals.
+    let n = 1001;
+    let (mut vertices, mut normals) = (Vec::new(), Vec::new());
+    for i in 0..n {
+        for j in 0..n {
+            let (u, v) = (i as f64 / 50.0, j as f64 / 50.0);
+            vertices.push(DVec3::new(u, v, 0.3 * (u * 0.7).sin() * (v * 1.3).cos()));
+            normals.push(DVec3::new(-(u * 0.7).cos(), (v * 1.3).sin(), 1.0).normalize());
+        }
+    }
+    let grid = QuadGrid::new(n, n, vertices, normals);
+    let dir = tempfile::tempdir().unwrap();
+    for format in FORMATS {
+        let path = dir.path().join(format!("big.{}", format.extension()));
+        let start = std::time::Instant::now();
+        write_mesh_to(&grid, format, &mut std::io::sink()).unwrap();
+        writeln!(
+            std::io::stderr(),
+            "{format:?} to sink: {:?}",
+            start.elapsed()
+        )
+        .unwrap();
+        let start = std::time::Instant::now();
+        write_mesh(&grid, &path, None).unwrap();
+        let elapsed = start.elapsed();
+        let size = std::fs::metadata(&path).unwrap().len();
+        writeln!(
+            std::io::stderr(),
+            "{format:?}: {elapsed:?}, {} MB",
+            size / 1_000_000
+        )
+        .unwrap();
+        assert!(elapsed.as_secs_f64() < 1.0, "{format:?} took {elapsed:?}");
+    }
+}
