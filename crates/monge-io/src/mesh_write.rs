@@ -133,7 +133,7 @@ pub fn write_mesh_to<W: Write + ?Sized>(
 pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
     check_grid(grid)?;
     writeln!(w, "# monge quad grid rows={} cols={}", grid.rows, grid.cols)?;
-    emit(grid, w, |line| {
+    emit(w, |line| {
         for (tag, points) in [("v", &grid.vertices), ("vn", &grid.normals)] {
             for p in points {
                 line.push_str(tag);
@@ -183,7 +183,7 @@ pub fn write_ply<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
         "element face {}\nproperty list uchar int vertex_indices\nend_header",
         grid.face_count()
     )?;
-    emit(grid, w, |line| {
+    emit(w, |line| {
         for (k, p) in grid.vertices.iter().enumerate() {
             line.xyz(*p);
             if with_normals {
@@ -211,6 +211,10 @@ pub fn write_ply<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
 /// them); one of [`MESH_JSON_KEYS`] among them is an
 /// [`io::ErrorKind::InvalidInput`] error, as is an inconsistent grid or a
 /// non-finite coordinate (checked before anything is written).
+///
+/// Numbers are exact for a correctly rounding reader (Python, JavaScript,
+/// Rust's `str::parse`); serde_json rounds correctly only with its
+/// `float_roundtrip` feature, which this crate enables.
 ///
 /// ```
 /// # use glam::DVec3;
@@ -242,7 +246,7 @@ pub fn write_mesh_json<W: Write + ?Sized>(
         w.write_all(b":")?;
         serde_json::to_writer(&mut *w, value)?;
     }
-    emit(grid, w, |line| {
+    emit(w, |line| {
         for (key, points) in [("vertices", &grid.vertices), ("normals", &grid.normals)] {
             if key == "normals" && points.is_empty() {
                 continue;
@@ -310,54 +314,19 @@ fn check_grid(grid: &QuadGrid) -> io::Result<()> {
 /// Bytes collected before a [`Line`] passes them on.
 const CHUNK: usize = 1 << 16;
 
-/// Grids with at least this many vertices are formatted on a second thread
-/// while the caller's thread writes.
-const THREADED: usize = 1 << 14;
-
-/// Runs `body`, which formats the grid into a [`Line`], and writes its output
-/// to `w`. Large grids are formatted on a scoped thread, overlapping the
-/// formatting with the writing (about twice as fast for files, where writing
-/// costs as much as formatting); small grids, or platforms without threads,
-/// run on the caller's thread.
+/// Runs `body`, which formats the grid into a [`Line`] writing to `w`.
 fn emit<W: Write + ?Sized>(
-    grid: &QuadGrid,
     w: &mut W,
-    body: impl FnOnce(&mut Line<'_>) -> io::Result<()> + Send,
+    body: impl FnOnce(&mut Line<'_>) -> io::Result<()>,
 ) -> io::Result<()> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if grid.vertices.len() < THREADED || threads < 2 {
-        let mut out = |buf: &mut Vec<u8>| {
-            w.write_all(buf)?;
-            buf.clear();
-            Ok(())
-        };
-        let mut line = Line::new(&mut out);
-        body(&mut line)?;
-        return line.flush();
-    }
-    std::thread::scope(|scope| {
-        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<u8>>(4);
-        let producer = std::thread::Builder::new()
-            .name("monge-io format".into())
-            .spawn_scoped(scope, move || {
-                let mut out = |buf: &mut Vec<u8>| {
-                    let full = std::mem::replace(buf, Vec::with_capacity(CHUNK + 256));
-                    tx.send(full).map_err(|_| {
-                        io::Error::new(io::ErrorKind::BrokenPipe, "the writer stopped")
-                    })
-                };
-                let mut line = Line::new(&mut out);
-                body(&mut line)?;
-                line.flush()
-            })?;
-        // On a write error, returning drops `rx`, which stops the producer.
-        for buf in rx {
-            w.write_all(&buf)?;
-        }
-        producer
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-    })
+    let mut out = |buf: &mut Vec<u8>| {
+        w.write_all(buf)?;
+        buf.clear();
+        Ok(())
+    };
+    let mut line = Line::new(&mut out);
+    body(&mut line)?;
+    line.flush()
 }
 
 /// Where a [`Line`] passes its full buffer (which it leaves empty).

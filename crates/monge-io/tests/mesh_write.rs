@@ -269,8 +269,8 @@ fn extra_json_keys_may_not_replace_mesh_keys() {
 }
 
 #[test]
-fn large_grids_formatted_on_a_second_thread_are_identical() {
-    // Above the size where formatting moves to a second thread.
+fn large_grids_written_in_many_chunks_round_trip() {
+    // Several megabytes: many buffer flushes.
     let grid = random_grid(129, 131, true, 77);
     for format in FORMATS {
         let text = to_string(&grid, format);
