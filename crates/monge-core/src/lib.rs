@@ -13,6 +13,7 @@
 pub mod design;
 pub mod grid;
 pub mod guide;
+pub mod measure;
 
 pub use design::{Design, GuideSpec, Tolerances};
 pub use grid::QuadGrid;
