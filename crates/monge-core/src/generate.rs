@@ -1,10 +1,16 @@
 //! The whole generation method of §3: guides → Gauss map → Combescure transform.
 
-use crate::design::{Design, Tolerances};
-use crate::grid::QuadGrid;
-use crate::guide::{GuideError, GuideName};
+use std::fmt;
 
-/// Options of [`generate`].
+use crate::combescure::{combescure, CombescureReport, ParallelLines};
+use crate::design::Design;
+use crate::gauss_map::{
+    gauss_map, guide_normals, normalize_theta_deg, pencil_axes, PencilAxes, StartFrame, ThetaRange,
+};
+use crate::grid::QuadGrid;
+use crate::guide::{Guide, GuideError, GuideName};
+
+/// Options of [`generate`] and [`inspect`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GenerateOptions {
     /// Largest number of grid vertices (`rows · cols`) accepted; larger grids are
@@ -21,26 +27,276 @@ impl Default for GenerateOptions {
     }
 }
 
+/// Which generation mode of the paper a design uses (§3.1, §3.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// §3.1: the guide planes are orthogonal and each start tangent is orthogonal
+    /// to the other guide's plane; both Gauss circles are great circles and every θ
+    /// is admissible.
+    Characteristic,
+    /// §3.2: any two planar guides meeting at 90°; θ has an admissible range.
+    Arbitrary,
+}
+
+impl fmt::Display for Mode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Mode::Characteristic => "characteristic (§3.1)",
+            Mode::Arbitrary => "arbitrary (§3.2)",
+        })
+    }
+}
+
 /// Everything wrong with a design that stops generation (§3, §5.2).
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum GenerateError {
     /// A guide curve is invalid.
     #[error(transparent)]
     Guide(#[from] GuideError),
-    /// Placeholder while the generator is written.
-    #[error("{0}")]
-    Other(String),
+    /// The grid would exceed [`GenerateOptions::max_vertices`].
+    #[error(
+        "the grid would have {rows} × {cols} = {vertices} vertices, more than the limit of {limit}: \
+         lower the `samples` of the guides, or raise the limit (`--max-vertices` on the command line, \
+         `GenerateOptions::max_vertices` in the library) if the machine has the memory (48 bytes a vertex)"
+    )]
+    GridTooLarge {
+        /// Samples of guide_u.
+        rows: usize,
+        /// Samples of guide_v.
+        cols: usize,
+        /// `rows · cols` (saturating).
+        vertices: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// θ is NaN or infinite.
+    #[error("theta_deg is {0}: give a finite angle in degrees, in (−180, 180]")]
+    ThetaNotFinite(f64),
+    /// The guides do not start at the same point.
+    #[error(
+        "the guides do not start at the same point: guide_u starts at {u:?}, guide_v at {v:?}, \
+         {distance:.3e} apart ({relative:.1e} of the guides' size; tolerance {tolerance:.0e}). \
+         Make their first points equal"
+    )]
+    StartPointsDiffer {
+        /// First point of guide_u.
+        u: [f64; 3],
+        /// First point of guide_v.
+        v: [f64; 3],
+        /// Distance between them.
+        distance: f64,
+        /// Distance relative to the larger guide's size.
+        relative: f64,
+        /// The tolerance ([`crate::Tolerances::start`]).
+        tolerance: f64,
+    },
+    /// The start tangents are not orthogonal.
+    #[error(
+        "the guides must meet at 90°, but their start tangents make {angle_deg:.9}° \
+         (off by {off_deg:.3e}°; tolerance {tolerance_deg:.1e}°). Curvature lines cross at right \
+         angles: turn one guide's start tangent (for a B-spline, P1 − P0) to be orthogonal to the other's"
+    )]
+    NotOrthogonal {
+        /// Angle between the start tangents, in degrees.
+        angle_deg: f64,
+        /// `|angle − 90°|`.
+        off_deg: f64,
+        /// The tolerance, in degrees.
+        tolerance_deg: f64,
+    },
+    /// θ is outside the admissible range of this design (§3.2).
+    #[error(
+        "theta_deg = {theta_deg}° is not admissible for these guides: |θ| must lie in \
+         [{min_deg:.6}°, {max_deg:.6}°] (§3.2: a² = tan²(θ/2) between |OQ2|² and |OA1|²). \
+         Pick θ in that range, or change the angle between the guide planes"
+    )]
+    ThetaInadmissible {
+        /// θ, reduced to (−180, 180].
+        theta_deg: f64,
+        /// Smallest admissible |θ|.
+        min_deg: f64,
+        /// Largest admissible |θ|.
+        max_deg: f64,
+    },
+    /// The Gauss map degenerates at a face, so the mesh cannot be continued (§5.2).
+    #[error(
+        "the mesh cannot be built past face ({i}, {j}): its Gauss quad is degenerate (the two edges that \
+         fix vertex ({i1}, {j1}) are parallel, sine {sine:.1e}). {hint}",
+        i1 = face.0 + 1, j1 = face.1 + 1, i = face.0, j = face.1
+    )]
+    Degenerate {
+        /// The face.
+        face: (usize, usize),
+        /// Sine of the angle between the two lines.
+        sine: f64,
+        /// What usually causes it.
+        hint: &'static str,
+    },
 }
 
-/// What [`generate`] returns: the mesh and what was learnt on the way.
+/// A validated design, before any mesh is built: what `monge info` prints (§3).
+#[derive(Clone, Debug)]
+pub struct DesignInfo {
+    /// guide_u, sampled and validated.
+    pub guide_u: Guide,
+    /// guide_v, sampled and validated.
+    pub guide_v: Guide,
+    /// The frame at the common start point.
+    pub frame: StartFrame,
+    /// The generation mode.
+    pub mode: Mode,
+    /// θ in degrees reduced to (−180, 180].
+    pub theta_deg: f64,
+    /// The admissible θ.
+    pub theta_range: ThetaRange,
+}
+
+impl DesignInfo {
+    /// Grid size `(rows, cols)`.
+    pub fn grid_size(&self) -> (usize, usize) {
+        (self.guide_u.points.len(), self.guide_v.points.len())
+    }
+}
+
+/// What [`generate`] returns: the mesh and what was learnt on the way (§3).
 #[derive(Clone, Debug)]
 pub struct Generated {
-    /// The circular mesh with its node axes.
+    /// The circular mesh with planar lines, with its node axes (the Gauss map).
     pub grid: QuadGrid,
+    /// The validated design.
+    pub info: DesignInfo,
+    /// The pencil axes of the Gauss map.
+    pub axes: PencilAxes,
+    /// Pinching and folding seen by the Combescure transform (§5.2).
+    pub report: CombescureReport,
+}
+
+/// Validate a design without building the mesh (§3); θ is not checked.
+///
+/// ```
+/// use monge_core::{inspect, Design, GenerateOptions, GuideSpec};
+/// let d = Design {
+///     theta_deg: 30.0,
+///     guide_u: GuideSpec {
+///         tangent: Some([1.0, 0.0, 0.0]), // orthogonal to guide_v's start tangent
+///         ..GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]])
+///     },
+///     guide_v: GuideSpec::points(vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]),
+///     tolerance: None,
+/// };
+/// let info = inspect(&d, &GenerateOptions::default()).unwrap();
+/// assert_eq!(info.grid_size(), (3, 3));
+/// ```
+pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo, GenerateError> {
+    let (rows, cols) = (design.guide_u.sample_count(), design.guide_v.sample_count());
+    let vertices = rows.saturating_mul(cols);
+    if vertices > options.max_vertices {
+        return Err(GenerateError::GridTooLarge {
+            rows,
+            cols,
+            vertices,
+            limit: options.max_vertices,
+        });
+    }
+    if !design.theta_deg.is_finite() {
+        return Err(GenerateError::ThetaNotFinite(design.theta_deg));
+    }
+    let tol = design.tolerance.unwrap_or_default();
+    let guide_u = Guide::from_spec(&design.guide_u, GuideName::U, &tol)?;
+    let guide_v = Guide::from_spec(&design.guide_v, GuideName::V, &tol)?;
+    let (pu, pv) = (guide_u.points[0], guide_v.points[0]);
+    let distance = pu.distance(pv);
+    let relative = distance / guide_u.size.max(guide_v.size);
+    if relative.is_nan() || relative > tol.start {
+        return Err(GenerateError::StartPointsDiffer {
+            u: pu.to_array(),
+            v: pv.to_array(),
+            distance,
+            relative,
+            tolerance: tol.start,
+        });
+    }
+    let cos = guide_u.tangent.dot(guide_v.tangent);
+    if cos.is_nan() || cos.abs() > tol.angle.sin() {
+        let angle_deg = cos.clamp(-1.0, 1.0).acos().to_degrees();
+        return Err(GenerateError::NotOrthogonal {
+            angle_deg,
+            off_deg: (angle_deg - 90.0).abs(),
+            tolerance_deg: tol.angle.to_degrees(),
+        });
+    }
+    let frame = StartFrame::new(
+        guide_u.tangent,
+        guide_v.tangent,
+        guide_u.plane_normal,
+        guide_v.plane_normal,
+    );
+    Ok(DesignInfo {
+        mode: if frame.is_characteristic() {
+            Mode::Characteristic
+        } else {
+            Mode::Arbitrary
+        },
+        theta_range: frame.admissible_theta(),
+        theta_deg: normalize_theta_deg(design.theta_deg),
+        frame,
+        guide_u,
+        guide_v,
+    })
 }
 
 /// Generate the circular mesh with planar curvature lines of `design` (§3).
+///
+/// Normals along the guides (rotation-minimising, §3.2) → pencil axes from θ
+/// (§2.1.2) → Gauss map (§2.2.1) → Combescure transform through the guides (§2.2.3).
+///
+/// ```
+/// use monge_core::{generate, Design, GenerateOptions, GuideSpec};
+/// let d = Design {
+///     theta_deg: 30.0,
+///     guide_u: GuideSpec {
+///         tangent: Some([1.0, 0.0, 0.0]), // orthogonal to guide_v's start tangent
+///         ..GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]])
+///     },
+///     guide_v: GuideSpec::points(vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]),
+///     tolerance: None,
+/// };
+/// let mesh = generate(&d, &GenerateOptions::default()).unwrap().grid;
+/// assert_eq!((mesh.rows, mesh.cols), (3, 3));
+/// assert_eq!(mesh.vertex(2, 0).to_array(), [2.0, 0.0, 0.7]);
+/// ```
 pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated, GenerateError> {
-    let _ = (design, options, Tolerances::default(), GuideName::U);
-    Err(GenerateError::Other("not yet".into()))
+    let info = inspect(design, options)?;
+    let axes =
+        pencil_axes(&info.frame, info.theta_deg).map_err(|e| GenerateError::ThetaInadmissible {
+            theta_deg: e.theta_deg,
+            min_deg: e.range.min_deg,
+            max_deg: e.range.max_deg,
+        })?;
+    let n_p = info.frame.n_p;
+    let along_u = guide_normals(&info.guide_u.points, n_p);
+    let along_v = guide_normals(&info.guide_v.points, n_p);
+    let gauss = gauss_map(&axes, &along_u, &along_v);
+    let (vertices, report) = combescure(&gauss, &info.guide_u.points, &info.guide_v.points)
+        .map_err(|ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
+            face,
+            sine,
+            hint: if (info.theta_deg - 90.0).abs() < 1.0 {
+                "θ = +90° is singular: both pencil axes touch the sphere at the corner normal N_p, \
+                 every Gauss circle passes through it and the corner quad collapses. Move θ away from 90°"
+            } else if zero_edge {
+                "The normal does not turn along that edge: the surface has zero curvature there along a \
+                 curvature line (a straight piece of a guide, or a sample exactly on a parabolic line \
+                 such as the top circle of a torus). Curve the guide there, or sample it so that no \
+                 sample falls exactly on that line"
+            } else {
+                "The mesh pinches to a point there (§5.2). Change θ or the guides"
+            },
+        })?;
+    Ok(Generated {
+        grid: QuadGrid::new(gauss.rows, gauss.cols, vertices, gauss.normals),
+        info,
+        axes,
+        report,
+    })
 }

@@ -18,4 +18,9 @@ pub mod measure;
 pub use design::{Design, GuideSpec, Tolerances};
 pub use grid::QuadGrid;
 pub mod generate;
-pub use generate::{generate, GenerateError, GenerateOptions, Generated};
+pub use generate::{
+    generate, inspect, DesignInfo, GenerateError, GenerateOptions, Generated, Mode,
+};
+pub mod combescure;
+pub mod gauss_map;
+pub mod projective;
