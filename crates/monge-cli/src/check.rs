@@ -1,0 +1,197 @@
+//! `monge check`: measure a mesh against a tolerance.
+
+use std::io;
+
+use anyhow::bail;
+use monge_core::measure::{measure, Measurements, Worst};
+use monge_core::QuadGrid;
+use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
+use serde_json::{json, Map, Value};
+
+use crate::cli::CheckArgs;
+use crate::output::{num, print};
+use crate::Outcome;
+
+/// Runs `monge check`.
+pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
+    let path = args.mesh.as_path();
+    let grid = match (is_stdio(path), args.format) {
+        (true, Some(f)) => read_mesh_from(io::stdin().lock(), MeshFormat::from(f))?,
+        (true, None) => bail!("`-` (standard input) needs --format obj, ply or json"),
+        (false, None) => read_mesh(path)?,
+        (false, Some(_)) => bail!(
+            "--format is only for `-` (standard input); `{}` is read in the format of its extension",
+            path.display()
+        ),
+    };
+    let name = if is_stdio(path) {
+        "<stdin>".to_owned()
+    } else {
+        path.display().to_string()
+    };
+    let m = measure(&grid);
+    let metrics = metrics(&m);
+    let pass = metrics.iter().all(|r| passes(r.worst.value, args.tol));
+    let text = if args.json {
+        format!(
+            "{}\n",
+            json_report(&name, &grid, &m, &metrics, args.tol, pass)
+        )
+    } else {
+        text_report(&name, &grid, &m, &metrics, args.tol, pass)
+    };
+    print(&text)?;
+    Ok(if pass {
+        Outcome::Success
+    } else {
+        Outcome::Failed
+    })
+}
+
+/// One measured metric (§2.2).
+struct Metric {
+    /// Key in the JSON output.
+    key: &'static str,
+    /// Name in the table.
+    label: &'static str,
+    /// What `worst.at` indexes, for the table.
+    element: &'static str,
+    /// The worst value and where.
+    worst: Worst,
+}
+
+/// The metrics of `m` in print order; torsion and normal length only with normals.
+fn metrics(m: &Measurements) -> Vec<Metric> {
+    let metric = |key, label, element, worst| Metric {
+        key,
+        label,
+        element,
+        worst,
+    };
+    let mut v = vec![
+        metric("face_planarity", "face planarity", "face", m.face_planarity),
+        metric("circularity", "circularity", "face", m.circularity),
+        metric("row_planarity", "row planarity", "vertex", m.row_planarity),
+        metric(
+            "column_planarity",
+            "column planarity",
+            "vertex",
+            m.column_planarity,
+        ),
+    ];
+    if let Some(t) = m.torsion {
+        v.push(metric("torsion", "torsion", "edge from", t));
+    }
+    if let Some(n) = m.normal_length {
+        v.push(metric("normal_length", "normal length", "vertex", n));
+    }
+    v
+}
+
+/// `value ≤ tol`; NaN fails.
+fn passes(value: f64, tol: f64) -> bool {
+    value <= tol
+}
+
+/// `PASS` or `FAIL`.
+fn verdict(pass: bool) -> &'static str {
+    if pass {
+        "PASS"
+    } else {
+        "FAIL"
+    }
+}
+
+/// The table.
+fn text_report(
+    name: &str,
+    grid: &QuadGrid,
+    m: &Measurements,
+    metrics: &[Metric],
+    tol: f64,
+    pass: bool,
+) -> String {
+    let mut s = format!(
+        "{name}: {} × {} vertices, {} faces, {}\n\
+         lengths relative to the bounding-box diagonal {}; torsion and normal length are dimensionless\n",
+        grid.rows,
+        grid.cols,
+        grid.face_count(),
+        if grid.normals.is_empty() {
+            "no normals"
+        } else {
+            "with normals"
+        },
+        num(m.scale)
+    );
+    for r in metrics {
+        let (i, j) = r.worst.at;
+        s.push_str(&format!(
+            "{:<17} {:>10.3e}  at {:<20} {}\n",
+            r.label,
+            r.worst.value,
+            format!("{} ({i}, {j})", r.element),
+            verdict(passes(r.worst.value, tol))
+        ));
+    }
+    let failed = metrics
+        .iter()
+        .filter(|r| !passes(r.worst.value, tol))
+        .count();
+    if pass {
+        s.push_str(&format!("PASS: every metric ≤ {tol:e}\n"));
+    } else {
+        s.push_str(&format!(
+            "FAIL: {failed} of {} metrics exceed {tol:e}\n",
+            metrics.len()
+        ));
+    }
+    s
+}
+
+/// The JSON object.
+fn json_report(
+    name: &str,
+    grid: &QuadGrid,
+    m: &Measurements,
+    metrics: &[Metric],
+    tol: f64,
+    pass: bool,
+) -> Value {
+    let mut all = Map::new();
+    for r in metrics {
+        all.insert(
+            r.key.to_owned(),
+            json!({
+                "value": r.worst.value,
+                "at": [r.worst.at.0, r.worst.at.1],
+                "pass": passes(r.worst.value, tol),
+            }),
+        );
+    }
+    json!({
+        "file": name,
+        "rows": grid.rows,
+        "cols": grid.cols,
+        "faces": grid.face_count(),
+        "normals": !grid.normals.is_empty(),
+        "scale": m.scale,
+        "tol": tol,
+        "max_error": m.max_error(),
+        "pass": pass,
+        "metrics": all,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nan_fails() {
+        assert!(passes(1e-12, 1e-9));
+        assert!(passes(1e-9, 1e-9));
+        assert!(!passes(2e-9, 1e-9));
+        assert!(!passes(f64::NAN, 1e-9));
+    }
+}

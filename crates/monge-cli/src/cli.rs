@@ -1,0 +1,254 @@
+//! The command line: every command, flag and help text of `monge`.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use monge_core::GenerateOptions;
+use monge_io::MeshFormat;
+
+/// The θ convention, in one line, shared by the help texts.
+const THETA: &str = "θ (`theta_deg`, degrees, taken modulo 360 into (−180°, 180°]) places the \
+pencil axis {tan(θ/2)·N_p + s·t_v} of the Gauss map (t_u, t_v the unit start tangents, \
+N_p = t_u × t_v normalised): θ = 0 gives a moulding surface with guide_u as its rail, \
+θ = ±180° one with guide_v as its rail, θ = +90° is singular.";
+
+/// Exit statuses, shared by the help texts.
+const EXIT: &str = "Exit status: 0 success; 1 `monge check` found a metric above --tol; \
+2 any error (unreadable, malformed or invalid design or mesh, unwritable output, bad \
+arguments), reported on stderr as `error: <message>`.";
+
+/// `monge`: exact circular meshes with planar curvature lines.
+#[derive(Debug, Parser)]
+#[command(
+    name = "monge",
+    version,
+    about = "Exact circular quad meshes with planar curvature lines, from two planar guide curves and an angle θ",
+    long_about = format!(
+        "Exact circular quad meshes with planar curvature lines (Mesnil et al., \"Surfaces with \
+         planar curvature lines\"), generated from two planar guide curves that start at the same \
+         point and meet at 90°, and one angle θ.\n\n\
+         A design file (JSON or TOML) gives `theta_deg`, `guide_u` and `guide_v`; each guide is one \
+         of `points`, `bspline`, `arc` or `parabola`. Vertex (i, j) of the mesh lies on row i \
+         (along guide_v) and column j (along guide_u): vertex (i, 0) is guide_u's sample i and \
+         vertex (0, j) is guide_v's sample j.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge info examples/fig13-freeform.json\n  \
+         monge generate examples/fig13-freeform.json -o mesh.obj\n  \
+         monge check mesh.obj\n  \
+         monge bench --sizes 100,1000\n\n{EXIT}"
+    )
+)]
+pub struct Cli {
+    /// The command to run.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands of `monge`.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Generate the mesh of a design and write it as OBJ, PLY or JSON.
+    #[command(
+        long_about = format!(
+            "Generate the mesh of a design and write it as OBJ, PLY or JSON.\n\n\
+             Reads DESIGN (`.json` or `.toml`), validates it (guides planar, starting at the same \
+             point, meeting at 90°, θ admissible), builds the mesh exactly (§3) and writes it to OUT \
+             in the format of OUT's extension (`.obj`, `.ply` or `.json`), atomically: on any error \
+             no file is created and an existing OUT is left untouched. JSON output has, besides \
+             `rows`, `cols`, `vertices` and `normals`, the keys `theta_deg`, `mode` and `report` \
+             (folded faces, first fold, smallest crossing sine). A one-paragraph summary (grid \
+             size, mode, θ, admissible range, time taken, warnings about folds and pinches) goes \
+             to stderr.\n\n{THETA}"
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge generate examples/fig13-freeform.json -o mesh.obj\n  \
+             monge generate examples/fig14-family.toml -o - --format ply > mesh.ply\n\n{EXIT}"
+        )
+    )]
+    Generate(GenerateArgs),
+
+    /// Measure a quad mesh: planarity, circularity, planar lines, node axes.
+    #[command(
+        long_about = format!(
+            "Measure a quad mesh (from `monge generate` or any row-major quad grid) independently \
+             of how it was made.\n\n\
+             Reads MESH (`.obj`, `.ply` or `.json` by extension, or `-` for standard input with \
+             --format) and prints, for each metric, its worst value and where it occurs, and PASS \
+             or FAIL against --tol: face planarity (distance between the diagonals' lines), \
+             circularity (distance of a corner from the circle through the other three), row and \
+             column planarity (distance of a vertex from the best-fit plane of its curvature \
+             line), all relative to the bounding-box diagonal; and, when the mesh has normals, \
+             torsion (|det(edge, n_p, n_q)| over edges) and normal length (| |n| − 1 |), which are \
+             dimensionless.\n\n{EXIT}"
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge check mesh.obj\n  \
+             monge generate examples/fig2-enneper.json -o - | monge check - --format json --json\n\n{EXIT}"
+        )
+    )]
+    Check(CheckArgs),
+
+    /// Validate a design and print what generation would use, without generating.
+    #[command(
+        long_about = format!(
+            "Validate a design and print what generation would use, without building the mesh.\n\n\
+             For each guide: its kind, number of samples, planarity deviation (absolute and \
+             relative to the guide's size, against the design's tolerance), size (bounding-box \
+             diagonal), unit start tangent and plane normal. Then the mode (characteristic §3.1: \
+             every θ works; arbitrary §3.2: θ has an admissible range), the admissible θ in \
+             degrees (both signs), whether the design's θ is admissible (an inadmissible θ is \
+             reported, not an error), the singular θ = +90°, and the grid size.\n\n{THETA}"
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge info examples/fig10-arbitrary.json\n  \
+             monge info examples/fig14-family.toml --json\n\n{EXIT}"
+        )
+    )]
+    Info(InfoArgs),
+
+    /// Time the generator in-process on standard designs of n × n faces.
+    #[command(
+        long_about = format!(
+            "Time the generator in-process on standard designs of n × n faces.\n\n\
+             The design is built in code (no file I/O): two cubic B-spline guides in the \
+             characteristic case (§3.1), guide_u with control points (0,0,0) (4,0,0) (8,0,2.5) \
+             (12,0,1) (16,0,3.5) in the plane y = 0, guide_v with control points (0,0,0) (0,3,0) \
+             (0,6,−1.5) (0,10,1) in the plane x = 0, θ = 30°, each guide sampled at n + 1 points. \
+             Each timed run is a whole `generate` call, guide sampling included. After a warm-up, \
+             prints one JSON line per size: \
+             {{\"faces\":\"NxN\",\"median_ms\":M,\"runs\":R,\"min_ms\":A,\"max_ms\":B}}.\n\n{EXIT}"
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge bench\n  \
+             monge bench --sizes 10,100 --runs 20\n\n{EXIT}"
+        )
+    )]
+    Bench(BenchArgs),
+}
+
+/// Mesh formats on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// Wavefront OBJ.
+    Obj,
+    /// ASCII PLY.
+    Ply,
+    /// JSON (`rows`, `cols`, `vertices`, `normals`).
+    Json,
+}
+
+impl From<FormatArg> for MeshFormat {
+    fn from(f: FormatArg) -> MeshFormat {
+        match f {
+            FormatArg::Obj => MeshFormat::Obj,
+            FormatArg::Ply => MeshFormat::Ply,
+            FormatArg::Json => MeshFormat::Json,
+        }
+    }
+}
+
+/// Arguments of `monge generate`.
+#[derive(Debug, clap::Args)]
+pub struct GenerateArgs {
+    /// The design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Output format; overrides OUT's extension. With `-o -` it defaults to json.
+    #[arg(long, value_enum)]
+    pub format: Option<FormatArg>,
+    /// Refuse grids of more than N vertices (rows × cols), before allocating anything.
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
+
+/// Arguments of `monge check`.
+#[derive(Debug, clap::Args)]
+pub struct CheckArgs {
+    /// The mesh file (`.obj`, `.ply` or `.json`), or `-` for standard input (needs --format).
+    #[arg(value_name = "MESH")]
+    pub mesh: PathBuf,
+    /// Largest accepted value of each metric (a non-negative number).
+    #[arg(long, value_name = "TOL", default_value_t = 1e-9, value_parser = parse_tolerance)]
+    pub tol: f64,
+    /// Format of standard input when MESH is `-` (files are read by their extension).
+    #[arg(long, value_enum)]
+    pub format: Option<FormatArg>,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `monge info`.
+#[derive(Debug, clap::Args)]
+pub struct InfoArgs {
+    /// The design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Refuse designs of more than N grid vertices (as `monge generate` would).
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
+
+/// Arguments of `monge bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Timed runs per size [default: enough for about 1 s per size, at least 5].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub runs: Option<u32>,
+    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1.
+    #[arg(
+        long,
+        value_name = "N,N,…",
+        value_delimiter = ',',
+        default_values_t = [100, 1000],
+        value_parser = clap::value_parser!(u32).range(1..)
+    )]
+    pub sizes: Vec<u32>,
+    /// Refuse grids of more than N vertices.
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
+
+/// `--tol`: a finite, non-negative number.
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let t: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    if t.is_finite() && t >= 0.0 {
+        Ok(t)
+    } else {
+        Err(format!("`{s}` is not a finite, non-negative number"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn command_line_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn tolerance_must_be_finite_and_non_negative() {
+        assert_eq!(parse_tolerance("1e-6"), Ok(1e-6));
+        assert!(parse_tolerance("-1").is_err());
+        assert!(parse_tolerance("nan").is_err());
+        assert!(parse_tolerance("x").is_err());
+    }
+}

@@ -1,0 +1,224 @@
+//! `monge generate`: design file → mesh file.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{bail, Context};
+use monge_core::combescure::CombescureReport;
+use monge_core::gauss_map::ThetaRange;
+use monge_core::{generate, GenerateOptions, Generated, Mode};
+use monge_io::{is_stdio, read_design, write_mesh_json, write_mesh_to, write_output, MeshFormat};
+use serde_json::{json, Map, Value};
+
+use crate::cli::GenerateArgs;
+use crate::output::{eprint, millis, num};
+use crate::Outcome;
+
+/// Below this smallest crossing sine the summary warns that the mesh nearly pinches (§5.2).
+const LOW_CROSSING_SINE: f64 = 1e-3;
+
+/// Runs `monge generate`.
+pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
+    let out = args.output.as_path();
+    // Everything about the output is checked before the (possibly long) generation.
+    let format = match (args.format, is_stdio(out)) {
+        (Some(f), _) => MeshFormat::from(f),
+        (None, true) => MeshFormat::Json,
+        (None, false) => MeshFormat::from_path(out)?,
+    };
+    if !is_stdio(out) {
+        check_directory(out)?;
+    }
+
+    let design = read_design(&args.design)?;
+    let options = GenerateOptions {
+        max_vertices: args.max_vertices,
+    };
+    let start = Instant::now();
+    let generated =
+        generate(&design, &options).with_context(|| args.design.display().to_string())?;
+    let generation = start.elapsed().as_secs_f64();
+
+    let start = Instant::now();
+    let extra = json_extras(&generated);
+    write_output(out, |w| match format {
+        MeshFormat::Json => write_mesh_json(&generated.grid, &extra, w),
+        other => write_mesh_to(&generated.grid, other, w),
+    })?;
+    let writing = start.elapsed().as_secs_f64();
+
+    eprint(&summary(
+        &args.design,
+        out,
+        format,
+        &generated,
+        generation,
+        writing,
+    ));
+    Ok(Outcome::Success)
+}
+
+/// Fails early, with a plain message, if `out`'s directory does not exist.
+fn check_directory(out: &Path) -> anyhow::Result<()> {
+    let dir = match out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        bail!(
+            "cannot write `{}`: the directory `{}` does not exist (create it first, or choose another -o)",
+            out.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// `"characteristic"` or `"arbitrary"`.
+pub fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Characteristic => "characteristic",
+        Mode::Arbitrary => "arbitrary",
+    }
+}
+
+/// The extra keys of the JSON output: `theta_deg`, `mode`, `report`.
+fn json_extras(g: &Generated) -> Map<String, Value> {
+    let report = report_json(&g.report);
+    let mut extra = Map::new();
+    extra.insert("theta_deg".into(), json!(g.info.theta_deg));
+    extra.insert("mode".into(), json!(mode_name(g.info.mode)));
+    extra.insert("report".into(), report);
+    extra
+}
+
+/// The Combescure report as JSON (§5.2).
+fn report_json(r: &CombescureReport) -> Value {
+    json!({
+        "folded_faces": r.folded_faces,
+        "first_fold": r.first_fold.map(|(i, j)| [i, j]),
+        "min_crossing_sine": r.min_crossing.sine,
+        "min_crossing_face": [r.min_crossing.face.0, r.min_crossing.face.1],
+    })
+}
+
+/// The admissible θ in words, both signs (§3.2).
+pub fn range_text(mode: Mode, r: &ThetaRange) -> String {
+    match mode {
+        Mode::Characteristic => "every θ in (−180°, 180°]".to_owned(),
+        Mode::Arbitrary => format!(
+            "|θ| in [{min}°, {max}°], i.e. θ in [−{max}°, −{min}°] ∪ [{min}°, {max}°]",
+            min = num(r.min_deg),
+            max = num(r.max_deg)
+        ),
+    }
+}
+
+/// The paragraph printed on stderr after a successful generation.
+fn summary(
+    design: &Path,
+    out: &Path,
+    format: MeshFormat,
+    g: &Generated,
+    generation: f64,
+    writing: f64,
+) -> String {
+    let grid = &g.grid;
+    let target = if is_stdio(out) {
+        "standard output".to_owned()
+    } else {
+        format!("`{}`", out.display())
+    };
+    let mut s = format!(
+        "{}: {} × {} vertices, {} faces; mode {}; θ = {}°, admissible: {}. \
+         Generated in {} ms; wrote {} {} in {} ms.\n",
+        design.display(),
+        grid.rows,
+        grid.cols,
+        grid.face_count(),
+        g.info.mode,
+        num(g.info.theta_deg),
+        range_text(g.info.mode, &g.info.theta_range),
+        millis(generation),
+        format.extension().to_uppercase(),
+        target,
+        millis(writing),
+    );
+    s.push_str(&warnings(&g.report).concat());
+    s
+}
+
+/// Warnings about folds and pinches (§5.2), one line each.
+fn warnings(r: &CombescureReport) -> Vec<String> {
+    let mut w = Vec::new();
+    if let Some((i, j)) = r.first_fold {
+        w.push(format!(
+            "warning: the mesh folds over itself / pinches (§5.2) in {} faces, first at face ({i}, {j}).\n",
+            r.folded_faces
+        ));
+    }
+    if r.min_crossing.sine < LOW_CROSSING_SINE {
+        let (i, j) = r.min_crossing.face;
+        w.push(format!(
+            "warning: low crossing sine {:.1e} at face ({i}, {j}): vertex ({}, {}) is defined by two \
+             nearly parallel lines, the mesh nearly pinches there (§5.2); try another θ.\n",
+            r.min_crossing.sine,
+            i + 1,
+            j + 1
+        ));
+    }
+    w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use monge_core::combescure::ParallelLines;
+
+    fn report(folded_faces: usize, sine: f64) -> CombescureReport {
+        CombescureReport {
+            min_crossing: ParallelLines { face: (3, 4), sine },
+            folded_faces,
+            first_fold: (folded_faces > 0).then_some((5, 6)),
+        }
+    }
+
+    #[test]
+    fn a_clean_mesh_has_no_warnings() {
+        assert!(warnings(&report(0, 0.5)).is_empty());
+    }
+
+    #[test]
+    fn folds_and_low_sines_are_reported_with_their_faces() {
+        let w = warnings(&report(7, 1e-4));
+        assert_eq!(w.len(), 2);
+        assert!(
+            w[0].contains("in 7 faces, first at face (5, 6)"),
+            "{}",
+            w[0]
+        );
+        assert!(w[1].contains("1.0e-4 at face (3, 4)"), "{}", w[1]);
+    }
+
+    #[test]
+    fn report_json_names_every_field() {
+        let v = report_json(&report(2, 0.25));
+        assert_eq!(v["folded_faces"], 2);
+        assert_eq!(v["first_fold"], json!([5, 6]));
+        assert_eq!(v["min_crossing_sine"], 0.25);
+        assert_eq!(v["min_crossing_face"], json!([3, 4]));
+        assert_eq!(report_json(&report(0, 1.0))["first_fold"], Value::Null);
+    }
+
+    #[test]
+    fn ranges_have_both_signs() {
+        let r = ThetaRange {
+            min_deg: 61.9,
+            max_deg: 170.0,
+        };
+        assert_eq!(
+            range_text(Mode::Arbitrary, &r),
+            "|θ| in [61.9°, 170°], i.e. θ in [−170°, −61.9°] ∪ [61.9°, 170°]"
+        );
+    }
+}

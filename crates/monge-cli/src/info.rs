@@ -1,0 +1,220 @@
+//! `monge info`: validate a design and describe it, without generating.
+
+use anyhow::Context;
+use monge_core::guide::Guide;
+use monge_core::{inspect, DesignInfo, GenerateOptions, GuideSpec, Mode};
+use monge_io::read_design;
+use serde_json::{json, Value};
+
+use crate::cli::InfoArgs;
+use crate::generate::{mode_name, range_text};
+use crate::output::{num, print, xyz};
+use crate::Outcome;
+
+/// The singular θ (§3.1): every Gauss circle passes through the corner normal.
+const SINGULAR_DEG: f64 = 90.0;
+
+/// Runs `monge info`.
+pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
+    let design = read_design(&args.design)?;
+    let options = GenerateOptions {
+        max_vertices: args.max_vertices,
+    };
+    let info = inspect(&design, &options).with_context(|| args.design.display().to_string())?;
+    let planarity_tol = design.tolerance.unwrap_or_default().planarity;
+    let guides = [
+        ("guide_u", &design.guide_u, &info.guide_u),
+        ("guide_v", &design.guide_v, &info.guide_v),
+    ];
+    let text = if args.json {
+        let mut v = json_report(&info, planarity_tol, &guides);
+        v["file"] = json!(args.design.display().to_string());
+        format!("{v}\n")
+    } else {
+        text_report(
+            &args.design.display().to_string(),
+            &info,
+            planarity_tol,
+            &guides,
+        )
+    };
+    print(&text)?;
+    Ok(Outcome::Success)
+}
+
+/// A guide's name, its spec and the validated guide.
+type GuideRow<'a> = (&'static str, &'a GuideSpec, &'a Guide);
+
+/// The kind of a guide spec that [`inspect`] accepted (exactly one is set).
+fn kind(spec: &GuideSpec) -> &'static str {
+    match (&spec.points, &spec.bspline, &spec.arc) {
+        (Some(_), ..) => "points",
+        (_, Some(b), _) if b.weights.is_some() => "bspline (NURBS)",
+        (_, Some(_), _) => "bspline",
+        (_, _, Some(_)) => "arc",
+        _ => "parabola",
+    }
+}
+
+/// Whether θ is the singular +90° (as the generator treats it, within 1°).
+fn near_singular(theta_deg: f64) -> bool {
+    (theta_deg - SINGULAR_DEG).abs() < 1.0
+}
+
+/// The human-readable report.
+fn text_report(
+    file: &str,
+    info: &DesignInfo,
+    planarity_tol: f64,
+    guides: &[GuideRow<'_>; 2],
+) -> String {
+    let mut s = format!("{file}: valid design\n");
+    for (name, spec, g) in guides {
+        s.push_str(&format!(
+            "{name}: {}, {} samples, size {} (bounding-box diagonal)\n  \
+             planarity deviation {:.3e} absolute, {:.3e} relative (tolerance {:.0e})\n  \
+             start tangent {}, plane normal {}\n",
+            kind(spec),
+            g.points.len(),
+            num(g.size),
+            g.planarity,
+            g.planarity / g.size,
+            planarity_tol,
+            xyz(g.tangent.to_array()),
+            xyz(g.plane_normal.to_array()),
+        ));
+    }
+    s.push_str(&format!(
+        "start point {}\n",
+        xyz(info.guide_u.points[0].to_array())
+    ));
+    s.push_str(&format!(
+        "mode: {}\n",
+        match info.mode {
+            Mode::Characteristic =>
+                "characteristic (§3.1): the guide planes are orthogonal and each start tangent is \
+                 orthogonal to the other guide's plane",
+            Mode::Arbitrary => "arbitrary (§3.2): θ is restricted to an admissible range",
+        }
+    ));
+    s.push_str(&format!(
+        "admissible θ: {}\n",
+        range_text(info.mode, &info.theta_range)
+    ));
+    let admissible = info.theta_range.contains(info.theta_deg);
+    s.push_str(&format!(
+        "design θ = {}°: {}\n",
+        num(info.theta_deg),
+        if !admissible {
+            "NOT admissible; `monge generate` will refuse it"
+        } else if near_singular(info.theta_deg) {
+            "admissible, but at the singular θ = +90°; generation will fail"
+        } else {
+            "admissible"
+        }
+    ));
+    s.push_str(
+        "singular θ = +90°: every Gauss circle passes through the corner normal N_p and the corner \
+         face collapses\n",
+    );
+    let (rows, cols) = info.grid_size();
+    s.push_str(&format!(
+        "grid: {rows} × {cols} vertices ({}), {} faces\n",
+        rows * cols,
+        (rows - 1) * (cols - 1)
+    ));
+    s
+}
+
+/// The JSON report (without the `file` key).
+fn json_report(info: &DesignInfo, planarity_tol: f64, guides: &[GuideRow<'_>; 2]) -> Value {
+    let mut v = json!({});
+    for (name, spec, g) in guides {
+        v[*name] = json!({
+            "kind": kind(spec),
+            "samples": g.points.len(),
+            "planarity_abs": g.planarity,
+            "planarity_rel": g.planarity / g.size,
+            "planarity_tolerance": planarity_tol,
+            "size": g.size,
+            "start_tangent": g.tangent.to_array(),
+            "plane_normal": g.plane_normal.to_array(),
+        });
+    }
+    let (rows, cols) = info.grid_size();
+    let r = info.theta_range;
+    v["start_point"] = json!(info.guide_u.points[0].to_array());
+    v["mode"] = json!(mode_name(info.mode));
+    v["theta_deg"] = json!(info.theta_deg);
+    v["theta_admissible"] = json!(info.theta_range.contains(info.theta_deg));
+    v["admissible_theta_deg"] = json!({
+        "abs_min": r.min_deg,
+        "abs_max": r.max_deg,
+        "intervals": [[-r.max_deg, -r.min_deg], [r.min_deg, r.max_deg]],
+    });
+    v["singular_theta_deg"] = json!(SINGULAR_DEG);
+    v["theta_singular"] = json!(near_singular(info.theta_deg));
+    v["rows"] = json!(rows);
+    v["cols"] = json!(cols);
+    v["vertices"] = json!(rows * cols);
+    v["faces"] = json!((rows - 1) * (cols - 1));
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use monge_core::design::{ArcSpec, BSplineSpec, ParabolaSpec};
+
+    #[test]
+    fn kinds_are_named() {
+        let bspline = BSplineSpec {
+            degree: 1,
+            control_points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
+            knots: None,
+            weights: None,
+            samples: 2,
+        };
+        let nurbs = BSplineSpec {
+            weights: Some(vec![1.0, 2.0]),
+            ..bspline.clone()
+        };
+        let arc = ArcSpec {
+            center: [0.0; 3],
+            start: [1.0, 0.0, 0.0],
+            normal: [0.0, 0.0, 1.0],
+            angle_deg: 90.0,
+            samples: 3,
+        };
+        let parabola = ParabolaSpec {
+            start: [0.0; 3],
+            tangent: [1.0, 0.0, 0.0],
+            quadratic: [0.0, 1.0, 0.0],
+            samples: 3,
+        };
+        let with = |b: BSplineSpec| GuideSpec {
+            bspline: Some(b),
+            ..GuideSpec::default()
+        };
+        assert_eq!(kind(&GuideSpec::points(vec![[0.0; 3]])), "points");
+        assert_eq!(kind(&with(bspline)), "bspline");
+        assert_eq!(kind(&with(nurbs)), "bspline (NURBS)");
+        let arc = GuideSpec {
+            arc: Some(arc),
+            ..GuideSpec::default()
+        };
+        assert_eq!(kind(&arc), "arc");
+        let parabola = GuideSpec {
+            parabola: Some(parabola),
+            ..GuideSpec::default()
+        };
+        assert_eq!(kind(&parabola), "parabola");
+    }
+
+    #[test]
+    fn only_plus_ninety_is_singular() {
+        assert!(near_singular(90.0));
+        assert!(!near_singular(-90.0));
+        assert!(!near_singular(30.0));
+    }
+}
