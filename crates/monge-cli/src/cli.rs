@@ -82,7 +82,7 @@ pub enum Command {
              column planarity (distance of a vertex from the best-fit plane of its curvature \
              line), all relative to the bounding-box diagonal; and, when the mesh has normals, \
              torsion (|det(edge, n_p, n_q)| over edges) and normal length (| |n| − 1 |), which are \
-             dimensionless.\n\n{EXIT}"
+             dimensionless."
         ),
         after_help = format!(
             "Examples:\n  \
@@ -121,7 +121,7 @@ pub enum Command {
              (0,6,−1.5) (0,10,1) in the plane x = 0, θ = 30°, each guide sampled at n + 1 points. \
              Each timed run is a whole `generate` call, guide sampling included. After a warm-up, \
              prints one JSON line per size: \
-             {{\"faces\":\"NxN\",\"median_ms\":M,\"runs\":R,\"min_ms\":A,\"max_ms\":B}}.\n\n{EXIT}"
+             {{\"faces\":\"NxN\",\"median_ms\":M,\"runs\":R,\"min_ms\":A,\"max_ms\":B}}."
         ),
         after_help = format!(
             "Examples:\n  \
@@ -177,7 +177,13 @@ pub struct CheckArgs {
     #[arg(value_name = "MESH")]
     pub mesh: PathBuf,
     /// Largest accepted value of each metric (a non-negative number).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-9, value_parser = parse_tolerance)]
+    #[arg(
+        long,
+        value_name = "TOL",
+        default_value = "1e-9",
+        value_parser = parse_tolerance,
+        allow_negative_numbers = true
+    )]
     pub tol: f64,
     /// Format of standard input when MESH is `-` (files are read by their extension).
     #[arg(long, value_enum)]
@@ -212,7 +218,7 @@ pub struct BenchArgs {
         long,
         value_name = "N,N,…",
         value_delimiter = ',',
-        default_values_t = [100, 1000],
+        default_value = "100,1000",
         value_parser = clap::value_parser!(u32).range(1..)
     )]
     pub sizes: Vec<u32>,

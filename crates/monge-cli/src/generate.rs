@@ -84,7 +84,7 @@ pub fn mode_name(mode: Mode) -> &'static str {
 
 /// The extra keys of the JSON output: `theta_deg`, `mode`, `report`.
 fn json_extras(g: &Generated) -> Map<String, Value> {
-    let report = report_json(&g.report);
+    let report = report_json(&Pinching::from(&g.report));
     let mut extra = Map::new();
     extra.insert("theta_deg".into(), json!(g.info.theta_deg));
     extra.insert("mode".into(), json!(mode_name(g.info.mode)));
@@ -92,13 +92,38 @@ fn json_extras(g: &Generated) -> Map<String, Value> {
     extra
 }
 
+/// What the summary and the JSON output say about folds and pinches (§5.2),
+/// taken from a [`CombescureReport`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Pinching {
+    /// Faces oriented against face (0, 0).
+    folded_faces: usize,
+    /// The first of them, row-major.
+    first_fold: Option<(usize, usize)>,
+    /// The smallest sine between the two lines that defined a vertex.
+    min_sine: f64,
+    /// The face where it occurred.
+    min_face: (usize, usize),
+}
+
+impl From<&CombescureReport> for Pinching {
+    fn from(r: &CombescureReport) -> Self {
+        Pinching {
+            folded_faces: r.folded_faces,
+            first_fold: r.first_fold,
+            min_sine: r.min_crossing.sine,
+            min_face: r.min_crossing.face,
+        }
+    }
+}
+
 /// The Combescure report as JSON (§5.2).
-fn report_json(r: &CombescureReport) -> Value {
+fn report_json(r: &Pinching) -> Value {
     json!({
         "folded_faces": r.folded_faces,
         "first_fold": r.first_fold.map(|(i, j)| [i, j]),
-        "min_crossing_sine": r.min_crossing.sine,
-        "min_crossing_face": [r.min_crossing.face.0, r.min_crossing.face.1],
+        "min_crossing_sine": r.min_sine,
+        "min_crossing_face": [r.min_face.0, r.min_face.1],
     })
 }
 
@@ -131,7 +156,7 @@ fn summary(
     };
     let mut s = format!(
         "{}: {} × {} vertices, {} faces; mode {}; θ = {}°, admissible: {}. \
-         Generated in {} ms; wrote {} {} in {} ms.\n",
+         Generated in {} ms; wrote {} to {} in {} ms.\n",
         design.display(),
         grid.rows,
         grid.cols,
@@ -144,12 +169,12 @@ fn summary(
         target,
         millis(writing),
     );
-    s.push_str(&warnings(&g.report).concat());
+    s.push_str(&warnings(&Pinching::from(&g.report)).concat());
     s
 }
 
 /// Warnings about folds and pinches (§5.2), one line each.
-fn warnings(r: &CombescureReport) -> Vec<String> {
+fn warnings(r: &Pinching) -> Vec<String> {
     let mut w = Vec::new();
     if let Some((i, j)) = r.first_fold {
         w.push(format!(
@@ -157,12 +182,12 @@ fn warnings(r: &CombescureReport) -> Vec<String> {
             r.folded_faces
         ));
     }
-    if r.min_crossing.sine < LOW_CROSSING_SINE {
-        let (i, j) = r.min_crossing.face;
+    if r.min_sine < LOW_CROSSING_SINE {
+        let (i, j) = r.min_face;
         w.push(format!(
             "warning: low crossing sine {:.1e} at face ({i}, {j}): vertex ({}, {}) is defined by two \
              nearly parallel lines, the mesh nearly pinches there (§5.2); try another θ.\n",
-            r.min_crossing.sine,
+            r.min_sine,
             i + 1,
             j + 1
         ));
@@ -173,13 +198,13 @@ fn warnings(r: &CombescureReport) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use monge_core::combescure::ParallelLines;
 
-    fn report(folded_faces: usize, sine: f64) -> CombescureReport {
-        CombescureReport {
-            min_crossing: ParallelLines { face: (3, 4), sine },
+    fn report(folded_faces: usize, min_sine: f64) -> Pinching {
+        Pinching {
             folded_faces,
             first_fold: (folded_faces > 0).then_some((5, 6)),
+            min_sine,
+            min_face: (3, 4),
         }
     }
 

@@ -46,8 +46,43 @@ fn main() -> ExitCode {
         Ok(Outcome::Success) => ExitCode::SUCCESS,
         Ok(Outcome::Failed) => ExitCode::from(1),
         Err(err) => {
-            output::eprint(&format!("error: {err:#}\n"));
+            output::eprint(&format!("error: {}\n", message(&err)));
             ExitCode::from(ERROR_STATUS)
         }
+    }
+}
+
+/// The message of `err` and of its causes, joined by `: `, leaving out a cause
+/// that the message already quotes (the typed errors of monge-io include their
+/// source's text).
+fn message(err: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in err.chain() {
+        let part = cause.to_string();
+        if text.is_empty() {
+            text = part;
+        } else if !text.contains(&part) {
+            text.push_str(": ");
+            text.push_str(&part);
+        }
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use anyhow::Context;
+
+    #[test]
+    fn causes_are_joined_once() {
+        let io = std::io::Error::new(std::io::ErrorKind::BrokenPipe, "broken pipe");
+        let quoted = format!("cannot write `<stdout>`: {io}");
+        let err = Err::<(), _>(io).context(quoted).unwrap_err();
+        assert_eq!(message(&err), "cannot write `<stdout>`: broken pipe");
+        let err = Err::<(), _>(anyhow::anyhow!("bad guide"))
+            .context("design.json")
+            .unwrap_err();
+        assert_eq!(message(&err), "design.json: bad guide");
     }
 }

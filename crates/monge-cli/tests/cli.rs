@@ -1,0 +1,613 @@
+//! End-to-end tests of the `monge` binary: every command, every exit status,
+//! and the error messages for bad input.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use monge_core::{inspect, GenerateOptions};
+use predicates::prelude::*;
+use serde_json::Value;
+use tempfile::TempDir;
+
+/// The bundled example designs.
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+/// An example design by file name.
+fn example(name: &str) -> PathBuf {
+    examples().join(name)
+}
+
+/// The `monge` binary.
+fn monge() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_monge"))
+}
+
+/// Examples that must generate and pass `check`.
+const REQUIRED: [&str; 5] = [
+    "contract.json",
+    "fig13-freeform.json",
+    "fig2-enneper.json",
+    "fig10-arbitrary.json",
+    "fig14-family.toml",
+];
+
+/// Generates `design` into `out` and checks the result, both with exit status 0.
+fn generate_and_check(design: &Path, out: &Path) {
+    monge()
+        .arg("generate")
+        .arg(design)
+        .arg("-o")
+        .arg(out)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("vertices"));
+    assert!(out.is_file(), "{} was not written", out.display());
+    monge()
+        .arg("check")
+        .arg(out)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("PASS: every metric"));
+}
+
+#[test]
+fn required_examples_generate_to_every_format_and_pass_check() {
+    let dir = TempDir::new().unwrap();
+    for name in REQUIRED {
+        let stem = name.split('.').next().unwrap();
+        for ext in ["obj", "ply", "json"] {
+            generate_and_check(&example(name), &dir.path().join(format!("{stem}.{ext}")));
+        }
+    }
+}
+
+#[test]
+fn every_other_example_either_passes_check_or_fails_cleanly() {
+    let dir = TempDir::new().unwrap();
+    for entry in fs::read_dir(examples()).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if REQUIRED.contains(&name.as_str()) {
+            continue;
+        }
+        let out = dir.path().join(format!("{name}.obj"));
+        let status = monge()
+            .arg("generate")
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap()
+            .status;
+        match status.code() {
+            Some(0) => {
+                monge().arg("check").arg(&out).assert().success();
+            }
+            Some(2) => assert!(!out.exists(), "{name}: failed but wrote output"),
+            other => panic!("{name}: unexpected exit status {other:?}"),
+        }
+    }
+}
+
+/// Parses the JSON mesh written by `monge generate`.
+fn read_json(path: &Path) -> Value {
+    serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// Vertex `(i, j)` of a JSON mesh.
+fn vertex(mesh: &Value, i: usize, j: usize) -> [f64; 3] {
+    let cols = mesh["cols"].as_u64().unwrap() as usize;
+    let v = &mesh["vertices"][i * cols + j];
+    [0, 1, 2].map(|k| v[k].as_f64().unwrap())
+}
+
+#[test]
+fn json_output_follows_the_contract() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("contract.json");
+    let design_path = example("contract.json");
+    monge()
+        .arg("generate")
+        .arg(&design_path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let mesh = read_json(&out);
+    assert_eq!(mesh["rows"], 3);
+    assert_eq!(mesh["cols"], 41);
+    assert_eq!(mesh["vertices"].as_array().unwrap().len(), 3 * 41);
+    assert_eq!(mesh["normals"].as_array().unwrap().len(), 3 * 41);
+    assert_eq!(mesh["theta_deg"], 30.0);
+    assert!(mesh["mode"] == "characteristic" || mesh["mode"] == "arbitrary");
+    assert_eq!(mesh["report"]["folded_faces"], 0);
+    assert_eq!(mesh["report"]["first_fold"], Value::Null);
+    assert!(mesh["report"]["min_crossing_sine"].as_f64().unwrap() > 1e-3);
+    // guide_u is given point by point: column 0 is exactly those points.
+    let design: Value = serde_json::from_str(&fs::read_to_string(&design_path).unwrap()).unwrap();
+    for (i, p) in design["guide_u"]["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .enumerate()
+    {
+        let p = [0, 1, 2].map(|k| p[k].as_f64().unwrap());
+        assert_eq!(vertex(&mesh, i, 0), p, "vertex ({i}, 0)");
+    }
+    // guide_v is a B-spline: row 0 is exactly its samples.
+    let design = monge_io::read_design(&design_path).unwrap();
+    let info = inspect(&design, &GenerateOptions::default()).unwrap();
+    for (j, p) in info.guide_v.points.iter().enumerate() {
+        assert_eq!(vertex(&mesh, 0, j), p.to_array(), "vertex (0, {j})");
+    }
+}
+
+#[test]
+fn json_output_starts_with_the_guides_for_a_characteristic_design() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("fig13.json");
+    let design_path = example("fig13-freeform.json");
+    monge()
+        .arg("generate")
+        .arg(&design_path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("characteristic"));
+    let mesh = read_json(&out);
+    assert_eq!(mesh["mode"], "characteristic");
+    assert_eq!(mesh["theta_deg"], -30.0);
+    let design = monge_io::read_design(&design_path).unwrap();
+    let info = inspect(&design, &GenerateOptions::default()).unwrap();
+    assert_eq!(mesh["rows"], info.guide_u.points.len());
+    assert_eq!(mesh["cols"], info.guide_v.points.len());
+    for (i, p) in info.guide_u.points.iter().enumerate() {
+        assert_eq!(vertex(&mesh, i, 0), p.to_array(), "vertex ({i}, 0)");
+    }
+    for (j, p) in info.guide_v.points.iter().enumerate() {
+        assert_eq!(vertex(&mesh, 0, j), p.to_array(), "vertex (0, {j})");
+    }
+}
+
+#[test]
+fn dash_writes_json_to_stdout_by_default_and_other_formats_on_request() {
+    let dir = TempDir::new().unwrap();
+    let out = monge()
+        .current_dir(dir.path())
+        .arg("generate")
+        .arg(example("fig2-enneper.json"))
+        .args(["-o", "-"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let mesh: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (mesh["rows"].as_u64(), mesh["cols"].as_u64()),
+        (Some(41), Some(41))
+    );
+    assert_eq!(mesh["theta_deg"], -90.0);
+    // The summary goes to stderr, not into the mesh.
+    assert!(String::from_utf8(out.stderr).unwrap().contains("41 × 41"));
+
+    let obj = monge()
+        .arg("generate")
+        .arg(example("fig2-enneper.json"))
+        .args(["-o", "-", "--format", "obj"])
+        .output()
+        .unwrap();
+    assert!(obj.status.success());
+    assert!(obj
+        .stdout
+        .starts_with(b"# monge quad grid rows=41 cols=41\n"));
+    assert_eq!(
+        fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "no file written"
+    );
+
+    // What went to stdout can be checked from stdin.
+    monge()
+        .args(["check", "-", "--format", "obj"])
+        .write_stdin(obj.stdout)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("<stdin>"));
+}
+
+#[test]
+fn info_prints_the_admissible_range_and_reports_an_inadmissible_theta() {
+    monge()
+        .arg("info")
+        .arg(example("fig10-arbitrary.json"))
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("mode: arbitrary")
+                .and(predicate::str::contains("|θ| in [61.9275°, 180°]"))
+                .and(predicate::str::contains(
+                    "[−180°, −61.9275°] ∪ [61.9275°, 180°]",
+                ))
+                .and(predicate::str::contains("design θ = 100°: admissible"))
+                .and(predicate::str::contains("singular θ = +90°"))
+                .and(predicate::str::contains(
+                    "grid: 41 × 41 vertices (1681), 1600 faces",
+                )),
+        );
+    monge()
+        .arg("info")
+        .arg(example("fig14-family.toml"))
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("mode: characteristic")
+                .and(predicate::str::contains("every θ in (−180°, 180°]"))
+                .and(predicate::str::contains("guide_u: bspline, 41 samples")),
+        );
+
+    let dir = TempDir::new().unwrap();
+    let design = write(&dir, "theta20.json", &fig10_with_theta(20.0));
+    monge()
+        .arg("info")
+        .arg(&design)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("design θ = 20°: NOT admissible"));
+    let out = monge()
+        .arg("info")
+        .arg(&design)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["theta_admissible"], false);
+    assert_eq!(v["mode"], "arbitrary");
+    let min = v["admissible_theta_deg"]["abs_min"].as_f64().unwrap();
+    assert!((min - 61.9275).abs() < 1e-3, "{min}");
+    assert_eq!(v["guide_u"]["kind"], "bspline");
+    assert_eq!(v["faces"], 1600);
+}
+
+/// fig10-arbitrary.json with another θ.
+fn fig10_with_theta(theta: f64) -> String {
+    let mut v: Value =
+        serde_json::from_str(&fs::read_to_string(example("fig10-arbitrary.json")).unwrap())
+            .unwrap();
+    v["theta_deg"] = theta.into();
+    v.to_string()
+}
+
+/// Writes `text` to `name` in `dir`.
+fn write(dir: &TempDir, name: &str, text: &str) -> PathBuf {
+    let path = dir.path().join(name);
+    fs::write(&path, text).unwrap();
+    path
+}
+
+/// Runs `generate` on `design` (written as `name`) into `out.obj` with `extra`
+/// arguments, and asserts exit status 2, an `error:` message containing
+/// `expected`, and no output file (nor a temporary one) left behind.
+fn generate_fails(name: &str, design: &str, extra: &[&str], expected: &str) {
+    let dir = TempDir::new().unwrap();
+    let design = write(&dir, name, design);
+    let out = dir.path().join("out.obj");
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&out)
+        .args(extra)
+        .assert()
+        .code(2)
+        .stdout("")
+        .stderr(predicate::str::starts_with("error: ").and(predicate::str::contains(expected)));
+    let left: Vec<_> = fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(
+        left,
+        [std::ffi::OsString::from(name)],
+        "files left: {left:?}"
+    );
+}
+
+/// Two polyline guides as JSON, θ = 30°, with the start tangents (1, 0, 0) for
+/// guide_u and (0, 1, 0) for guide_v.
+fn design(guide_u: &str, guide_v: &str) -> String {
+    format!(
+        r#"{{ "theta_deg": 30,
+  "guide_u": {{ "points": {guide_u}, "tangent": [1, 0, 0] }},
+  "guide_v": {{ "points": {guide_v}, "tangent": [0, 1, 0] }} }}"#
+    )
+}
+
+/// guide_u in the plane y = 0, leaving along x.
+const U: &str = "[[0,0,0],[1,0,0.2],[2,0,0.7]]";
+/// guide_v in the plane x = 0, leaving along y.
+const V: &str = "[[0,0,0],[0,1,0.1],[0,2,0.5]]";
+
+#[test]
+fn a_good_handwritten_design_generates() {
+    let dir = TempDir::new().unwrap();
+    let path = write(&dir, "good.json", &design(U, V));
+    generate_and_check(&path, &dir.path().join("good.obj"));
+}
+
+#[test]
+fn malformed_json_is_located() {
+    generate_fails(
+        "bad.json",
+        "{ \"theta_deg\": 30,\n  \"guide_u\": { \"points\": [[0,0,0],[1,0,0.2]] ,\n}",
+        &[],
+        "bad.json:3:",
+    );
+}
+
+#[test]
+fn an_unknown_key_is_named() {
+    let text = design(U, V).replacen("{ ", r#"{ "thetadeg": 1, "#, 1);
+    generate_fails("unknown.json", &text, &[], "unknown field `thetadeg`");
+}
+
+#[test]
+fn a_nan_in_toml_is_refused() {
+    let text = format!(
+        "theta_deg = nan\nguide_u.points = {U}\nguide_u.tangent = [1, 0, 0]\n\
+         guide_v.points = {V}\nguide_v.tangent = [0, 1, 0]\n"
+    );
+    generate_fails("nan.toml", &text, &[], "not finite at `theta_deg`");
+}
+
+#[test]
+fn guides_must_start_at_the_same_point() {
+    let v = "[[0,0,0.1],[0,1,0.1],[0,2,0.5]]";
+    generate_fails(
+        "start.json",
+        &design(U, v),
+        &[],
+        "the guides do not start at the same point",
+    );
+}
+
+#[test]
+fn guides_must_meet_at_right_angles() {
+    // guide_v in the plane spanned by (0.3, 1, 0) and z, leaving along (0.3, 1, 0).
+    let v = "[[0,0,0],[0.3,1,0.1],[0.6,2,0.5]]";
+    let text = design(U, v).replace("[0, 1, 0]", "[0.3, 1, 0]");
+    generate_fails("angle.json", &text, &[], "must meet at 90°");
+}
+
+#[test]
+fn a_guide_must_be_planar() {
+    let u = "[[0,0,0],[1,0,0.2],[2,0.3,0.7],[3,0,1]]";
+    generate_fails("twisted.json", &design(u, V), &[], "guide_u is not planar");
+}
+
+#[test]
+fn theta_outside_the_admissible_range_is_refused() {
+    generate_fails(
+        "theta20.json",
+        &fig10_with_theta(20.0),
+        &[],
+        "theta_deg = 20° is not admissible",
+    );
+}
+
+#[test]
+fn a_grid_too_large_is_refused_before_generation() {
+    generate_fails(
+        "big.json",
+        &design(U, V),
+        &["--max-vertices", "8"],
+        "more than the limit of 8",
+    );
+}
+
+#[test]
+fn max_vertices_10_refuses_an_example() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("out.obj");
+    monge()
+        .arg("generate")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--max-vertices", "10"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("more than the limit of 10"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn output_into_a_missing_directory_is_refused() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("missing").join("out.obj");
+    monge()
+        .arg("generate")
+        .arg(example("contract.json"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::starts_with("error: ").and(predicate::str::contains("does not exist")),
+        );
+    assert!(!dir.path().join("missing").exists());
+}
+
+#[test]
+fn an_unknown_output_extension_and_a_missing_design_are_errors() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("out.stl");
+    monge()
+        .arg("generate")
+        .arg(example("contract.json"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("unsupported extension `.stl`"));
+    assert!(!out.exists());
+    monge()
+        .arg("generate")
+        .arg(dir.path().join("nothere.json"))
+        .arg("-o")
+        .arg(dir.path().join("out.obj"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("file not found"));
+}
+
+#[test]
+fn a_failed_generation_leaves_an_existing_output_untouched() {
+    let dir = TempDir::new().unwrap();
+    let design = write(&dir, "theta20.json", &fig10_with_theta(20.0));
+    let out = write(&dir, "out.obj", "keep me\n");
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2);
+    assert_eq!(fs::read_to_string(&out).unwrap(), "keep me\n");
+}
+
+#[test]
+fn bad_arguments_exit_2() {
+    monge().assert().code(2);
+    monge().args(["generate", "x.json"]).assert().code(2);
+    monge()
+        .args(["check", "x.obj", "--tol", "-1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "not a finite, non-negative number",
+        ));
+    monge().args(["bench", "--sizes", "0"]).assert().code(2);
+    monge()
+        .args(["check", "-"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("needs --format"));
+}
+
+/// A 3 × 3 JSON mesh of the unit grid in the plane z = 0, with vertex (1, 1) lifted by `lift`.
+fn grid_json(lift: f64) -> String {
+    let mut vertices = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            let z = if (i, j) == (1, 1) { lift } else { 0.0 };
+            vertices.push(format!("[{i}, {j}, {z}]"));
+        }
+    }
+    format!(
+        r#"{{"rows": 3, "cols": 3, "vertices": [{}]}}"#,
+        vertices.join(", ")
+    )
+}
+
+#[test]
+fn check_passes_a_good_mesh_and_fails_a_moved_vertex() {
+    let dir = TempDir::new().unwrap();
+    let good = write(&dir, "good.json", &grid_json(0.0));
+    monge()
+        .arg("check")
+        .arg(&good)
+        .assert()
+        .code(0)
+        .stdout(predicate::str::contains("face planarity").and(predicate::str::contains("PASS")));
+
+    let bad = write(&dir, "bad.json", &grid_json(0.1));
+    monge()
+        .arg("check")
+        .arg(&bad)
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains("FAIL"));
+    let out = monge()
+        .arg("check")
+        .arg(&bad)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["pass"], false);
+    assert_eq!(v["metrics"]["face_planarity"]["pass"], false);
+    assert!(v["metrics"]["face_planarity"]["value"].as_f64().unwrap() > 1e-3);
+    assert_eq!(v["metrics"].get("torsion"), None, "no normals, no torsion");
+    // A loose tolerance accepts it.
+    monge()
+        .arg("check")
+        .arg(&bad)
+        .args(["--tol", "0.1"])
+        .assert()
+        .code(0);
+}
+
+#[test]
+fn check_reports_a_malformed_mesh_as_an_error() {
+    let dir = TempDir::new().unwrap();
+    let mesh = write(
+        &dir,
+        "short.json",
+        r#"{"rows": 2, "cols": 2, "vertices": [[0,0,0]]}"#,
+    );
+    monge()
+        .arg("check")
+        .arg(&mesh)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("expected 4, found 1"));
+}
+
+#[test]
+fn bench_prints_one_json_line_per_size() {
+    let out = monge()
+        .args(["bench", "--sizes", "10,12", "--runs", "3"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    assert!(
+        lines[0].starts_with(r#"{"faces":"10x10","median_ms":"#),
+        "{}",
+        lines[0]
+    );
+    for (line, faces) in lines.iter().zip(["10x10", "12x12"]) {
+        let v: Value = serde_json::from_str(line).unwrap();
+        assert_eq!(v["faces"], faces);
+        assert_eq!(v["runs"], 3);
+        assert!(v["median_ms"].as_f64().unwrap() > 0.0);
+    }
+}
+
+#[test]
+fn help_teaches_theta_examples_and_exit_statuses() {
+    monge().arg("--help").assert().success().stdout(
+        predicate::str::contains("θ = +90° is singular")
+            .and(predicate::str::contains("Exit status: 0"))
+            .and(predicate::str::contains("monge generate examples/")),
+    );
+    for (command, example) in [
+        ("generate", "monge generate "),
+        ("check", "monge check "),
+        ("info", "monge info "),
+        ("bench", "monge bench"),
+    ] {
+        monge()
+            .args([command, "--help"])
+            .assert()
+            .success()
+            .stdout(predicate::str::contains(example).and(predicate::str::contains("Exit status")));
+    }
+}
