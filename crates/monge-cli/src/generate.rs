@@ -169,13 +169,28 @@ fn summary(
         target,
         millis(writing),
     );
-    s.push_str(&warnings(&Pinching::from(&g.report)).concat());
+    s.push_str(&warnings(g.info.theta_deg, &Pinching::from(&g.report)).concat());
     s
 }
 
-/// Warnings about folds and pinches (§5.2), one line each.
-fn warnings(r: &Pinching) -> Vec<String> {
+/// The singular θ (§3.1): every Gauss circle passes through the corner normal.
+pub const SINGULAR_DEG: f64 = 90.0;
+
+/// Whether θ is the singular +90° (within 1°, as the generator's own hint has it).
+pub fn near_singular(theta_deg: f64) -> bool {
+    (theta_deg - SINGULAR_DEG).abs() < 1.0
+}
+
+/// Warnings about the singular θ and about folds and pinches (§5.2), one line each.
+fn warnings(theta_deg: f64, r: &Pinching) -> Vec<String> {
     let mut w = Vec::new();
+    if near_singular(theta_deg) {
+        w.push(format!(
+            "warning: θ = {}° is at or near the singular θ = +90°, where every Gauss circle passes \
+             through the corner normal: expect a degenerate mesh; run `monge check` on it.\n",
+            num(theta_deg)
+        ));
+    }
     if let Some((i, j)) = r.first_fold {
         w.push(format!(
             "warning: the mesh folds over itself / pinches (§5.2) in {} faces, first at face ({i}, {j}).\n",
@@ -210,12 +225,12 @@ mod tests {
 
     #[test]
     fn a_clean_mesh_has_no_warnings() {
-        assert!(warnings(&report(0, 0.5)).is_empty());
+        assert!(warnings(30.0, &report(0, 0.5)).is_empty());
     }
 
     #[test]
     fn folds_and_low_sines_are_reported_with_their_faces() {
-        let w = warnings(&report(7, 1e-4));
+        let w = warnings(-90.0, &report(7, 1e-4));
         assert_eq!(w.len(), 2);
         assert!(
             w[0].contains("in 7 faces, first at face (5, 6)"),
@@ -223,6 +238,17 @@ mod tests {
             w[0]
         );
         assert!(w[1].contains("1.0e-4 at face (3, 4)"), "{}", w[1]);
+    }
+
+    #[test]
+    fn only_plus_ninety_is_singular() {
+        assert!(near_singular(90.0));
+        assert!(near_singular(89.5));
+        assert!(!near_singular(-90.0));
+        assert!(!near_singular(30.0));
+        let w = warnings(90.0, &report(0, 0.5));
+        assert_eq!(w.len(), 1);
+        assert!(w[0].contains("singular θ = +90°"), "{}", w[0]);
     }
 
     #[test]
