@@ -19,8 +19,10 @@ pub struct ParallelLines {
     pub zero_edge: bool,
 }
 
-/// Length below which an edge of the Gauss map (on the unit sphere) is zero.
-const ZERO_GAUSS_EDGE: f64 = 1e-12;
+/// Length below which an edge of the Gauss map (on the unit sphere) counts as
+/// zero: its direction, known to round-off (1e-16) divided by its length, would
+/// carry more than 1e-8 of error into the mesh edge parallel to it.
+pub const ZERO_GAUSS_EDGE: f64 = 1e-8;
 
 /// What the propagation saw on its way (§5.2).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,66 +73,117 @@ pub fn combescure(
     let (rows, cols) = (gauss.rows, gauss.cols);
     assert_eq!(guide_u.len(), rows, "guide_u has one point per row");
     assert_eq!(guide_v.len(), cols, "guide_v has one point per column");
-    let n = &gauss.normals;
-    let mut x = Vec::with_capacity(rows * cols);
-    x.extend_from_slice(guide_v);
-    let mut min_crossing = ParallelLines {
-        face: (0, 0),
-        sine: 1.0,
-        zero_edge: false,
-    };
-    let mut reference = 0.0;
-    let mut folded_faces = 0;
-    let mut first_fold = None;
-    for i in 0..rows - 1 {
-        x.push(guide_u[i + 1]);
-        let (up, down) = ((i + 1) * cols, i * cols);
-        for j in 0..cols - 1 {
-            let corner = n[up + j + 1];
-            let d1 = corner - n[up + j];
-            let d2 = corner - n[down + j + 1];
-            let (a11, a12, a22) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
-            let g = a11 * a22 - a12 * a12;
-            let sine2 = g / (a11 * a22);
-            // NaN comes from zero-length Gauss edges.
-            if sine2.is_nan() || sine2 <= MIN_CROSSING_SINE * MIN_CROSSING_SINE {
-                return Err(ParallelLines {
-                    face: (i, j),
-                    sine: sine2.max(0.0).sqrt(),
-                    zero_edge: a11.min(a22) < ZERO_GAUSS_EDGE * ZERO_GAUSS_EDGE,
-                });
-            }
-            if sine2 < min_crossing.sine * min_crossing.sine {
-                min_crossing = ParallelLines {
-                    face: (i, j),
-                    sine: sine2.sqrt(),
+    let mut x = vec![DVec3::ZERO; rows * cols];
+    x[..cols].copy_from_slice(guide_v);
+    let mut propagation = Propagation::new();
+    let normal_rows = gauss.normals.chunks_exact(cols);
+    for (i, (n_pair, &start)) in normal_rows
+        .clone()
+        .zip(normal_rows.skip(1))
+        .zip(&guide_u[1..])
+        .enumerate()
+    {
+        let (done, rest) = x.split_at_mut((i + 1) * cols);
+        propagation.row(i, n_pair, (&done[i * cols..], &mut rest[..cols]), start)?;
+    }
+    Ok((x, propagation.report))
+}
+
+/// The Combescure transform face row by face row (§2.2.3), for callers that
+/// make the Gauss map row by row (see [`combescure`] for the construction).
+#[derive(Clone, Debug)]
+pub struct Propagation {
+    /// What has been seen so far.
+    pub report: CombescureReport,
+    /// Orientation of face (0, 0) with respect to its node axis.
+    reference: f64,
+}
+
+impl Default for Propagation {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Propagation {
+    /// A propagation that has seen nothing yet (§2.2.3).
+    pub fn new() -> Self {
+        Propagation {
+            report: CombescureReport {
+                min_crossing: ParallelLines {
+                    face: (0, 0),
+                    sine: 1.0,
                     zero_edge: false,
-                };
-            }
-            let p1 = x[up + j];
-            let p2 = x[down + j + 1];
-            let r = p2 - p1;
-            let (b1, b2) = (d1.dot(r), d2.dot(r));
-            let s = (a22 * b1 - a12 * b2) / g;
-            let t = (a12 * b1 - a11 * b2) / g;
-            let v = 0.5 * ((p1 + s * d1) + (p2 + t * d2));
-            x.push(v);
-            // Orientation of the face with respect to its node axis.
-            let o = (v - x[down + j]).cross(p2 - p1).dot(n[down + j]);
-            if i == 0 && j == 0 {
-                reference = o;
-            } else if o.is_nan() || o * reference <= 0.0 {
-                folded_faces += 1;
-                first_fold.get_or_insert((i, j));
-            }
+                },
+                folded_faces: 0,
+                first_fold: None,
+            },
+            reference: 0.0,
         }
     }
-    Ok((
-        x,
-        CombescureReport {
-            min_crossing,
-            folded_faces,
-            first_fold,
-        },
-    ))
+
+    /// Face row `i` (§2.2.3): fills vertex row `i + 1`, whose first vertex is
+    /// `start` (guide_u's sample `i + 1`), from vertex row `i` and the Gauss map's
+    /// rows `i` and `i + 1`.
+    pub fn row(
+        &mut self,
+        i: usize,
+        (n_prev, n_cur): (&[DVec3], &[DVec3]),
+        (x_prev, x_cur): (&[DVec3], &mut [DVec3]),
+        start: DVec3,
+    ) -> Result<(), ParallelLines> {
+        x_cur[0] = start;
+        let mut p1 = start;
+        let mut min_sine2 = self.report.min_crossing.sine.powi(2);
+        let faces = n_prev
+            .windows(2)
+            .zip(n_cur.windows(2))
+            .zip(x_prev.windows(2))
+            .zip(&mut x_cur[1..]);
+        for (j, (((np, nc), xp), out)) in faces.enumerate() {
+            let d1 = nc[1] - nc[0];
+            let d2 = nc[1] - np[1];
+            let (a11, a12, a22) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
+            // g = a11·a22·sin² of the angle between the lines.
+            let g = a11 * a22 - a12 * a12;
+            let product = a11 * a22;
+            // A Gauss edge shorter than ZERO_GAUSS_EDGE has a direction known only to
+            // round-off / its length; NaN comes from Gauss vertices undefined because
+            // a guide's Gauss edge is zero.
+            let zero_edge =
+                a11.is_nan() || a22.is_nan() || a11.min(a22) < ZERO_GAUSS_EDGE * ZERO_GAUSS_EDGE;
+            if zero_edge || g.is_nan() || g <= MIN_CROSSING_SINE * MIN_CROSSING_SINE * product {
+                return Err(ParallelLines {
+                    face: (i, j),
+                    sine: (g / product).max(0.0).sqrt(),
+                    zero_edge,
+                });
+            }
+            if g < min_sine2 * product {
+                min_sine2 = g / product;
+                self.report.min_crossing.face = (i, j);
+            }
+            // The vertex is p2 + t·d2 with t solving s·d1 − t·d2 = p2 − p1 (the
+            // lines are coplanar, so either line gives it to round-off); c2 does not
+            // depend on the vertices, so one dot product stays on the dependency
+            // chain from one vertex to the next.
+            let inv_g = 1.0 / g;
+            let c2 = (a12 * inv_g) * d1 - (a11 * inv_g) * d2;
+            let p2 = xp[1];
+            let r = p2 - p1;
+            let v = p2 + c2.dot(r) * d2;
+            // Orientation of the face with respect to its node axis.
+            let o = (v - xp[0]).cross(r).dot(np[0]);
+            if i == 0 && j == 0 {
+                self.reference = o;
+            } else if o.is_nan() || o * self.reference <= 0.0 {
+                self.report.folded_faces += 1;
+                self.report.first_fold.get_or_insert((i, j));
+            }
+            *out = v;
+            p1 = v;
+        }
+        self.report.min_crossing.sine = min_sine2.sqrt();
+        Ok(())
+    }
 }

@@ -251,34 +251,67 @@ pub struct GaussMap {
 /// assert!(g.normals[3].abs_diff_eq(expected, 1e-15));
 /// ```
 pub fn gauss_map(axes: &PencilAxes, along_u: &[DVec3], along_v: &[DVec3]) -> GaussMap {
-    let (rows, cols) = (along_u.len(), along_v.len());
-    let n00 = along_u[0];
-    // For each row: the plane through L1 and N_i0 as `n1 · (Y − N00) = e1`.
-    let row_planes: Vec<(DVec3, DVec3, f64)> = along_u
-        .iter()
-        .map(|&ni| offset_plane(&axes.l1, ni, n00))
-        .collect();
-    let col_planes: Vec<(DVec3, DVec3, f64)> = along_v
-        .iter()
-        .map(|&nj| offset_plane(&axes.l2, nj, n00))
-        .collect();
-    let mut normals = Vec::with_capacity(rows * cols);
-    normals.extend_from_slice(along_v);
-    for (i, &(n1, u, e1)) in row_planes.iter().enumerate().skip(1) {
-        normals.push(along_u[i]);
-        for &(n2, w, e2) in &col_planes[1..] {
+    let rows = GaussRows::new(axes, along_u, along_v);
+    let cols = along_v.len();
+    let mut normals = vec![DVec3::ZERO; along_u.len() * cols];
+    for (i, out) in normals.chunks_exact_mut(cols).enumerate() {
+        rows.fill(i, out);
+    }
+    GaussMap {
+        rows: along_u.len(),
+        cols,
+        normals,
+    }
+}
+
+/// The Gauss map row by row (§2.2.1), for callers that consume each row as it is
+/// made (see [`gauss_map`] for the construction).
+#[derive(Clone, Debug)]
+pub struct GaussRows<'a> {
+    along_u: &'a [DVec3],
+    along_v: &'a [DVec3],
+    /// Per row: the plane through L1 and N_i0, as `n1 · (Y − N00) = e1`, with `u = N_i0 − N00`.
+    row_planes: Vec<(DVec3, DVec3, f64)>,
+    /// Per column: the plane through L2 and N_0j, likewise.
+    col_planes: Vec<(DVec3, DVec3, f64)>,
+}
+
+impl<'a> GaussRows<'a> {
+    /// The pencil planes of every row and column (§2.2.1, §3.1 iii).
+    pub fn new(axes: &PencilAxes, along_u: &'a [DVec3], along_v: &'a [DVec3]) -> Self {
+        let n00 = along_u[0];
+        GaussRows {
+            along_u,
+            along_v,
+            row_planes: along_u
+                .iter()
+                .map(|&ni| offset_plane(&axes.l1, ni, n00))
+                .collect(),
+            col_planes: along_v
+                .iter()
+                .map(|&nj| offset_plane(&axes.l2, nj, n00))
+                .collect(),
+        }
+    }
+
+    /// Row `i` of the Gauss map into `out` (one normal per column) (§2.2.1).
+    pub fn fill(&self, i: usize, out: &mut [DVec3]) {
+        if i == 0 {
+            out.copy_from_slice(self.along_v);
+            return;
+        }
+        let n00 = self.along_u[0];
+        let (n1, u, e1) = self.row_planes[i];
+        out[0] = self.along_u[i];
+        for (out, &(n2, w, e2)) in out[1..].iter_mut().zip(&self.col_planes[1..]) {
             // The intersection of n1·Y = e1, n2·Y = e2 and (u × w)·Y = 0, in closed form.
             let alpha = n1.dot(w);
             let beta = n2.dot(u);
-            let det = e1 * e2 - alpha * beta;
-            let y = (e2 * (e1 - alpha) * u + e1 * (e2 - beta) * w) / det;
-            normals.push((n00 + y).normalize());
+            let inv_det = 1.0 / (e1 * e2 - alpha * beta);
+            let n = n00 + (e2 * (e1 - alpha) * inv_det) * u + (e1 * (e2 - beta) * inv_det) * w;
+            // n is on S² up to round-off: one Newton step makes it unit to round-off.
+            *out = n * (1.5 - 0.5 * n.length_squared());
         }
-    }
-    GaussMap {
-        rows,
-        cols,
-        normals,
     }
 }
 

@@ -2,10 +2,12 @@
 
 use std::fmt;
 
-use crate::combescure::{combescure, CombescureReport, ParallelLines};
+use glam::DVec3;
+
+use crate::combescure::{CombescureReport, ParallelLines, Propagation};
 use crate::design::Design;
 use crate::gauss_map::{
-    gauss_map, guide_normals, normalize_theta_deg, pencil_axes, PencilAxes, StartFrame, ThetaRange,
+    guide_normals, normalize_theta_deg, pencil_axes, GaussRows, PencilAxes, StartFrame, ThetaRange,
 };
 use crate::grid::QuadGrid;
 use crate::guide::{Guide, GuideError, GuideName};
@@ -118,6 +120,18 @@ pub enum GenerateError {
         /// Largest admissible |θ|.
         max_deg: f64,
     },
+    /// θ is at (or within [`SINGULAR_WINDOW_DEG`] of) the singular θ = +90° (§2.2.1).
+    #[error(
+        "theta_deg = {theta_deg}° is singular: at θ = +90° both pencil axes touch the sphere at the \
+         corner normal N_p, every Gauss circle passes through it and the mesh collapses (within \
+         {window}° of it the mesh cannot be built to 1e-9). Move θ away from 90°"
+    )]
+    ThetaSingular {
+        /// θ, reduced to (−180, 180].
+        theta_deg: f64,
+        /// The refused window around +90°, in degrees.
+        window: f64,
+    },
     /// The Gauss map degenerates at a face, so the mesh cannot be continued (§5.2).
     #[error(
         "the mesh cannot be built past face ({i}, {j}): its Gauss quad is degenerate (the two edges that \
@@ -133,6 +147,11 @@ pub enum GenerateError {
         hint: &'static str,
     },
 }
+
+/// Half-width, in degrees, of the window around the singular θ = +90° that
+/// [`generate`] refuses: closer to it, the Gauss map contracts onto `N_p` so much
+/// that round-off exceeds 1e-9 of the model size (measured: 6e-9 at 1e-5° away).
+pub const SINGULAR_WINDOW_DEG: f64 = 1e-3;
 
 /// A validated design, before any mesh is built: what `monge info` prints (§3).
 #[derive(Clone, Debug)]
@@ -267,6 +286,12 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
 /// ```
 pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated, GenerateError> {
     let info = inspect(design, options)?;
+    if (info.theta_deg - 90.0).abs() < SINGULAR_WINDOW_DEG {
+        return Err(GenerateError::ThetaSingular {
+            theta_deg: info.theta_deg,
+            window: SINGULAR_WINDOW_DEG,
+        });
+    }
     let axes =
         pencil_axes(&info.frame, info.theta_deg).map_err(|e| GenerateError::ThetaInadmissible {
             theta_deg: e.theta_deg,
@@ -276,15 +301,33 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
     let n_p = info.frame.n_p;
     let along_u = guide_normals(&info.guide_u.points, n_p);
     let along_v = guide_normals(&info.guide_v.points, n_p);
-    let gauss = gauss_map(&axes, &along_u, &along_v);
-    let (vertices, report) = combescure(&gauss, &info.guide_u.points, &info.guide_v.points)
+    // The Gauss map and the Combescure transform, row by row, so that each Gauss
+    // row is used while it is still in cache.
+    let (rows, cols) = info.grid_size();
+    let (guide_u, guide_v) = (&info.guide_u.points, &info.guide_v.points);
+    let gauss = GaussRows::new(&axes, &along_u, &along_v);
+    let mut normals = vec![DVec3::ZERO; rows * cols];
+    let mut vertices = vec![DVec3::ZERO; rows * cols];
+    gauss.fill(0, &mut normals[..cols]);
+    vertices[..cols].copy_from_slice(guide_v);
+    let mut propagation = Propagation::new();
+    let propagated: Result<(), ParallelLines> = (1..rows).try_for_each(|i| {
+        let (n_done, n_rest) = normals.split_at_mut(i * cols);
+        let (x_done, x_rest) = vertices.split_at_mut(i * cols);
+        let n_cur = &mut n_rest[..cols];
+        gauss.fill(i, n_cur);
+        propagation.row(
+            i - 1,
+            (&n_done[(i - 1) * cols..], n_cur),
+            (&x_done[(i - 1) * cols..], &mut x_rest[..cols]),
+            guide_u[i],
+        )
+    });
+    propagated
         .map_err(|ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
             face,
             sine,
-            hint: if (info.theta_deg - 90.0).abs() < 1.0 {
-                "θ = +90° is singular: both pencil axes touch the sphere at the corner normal N_p, \
-                 every Gauss circle passes through it and the corner quad collapses. Move θ away from 90°"
-            } else if zero_edge {
+            hint: if zero_edge {
                 "The normal does not turn along that edge: the surface has zero curvature there along a \
                  curvature line (a straight piece of a guide, or a sample exactly on a parabolic line \
                  such as the top circle of a torus). Curve the guide there, or sample it so that no \
@@ -294,9 +337,9 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
             },
         })?;
     Ok(Generated {
-        grid: QuadGrid::new(gauss.rows, gauss.cols, vertices, gauss.normals),
+        grid: QuadGrid::new(rows, cols, vertices, normals),
         info,
         axes,
-        report,
+        report: propagation.report,
     })
 }

@@ -33,7 +33,11 @@ impl QuadGrid {
     /// # Panics
     /// If `vertices.len() != rows * cols`, or `normals` is neither empty nor of that length.
     pub fn new(rows: usize, cols: usize, vertices: Vec<DVec3>, normals: Vec<DVec3>) -> Self {
-        assert_eq!(vertices.len(), rows * cols, "vertex count must be rows * cols");
+        assert_eq!(
+            vertices.len(),
+            rows * cols,
+            "vertex count must be rows * cols"
+        );
         assert!(
             normals.is_empty() || normals.len() == vertices.len(),
             "normals must be empty or one per vertex"

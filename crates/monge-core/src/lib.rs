@@ -20,6 +20,7 @@ pub use grid::QuadGrid;
 pub mod generate;
 pub use generate::{
     generate, inspect, DesignInfo, GenerateError, GenerateOptions, Generated, Mode,
+    SINGULAR_WINDOW_DEG,
 };
 pub mod combescure;
 pub mod gauss_map;
