@@ -29,6 +29,13 @@ pub enum Outcome {
     Failed,
 }
 
+/// mimalloc keeps freed pages for reuse: generating a large mesh again (the
+/// bench, or a designer's repeated runs in one process) does not pay the kernel
+/// for tens of megabytes of fresh zeroed pages each time (measured: 50 ms → 25 ms
+/// for 1000 × 1000 faces with the system allocator vs mimalloc).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Exit status of every error.
 const ERROR_STATUS: u8 = 2;
 
