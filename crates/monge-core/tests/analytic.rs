@@ -497,10 +497,13 @@ fn arbitrary(theta_deg: f64, rows: usize, cols: usize) -> Design {
     }
 }
 
+/// A family of designs: θ and the samples of guide_u and guide_v.
+type Family = fn(f64, usize, usize) -> Design;
+
 #[test]
 fn refinement_converges() {
     let levels = [11usize, 21, 41, 81];
-    let designs: [(&str, fn(f64, usize, usize) -> Design, f64); 4] = [
+    let designs: [(&str, Family, f64); 4] = [
         ("characteristic θ = -30", freeform, -30.0),
         ("characteristic θ = 20", freeform, 20.0),
         ("characteristic θ = 150", freeform, 150.0),
