@@ -897,3 +897,47 @@ fn garbage_never_panics() {
         panic!("{e}");
     }
 }
+
+/// The characteristic design scaled by `s`: refused, or exact. The mesh is
+/// measured after scaling back by 1/s (`measure` itself overflows to NaN for
+/// coordinates around 1e150).
+fn scaled_is_refused_or_exact(s: f64) -> Result<String, String> {
+    let mut d = characteristic(30.0);
+    for g in [&mut d.guide_u, &mut d.guide_v] {
+        let b = g.bspline.as_mut().unwrap();
+        b.control_points
+            .iter_mut()
+            .for_each(|p| p.iter_mut().for_each(|c| *c *= s));
+    }
+    match generate(&d, &opts()) {
+        Err(e) => Ok(format!("refused: {e}")),
+        Ok(g) => {
+            let mut h = g.grid.clone();
+            h.vertices.iter_mut().for_each(|v| *v /= s);
+            let worst = measure(&h).max_error();
+            if worst <= 1e-9 {
+                Ok(format!("exact to {worst:.1e}"))
+            } else {
+                Err(format!("accepted, worst measured error {worst:e}"))
+            }
+        }
+    }
+}
+
+#[test]
+fn extreme_scales_are_refused_or_exact() {
+    for s in [1e-300, 1e-200, 1e-150, 1e-100, 1e100, 1e150, 1e200, 1e300] {
+        let r = scaled_is_refused_or_exact(s);
+        eprintln!("scale {s:e}: {r:?}");
+        assert!(r.is_ok(), "scale {s:e}: {r:?}");
+    }
+}
+
+#[test]
+#[ignore = "generator bug: at scale 1e-160 (coordinates ~1e-160) the design is accepted but the mesh \
+            is not exact (face planarity 1.3e-6, circularity 2.6e-6 of the size): squared edge \
+            lengths underflow into subnormals; 1e-155 is still exact, 1e-200 is refused"]
+fn tiny_scale_1e_160_is_refused_or_exact() {
+    let r = scaled_is_refused_or_exact(1e-160);
+    assert!(r.is_ok(), "{r:?}");
+}
