@@ -25,3 +25,5 @@ pub use generate::{
 pub mod combescure;
 pub mod gauss_map;
 pub mod projective;
+pub mod conical;
+pub mod offset;
