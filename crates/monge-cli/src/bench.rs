@@ -91,6 +91,7 @@ fn standard_design(samples: usize) -> Design {
         ..GuideSpec::default()
     };
     Design {
+        mesh: Default::default(),
         theta_deg: 30.0,
         guide_u: cubic(vec![
             [0.0, 0.0, 0.0],

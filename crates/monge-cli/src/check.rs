@@ -3,12 +3,12 @@
 use std::io;
 
 use anyhow::bail;
-use monge_core::measure::{measure, Measurements, Worst};
+use monge_core::measure::{conical_error, measure, Measurements, Worst};
 use monge_core::QuadGrid;
 use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
 use serde_json::{json, Map, Value};
 
-use crate::cli::CheckArgs;
+use crate::cli::{CheckArgs, KindArg};
 use crate::output::{num, print};
 use crate::Outcome;
 
@@ -30,7 +30,25 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         path.display().to_string()
     };
     let m = measure(&grid);
-    let metrics = metrics(&m);
+    let conical = match args.kind {
+        KindArg::Conical => conical_error(&grid),
+        KindArg::Circular => None,
+    };
+    let mut metrics = metrics(&m, args.kind, conical);
+    if let Some(base) = &args.offset_from {
+        let base = read_mesh(base)?;
+        if (base.rows, base.cols) != (grid.rows, grid.cols) {
+            bail!(
+                "`{name}` ({} × {}) cannot be an offset of `{}` ({} × {}): the grids differ",
+                grid.rows,
+                grid.cols,
+                args.offset_from.as_deref().unwrap_or(path).display(),
+                base.rows,
+                base.cols
+            );
+        }
+        metrics.push(offset_metric(&base, &grid, args.kind, m.scale));
+    }
     let pass = metrics.iter().all(|r| passes(r.worst.value, args.tol));
     let text = if args.json {
         format!(
@@ -60,32 +78,110 @@ struct Metric {
     worst: Worst,
 }
 
-/// The metrics of `m` in print order; torsion and normal length only with normals.
-fn metrics(m: &Measurements) -> Vec<Metric> {
+/// The metrics of `m` for a mesh of `kind`, in print order: for a circular mesh
+/// torsion and normal length only with normals (§2.2); for a conical mesh the
+/// conical condition instead of circularity (§2.3).
+fn metrics(m: &Measurements, kind: KindArg, conical: Option<Worst>) -> Vec<Metric> {
     let metric = |key, label, element, worst| Metric {
         key,
         label,
         element,
         worst,
     };
-    let mut v = vec![
-        metric("face_planarity", "face planarity", "face", m.face_planarity),
-        metric("circularity", "circularity", "face", m.circularity),
-        metric("row_planarity", "row planarity", "vertex", m.row_planarity),
-        metric(
-            "column_planarity",
-            "column planarity",
-            "vertex",
-            m.column_planarity,
-        ),
-    ];
-    if let Some(t) = m.torsion {
-        v.push(metric("torsion", "torsion", "edge from", t));
+    let mut v = vec![metric(
+        "face_planarity",
+        "face planarity",
+        "face",
+        m.face_planarity,
+    )];
+    match kind {
+        KindArg::Circular => v.push(metric("circularity", "circularity", "face", m.circularity)),
+        KindArg::Conical => {
+            if let Some(c) = conical {
+                v.push(metric("conical", "conical vertices", "vertex", c));
+            }
+        }
     }
-    if let Some(n) = m.normal_length {
-        v.push(metric("normal_length", "normal length", "vertex", n));
+    v.push(metric(
+        "row_planarity",
+        "row planarity",
+        "vertex",
+        m.row_planarity,
+    ));
+    v.push(metric(
+        "column_planarity",
+        "column planarity",
+        "vertex",
+        m.column_planarity,
+    ));
+    if kind == KindArg::Circular {
+        if let Some(t) = m.torsion {
+            v.push(metric("torsion", "torsion", "edge from", t));
+        }
+        if let Some(n) = m.normal_length {
+            v.push(metric("normal_length", "normal length", "vertex", n));
+        }
     }
     v
+}
+
+/// How far the distance from `base` to its offset `grid` varies, relative to the
+/// scale (§2.2, §2.3): for circular meshes the distance between corresponding
+/// vertices, for conical meshes the signed distance of each offset face's corners
+/// from the plane of the base face (its normal from the base face's diagonals).
+fn offset_metric(base: &QuadGrid, grid: &QuadGrid, kind: KindArg, scale: f64) -> Metric {
+    let mut distances: Vec<(f64, (usize, usize))> = Vec::new();
+    match kind {
+        KindArg::Circular => {
+            for i in 0..grid.rows {
+                for j in 0..grid.cols {
+                    distances.push((grid.vertex(i, j).distance(base.vertex(i, j)), (i, j)));
+                }
+            }
+        }
+        KindArg::Conical => {
+            for i in 0..grid.rows.saturating_sub(1) {
+                for j in 0..grid.cols.saturating_sub(1) {
+                    let [a, b, c, d] = base.face(i, j);
+                    let n = (c - a).cross(d - b).normalize();
+                    let h = n.dot(a + b + c + d) / 4.0;
+                    for v in grid.face(i, j) {
+                        distances.push((n.dot(v) - h, (i, j)));
+                    }
+                }
+            }
+        }
+    }
+    let mean = distances.iter().map(|d| d.0).sum::<f64>() / distances.len().max(1) as f64;
+    let worst = distances
+        .iter()
+        .map(|&(d, at)| Worst {
+            value: (d - mean).abs() / scale,
+            at,
+        })
+        .fold(
+            Worst {
+                value: 0.0,
+                at: (0, 0),
+            },
+            |w, x| {
+                if x.value > w.value || x.value.is_nan() {
+                    x
+                } else {
+                    w
+                }
+            },
+        );
+    Metric {
+        key: "offset_distance",
+        label: "offset distance",
+        element: if kind == KindArg::Circular {
+            "vertex"
+        } else {
+            "face"
+        },
+        worst,
+    }
 }
 
 /// `value ≤ tol`; NaN fails.

@@ -168,6 +168,20 @@ pub struct GenerateArgs {
     /// Refuse grids of more than N vertices (rows × cols), before allocating anything.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
+    /// Also write the offset at distance D (repeatable): the node offset along the node axes
+    /// of a circular mesh (§2.2), the face offset of a conical mesh (§2.3). Each is written
+    /// next to OUT as `STEM.offset+D.EXT` (or `-D`), in OUT's format.
+    #[arg(long = "offset", value_name = "D", allow_negative_numbers = true, value_parser = parse_finite)]
+    pub offsets: Vec<f64>,
+}
+
+/// What kind of mesh `monge check` measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum KindArg {
+    /// A circular mesh: planar circular faces, planar lines, torsion-free node axes (§2.2).
+    Circular,
+    /// A conical mesh: planar faces tangent to a cone at each vertex, planar lines (§2.3).
+    Conical,
 }
 
 /// Arguments of `monge check`.
@@ -191,6 +205,13 @@ pub struct CheckArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// What MESH is: which properties to measure.
+    #[arg(long, value_enum, default_value = "circular")]
+    pub kind: KindArg,
+    /// MESH is an offset of BASE (same grid): also measure how far the offset distance varies
+    /// (vertex distances for a circular mesh, face-plane distances for a conical one).
+    #[arg(long, value_name = "BASE")]
+    pub offset_from: Option<PathBuf>,
 }
 
 /// Arguments of `monge info`.
@@ -225,6 +246,14 @@ pub struct BenchArgs {
     /// Refuse grids of more than N vertices.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
+}
+
+/// `--offset`: a finite number.
+fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("`{s}` is not a finite number")),
+    }
 }
 
 /// `--tol`: a finite, non-negative number.

@@ -1,12 +1,15 @@
 //! `monge generate`: design file → mesh file.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context};
+use glam::DVec3;
 use monge_core::combescure::CombescureReport;
+use monge_core::conical::conical_dual;
 use monge_core::gauss_map::ThetaRange;
-use monge_core::{generate, GenerateOptions, Generated, Mode};
+use monge_core::offset::{face_offset, vertex_offset};
+use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode, QuadGrid};
 use monge_io::{is_stdio, read_design, write_mesh_json, write_mesh_to, write_output, MeshFormat};
 use serde_json::{json, Map, Value};
 
@@ -28,6 +31,8 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     };
     if !is_stdio(out) {
         check_directory(out)?;
+    } else if !args.offsets.is_empty() {
+        bail!("--offset writes one file per offset next to OUT: give a file for -o, not `-`");
     }
 
     let design = read_design(&args.design)?;
@@ -40,11 +45,20 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     let generation = start.elapsed().as_secs_f64();
 
     let start = Instant::now();
-    let extra = json_extras(&generated);
-    write_output(out, |w| match format {
-        MeshFormat::Json => write_mesh_json(&generated.grid, &extra, w),
-        other => write_mesh_to(&generated.grid, other, w),
-    })?;
+    let mut extra = json_extras(&generated);
+    let layers = layers(&generated, design.mesh, &args.offsets);
+    for (k, layer) in layers.iter().enumerate() {
+        let path = if k == 0 {
+            out.to_path_buf()
+        } else {
+            offset_path(out, layer.offset)
+        };
+        extra.extend(layer.extra.clone());
+        write_output(&path, |w| match format {
+            MeshFormat::Json => write_mesh_json(&layer.grid, &extra, w),
+            other => write_mesh_to(&layer.grid, other, w),
+        })?;
+    }
     let writing = start.elapsed().as_secs_f64();
 
     eprint(&summary(
@@ -55,7 +69,76 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         generation,
         writing,
     ));
+    if design.mesh == MeshKind::Conical {
+        let g = &layers[0].grid;
+        eprint(&format!(
+            "wrote the conical dual (§2.3): {} × {} vertices, {} faces, whose planes pass through \
+             the circular mesh's vertices orthogonal to its node axes.\n",
+            g.rows,
+            g.cols,
+            g.face_count()
+        ));
+    }
+    for layer in &layers[1..] {
+        eprint(&format!(
+            "wrote the offset at {}: `{}`.\n",
+            num(layer.offset),
+            offset_path(out, layer.offset).display()
+        ));
+    }
     Ok(Outcome::Success)
+}
+
+/// One mesh to write: the design's mesh or one of its offsets.
+struct Layer {
+    /// The offset distance (0 for the mesh itself).
+    offset: f64,
+    grid: QuadGrid,
+    /// Keys of the JSON output that describe this layer.
+    extra: Map<String, Value>,
+}
+
+/// The design's mesh (circular, or its conical dual) and its offsets (§2.2, §2.3).
+fn layers(g: &Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer> {
+    let layer = |offset: f64, grid: QuadGrid, kind: &str, face_normals: Option<&[DVec3]>| {
+        let mut extra = Map::new();
+        extra.insert("kind".into(), json!(kind));
+        extra.insert("offset".into(), json!(offset));
+        if let Some(n) = face_normals {
+            let n: Vec<[f64; 3]> = n.iter().map(|v| v.to_array()).collect();
+            extra.insert("face_normals".into(), json!(n));
+        }
+        Layer {
+            offset,
+            grid,
+            extra,
+        }
+    };
+    let distances = std::iter::once(0.0).chain(offsets.iter().copied());
+    match kind {
+        MeshKind::Circular => distances
+            .map(|d| layer(d, vertex_offset(&g.grid, d), "circular", None))
+            .collect(),
+        MeshKind::Conical => {
+            let conical = conical_dual(&g.grid);
+            distances
+                .map(|d| {
+                    let o = face_offset(&conical, d);
+                    layer(d, o.grid, "conical", Some(&conical.face_normals))
+                })
+                .collect()
+        }
+    }
+}
+
+/// `dir/stem.offset+D.ext` (or `-D`) for OUT = `dir/stem.ext`.
+fn offset_path(out: &Path, d: f64) -> PathBuf {
+    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
+    let name = match out.extension() {
+        Some(ext) => format!("{stem}.offset{d:+}.{}", ext.to_string_lossy()),
+        None => format!("{stem}.offset{d:+}"),
+    };
+    out.with_file_name(name)
 }
 
 /// Fails early, with a plain message, if `out`'s directory does not exist.

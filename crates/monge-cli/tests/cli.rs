@@ -84,7 +84,14 @@ fn every_other_example_either_passes_check_or_fails_cleanly() {
             .status;
         match status.code() {
             Some(0) => {
-                monge().arg("check").arg(&out).assert().success();
+                let conical = fs::read_to_string(&path).unwrap().contains("\"conical\"");
+                let kind = if conical { "conical" } else { "circular" };
+                monge()
+                    .arg("check")
+                    .arg(&out)
+                    .args(["--kind", kind])
+                    .assert()
+                    .success();
             }
             Some(2) => assert!(!out.exists(), "{name}: failed but wrote output"),
             other => panic!("{name}: unexpected exit status {other:?}"),
@@ -610,4 +617,82 @@ fn help_teaches_theta_examples_and_exit_statuses() {
             .success()
             .stdout(predicate::str::contains(example).and(predicate::str::contains("Exit status")));
     }
+}
+
+#[test]
+fn conical_meshes_and_offsets_are_written_and_pass_check() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("c.json");
+    monge()
+        .arg("generate")
+        .arg(example("fig13-conical.json"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--offset", "0.25", "--offset", "-0.5"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("conical dual"));
+    let mesh = read_json(&out);
+    assert_eq!(mesh["kind"], "conical");
+    // One vertex per face of the 61 × 41 circular mesh, one face normal per interior vertex.
+    assert_eq!(
+        (mesh["rows"].as_u64(), mesh["cols"].as_u64()),
+        (Some(60), Some(40))
+    );
+    assert_eq!(mesh["face_normals"].as_array().unwrap().len(), 59 * 39);
+    for (name, d) in [("c.offset+0.25.json", 0.25), ("c.offset-0.5.json", -0.5)] {
+        let offset = dir.path().join(name);
+        assert_eq!(read_json(&offset)["offset"], d);
+        monge()
+            .arg("check")
+            .arg(&offset)
+            .args(["--kind", "conical", "--offset-from"])
+            .arg(&out)
+            .assert()
+            .success()
+            .stdout(predicate::str::contains("offset distance"))
+            .stdout(predicate::str::contains("conical vertices"));
+    }
+    // A circular mesh is not conical, and the conical check says so.
+    let circular = dir.path().join("m.json");
+    monge()
+        .arg("generate")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(&circular)
+        .args(["--offset", "0.1"])
+        .assert()
+        .success();
+    monge()
+        .arg("check")
+        .arg(dir.path().join("m.offset+0.1.json"))
+        .arg("--offset-from")
+        .arg(&circular)
+        .assert()
+        .success();
+    monge()
+        .arg("check")
+        .arg(&circular)
+        .args(["--kind", "conical"])
+        .assert()
+        .code(1);
+    // Offsets of a mesh written to standard output have nowhere to go.
+    monge()
+        .arg("generate")
+        .arg(example("fig13-freeform.json"))
+        .args(["-o", "-", "--offset", "0.1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "--offset writes one file per offset",
+        ));
+    // An offset of another grid is refused.
+    monge()
+        .arg("check")
+        .arg(&circular)
+        .arg("--offset-from")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("the grids differ"));
 }

@@ -46,6 +46,7 @@ pub struct ConicalMesh {
 ///     ..Default::default()
 /// };
 /// let design = Design {
+///     mesh: Default::default(),
 ///     theta_deg: 30.0,
 ///     guide_u: arc([0.0, 0.0, -10.0], [0.0, 1.0, 0.0], 60.0),
 ///     guide_v: arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 60.0),

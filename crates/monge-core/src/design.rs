@@ -20,6 +20,7 @@ pub type Xyz = [f64; 3];
 /// ```
 /// use monge_core::design::{Design, GuideSpec};
 /// let d = Design {
+///     mesh: Default::default(),
 ///     theta_deg: 30.0,
 ///     guide_u: GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]]),
 ///     guide_v: GuideSpec::points(vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]),
@@ -36,9 +37,31 @@ pub struct Design {
     pub guide_u: GuideSpec,
     /// The guide along which the second grid index `j` runs (columns).
     pub guide_v: GuideSpec,
+    /// Which mesh to build from the guides and θ: circular (default) or conical.
+    #[serde(default, skip_serializing_if = "MeshKind::is_circular")]
+    pub mesh: MeshKind,
     /// Tolerances for validating the input; `None` means [`Tolerances::default`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<Tolerances>,
+}
+
+/// The kind of mesh a design asks for (§2.2, §2.3); `"mesh": "conical"` in a design file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MeshKind {
+    /// A circular mesh: planar, circular faces, node axes and node offsets (§2.2).
+    #[default]
+    Circular,
+    /// Its conical dual: planar faces tangent to a cone at every vertex, face
+    /// offsets (§2.3). See [`crate::conical`].
+    Conical,
+}
+
+impl MeshKind {
+    /// Whether this is the default, [`MeshKind::Circular`].
+    pub fn is_circular(&self) -> bool {
+        *self == MeshKind::Circular
+    }
 }
 
 /// Relative tolerances used to accept a design (all relative to the size of the

@@ -195,6 +195,7 @@ pub struct Generated {
 /// ```
 /// use monge_core::{inspect, Design, GenerateOptions, GuideSpec};
 /// let d = Design {
+///     mesh: Default::default(),
 ///     theta_deg: 30.0,
 ///     guide_u: GuideSpec {
 ///         tangent: Some([1.0, 0.0, 0.0]), // orthogonal to guide_v's start tangent
@@ -272,6 +273,7 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
 /// ```
 /// use monge_core::{generate, Design, GenerateOptions, GuideSpec};
 /// let d = Design {
+///     mesh: Default::default(),
 ///     theta_deg: 30.0,
 ///     guide_u: GuideSpec {
 ///         tangent: Some([1.0, 0.0, 0.0]), // orthogonal to guide_v's start tangent

@@ -15,7 +15,7 @@ pub mod grid;
 pub mod guide;
 pub mod measure;
 
-pub use design::{Design, GuideSpec, Tolerances};
+pub use design::{Design, GuideSpec, MeshKind, Tolerances};
 pub use grid::QuadGrid;
 pub mod generate;
 pub use generate::{

@@ -115,6 +115,7 @@ fn two_circles(
     cols: usize,
 ) -> Design {
     Design {
+        mesh: Default::default(),
         theta_deg,
         guide_u: arc([0.0, 0.0, -R], [0.0, 1.0, 0.0], rail_deg, rows),
         guide_v: arc([0.0, 0.0, -RT], [-1.0, 0.0, 0.0], profile_deg, cols),
@@ -270,6 +271,7 @@ fn one_circular_guide_makes_its_whole_family_circular() {
         };
         for theta in thetas {
             let g = mesh(&Design {
+                mesh: Default::default(),
                 theta_deg: theta,
                 guide_u: spline_u.clone(),
                 guide_v: guide_v.clone(),
@@ -295,6 +297,7 @@ fn one_circular_guide_makes_its_whole_family_circular() {
 
 fn freeform(theta_deg: f64, rows: usize, cols: usize) -> Design {
     Design {
+        mesh: Default::default(),
         theta_deg,
         guide_u: bspline(
             vec![
@@ -456,6 +459,7 @@ fn theta_180_equals_minus_180_and_540() {
         let size = g.bbox_diagonal();
         for theta in [-180.0, 540.0, -540.0, 900.0] {
             let h = mesh(&Design {
+                mesh: Default::default(),
                 theta_deg: theta,
                 ..design.clone()
             });
@@ -489,6 +493,7 @@ fn arbitrary(theta_deg: f64, rows: usize, cols: usize) -> Design {
     let (s, c) = 20f64.to_radians().sin_cos();
     let p = |t: f64, f: f64| [f * s, t, f * c];
     Design {
+        mesh: Default::default(),
         guide_v: bspline(
             vec![p(0.0, 0.0), p(3.0, 0.0), p(6.0, 1.0), p(9.0, 2.5)],
             cols,

@@ -51,6 +51,7 @@ fn design() -> impl Strategy<Value = Design> {
             let phi = phi.to_radians();
             let tilt = DVec3::new(phi.sin(), 0.0, phi.cos());
             Design {
+                mesh: Default::default(),
                 theta_deg: theta,
                 guide_u: guide(DVec3::X, DVec3::Z, &bu, nu),
                 guide_v: guide(DVec3::Y, tilt, &bv, nv),

@@ -50,6 +50,7 @@ fn bspline(control_points: Vec<[f64; 3]>, samples: usize) -> GuideSpec {
 /// guide_v in x = 0 with start tangent +y.
 fn characteristic(theta_deg: f64) -> Design {
     Design {
+        mesh: Default::default(),
         theta_deg,
         guide_u: bspline(
             vec![
@@ -92,6 +93,7 @@ fn assert_mentions(message: &str, parts: &[&str]) {
 fn grid_too_large_is_refused_before_sampling() {
     // 10⁹ × 10⁹ samples: sampling would take hours and 48 EB; refusing is instant.
     let huge = Design {
+        mesh: Default::default(),
         theta_deg: 30.0,
         guide_u: arc([0.0, 0.0, -10.0], [0.0, 1.0, 0.0], 120.0, 1_000_000_000),
         guide_v: arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 80.0, 1_000_000_000),
@@ -138,6 +140,7 @@ fn grid_too_large_is_refused_before_sampling() {
     }
     // A grid exactly at the limit is accepted.
     let at_limit = Design {
+        mesh: Default::default(),
         guide_u: arc([0.0, 0.0, -10.0], [0.0, 1.0, 0.0], 120.0, 40),
         guide_v: arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 80.0, 25),
         ..huge
@@ -269,6 +272,7 @@ fn arbitrary(theta_deg: f64, phi_deg: f64) -> Design {
     let (s, c) = phi_deg.to_radians().sin_cos();
     let p = |t: f64, f: f64| [f * s, t, f * c];
     Design {
+        mesh: Default::default(),
         guide_v: bspline(
             vec![p(0.0, 0.0), p(3.0, 0.0), p(6.0, -1.0), p(9.0, 1.0)],
             17,
@@ -355,6 +359,7 @@ fn degenerate_on_the_top_circle_of_a_torus() {
     // torus' top circle, where the normal is the axis and does not turn along
     // the rail: the Gauss edge (0, 18) → (1, 18) has zero length.
     let d = Design {
+        mesh: Default::default(),
         theta_deg: 0.0,
         guide_u: arc([0.0, 0.0, -10.0], [0.0, 1.0, 0.0], 120.0, 41),
         guide_v: arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 150.0, 31),
@@ -422,6 +427,7 @@ fn straight_run(rotation: DQuat) -> Design {
         ..Default::default()
     };
     Design {
+        mesh: Default::default(),
         theta_deg: 30.0,
         guide_u,
         guide_v,
@@ -470,6 +476,7 @@ fn degenerate_on_a_straight_run_found_by_the_property_tests() {
     // with a face planarity of 1.7e-2 of the model size at face (14, 8) and a
     // circularity of 3.6e-2; 98c224d treats Gauss edges under 1e-8 as zero.
     let design = Design {
+        mesh: Default::default(),
         theta_deg: 57.63789537857576,
         guide_u: GuideSpec {
             bspline: Some(BSplineSpec {
@@ -738,6 +745,7 @@ fn garbage_design() -> impl Strategy<Value = Design> {
         tolerance,
     )
         .prop_map(|(theta_deg, guide_u, guide_v, tolerance)| Design {
+            mesh: Default::default(),
             theta_deg,
             guide_u,
             guide_v,
@@ -817,6 +825,7 @@ fn near_valid_design() -> impl Strategy<Value = Design> {
                         .for_each(|p| p.iter_mut().for_each(|c| *c *= scale));
                 }
                 Design {
+                    mesh: Default::default(),
                     theta_deg,
                     guide_u: GuideSpec {
                         tangent: tu,

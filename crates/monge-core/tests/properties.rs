@@ -411,6 +411,7 @@ fn build(
         motion: m,
     };
     let design = Design {
+        mesh: Default::default(),
         theta_deg: theta,
         guide_u: spec(&cu, &fu),
         guide_v: spec(&cv, &fv),
@@ -666,6 +667,7 @@ fn check(case: &Case, stats: &RefCell<Stats>) -> Result<(), TestCaseError> {
 
     // Swapping the guides and using 180° − θ gives the transposed mesh.
     let swapped = Design {
+        mesh: Default::default(),
         theta_deg: 180.0 - case.design.theta_deg,
         guide_u: case.design.guide_v.clone(),
         guide_v: case.design.guide_u.clone(),

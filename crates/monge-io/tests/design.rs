@@ -20,6 +20,7 @@ samples = 41
 
 fn expected() -> Design {
     Design {
+        mesh: Default::default(),
         theta_deg: 30.0,
         guide_u: GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]]),
         guide_v: GuideSpec {
@@ -44,6 +45,7 @@ fn expected() -> Design {
 /// A design using every kind of guide and every optional field.
 fn full() -> Design {
     Design {
+        mesh: Default::default(),
         theta_deg: -12.5,
         guide_u: GuideSpec {
             points: Some(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.1]]),
@@ -113,6 +115,7 @@ fn write_design_round_trips_in_both_formats() {
     let dir = tempfile::tempdir().unwrap();
     let [arc, parabola] = others();
     let with_arc = Design {
+        mesh: Default::default(),
         guide_u: arc,
         guide_v: parabola,
         ..full()
