@@ -74,6 +74,21 @@ pub enum GenerateError {
     /// θ is NaN or infinite.
     #[error("theta_deg is {0}: give a finite angle in degrees, in (−180, 180]")]
     ThetaNotFinite(f64),
+    /// The design is too small or too large for double precision to keep every
+    /// property exact (squared lengths would underflow or overflow).
+    #[error(
+        "the guides' size is {size:e}, outside [{min:e}, {max:e}]: at such scales squared lengths \
+         underflow or overflow in double precision and the mesh could not be exact. Rescale the \
+         design (e.g. use other units)"
+    )]
+    ScaleOutOfRange {
+        /// The larger guide's bounding-box diagonal.
+        size: f64,
+        /// Smallest accepted size, [`MIN_SIZE`].
+        min: f64,
+        /// Largest accepted size, [`MAX_SIZE`].
+        max: f64,
+    },
     /// The guides do not start at the same point.
     #[error(
         "the guides do not start at the same point: guide_u starts at {u:?}, guide_v at {v:?}, \
@@ -147,6 +162,13 @@ pub enum GenerateError {
         hint: &'static str,
     },
 }
+
+/// Smallest accepted design size (the larger guide's bounding-box diagonal).
+/// Below it squared lengths approach the subnormal range (measured: 1e-160 loses
+/// exactness).
+pub const MIN_SIZE: f64 = 1e-100;
+/// Largest accepted design size.
+pub const MAX_SIZE: f64 = 1e100;
 
 /// Half-width, in degrees, of the window around the singular θ = +90° that
 /// [`generate`] refuses: closer to it, the Gauss map contracts onto `N_p` so much
@@ -224,6 +246,14 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
     let tol = design.tolerance.unwrap_or_default();
     let guide_u = Guide::from_spec(&design.guide_u, GuideName::U, &tol)?;
     let guide_v = Guide::from_spec(&design.guide_v, GuideName::V, &tol)?;
+    let size = guide_u.size.max(guide_v.size);
+    if !(MIN_SIZE..=MAX_SIZE).contains(&size) {
+        return Err(GenerateError::ScaleOutOfRange {
+            size,
+            min: MIN_SIZE,
+            max: MAX_SIZE,
+        });
+    }
     let (pu, pv) = (guide_u.points[0], guide_v.points[0]);
     let distance = pu.distance(pv);
     let relative = distance / guide_u.size.max(guide_v.size);

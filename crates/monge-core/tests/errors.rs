@@ -943,10 +943,28 @@ fn extreme_scales_are_refused_or_exact() {
 }
 
 #[test]
-#[ignore = "generator bug: at scale 1e-160 (coordinates ~1e-160) the design is accepted but the mesh \
-            is not exact (face planarity 1.3e-6, circularity 2.6e-6 of the size): squared edge \
-            lengths underflow into subnormals; 1e-155 is still exact, 1e-200 is refused"]
 fn tiny_scale_1e_160_is_refused_or_exact() {
     let r = scaled_is_refused_or_exact(1e-160);
     assert!(r.is_ok(), "{r:?}");
+}
+
+#[test]
+fn scale_out_of_range_is_refused_with_the_limits() {
+    for s in [1e-120, 1e120] {
+        let mut d = characteristic(30.0);
+        for g in [&mut d.guide_u, &mut d.guide_v] {
+            let b = g.bspline.as_mut().unwrap();
+            b.control_points
+                .iter_mut()
+                .for_each(|p| p.iter_mut().for_each(|c| *c *= s));
+        }
+        match generate(&d, &opts()) {
+            Err(e @ GenerateError::ScaleOutOfRange { size, min, max }) => {
+                assert!(size < min || size > max);
+                let msg = e.to_string();
+                assert!(msg.contains("1e-100") && msg.contains("Rescale"), "{msg}");
+            }
+            other => panic!("scale {s:e}: {other:?}"),
+        }
+    }
 }
