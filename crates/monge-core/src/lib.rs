@@ -27,3 +27,4 @@ pub mod gauss_map;
 pub mod projective;
 pub mod conical;
 pub mod offset;
+pub mod darboux;
