@@ -4,7 +4,6 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
-use monge_core::design::BSplineSpec;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
 
 use crate::cli::BenchArgs;
@@ -80,16 +79,7 @@ fn json_line(n: u32, times: &mut [f64]) -> String {
 /// (§3.1; guide_u in the plane y = 0 leaving along x, guide_v in the plane x = 0
 /// leaving along y), θ = 30°, each sampled at `samples` points.
 fn standard_design(samples: usize) -> Design {
-    let cubic = |control_points: Vec<[f64; 3]>| GuideSpec {
-        bspline: Some(BSplineSpec {
-            degree: 3,
-            control_points,
-            knots: None,
-            weights: None,
-            samples,
-        }),
-        ..GuideSpec::default()
-    };
+    let cubic = |control_points: Vec<[f64; 3]>| GuideSpec::bspline(3, control_points, samples);
     Design {
         mesh: Default::default(),
         theta_deg: 30.0,

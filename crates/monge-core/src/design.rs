@@ -181,6 +181,41 @@ impl GuideSpec {
         }
     }
 
+    /// A clamped B-spline guide with default (clamped uniform) knots and unit
+    /// weights, sampled at `samples` points (§3).
+    ///
+    /// ```
+    /// use monge_core::GuideSpec;
+    /// let g = GuideSpec::bspline(2, vec![[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 1.0]], 11);
+    /// assert_eq!(g.sample_count(), 11);
+    /// ```
+    pub fn bspline(degree: usize, control_points: Vec<Xyz>, samples: usize) -> Self {
+        GuideSpec {
+            bspline: Some(BSplineSpec {
+                degree,
+                control_points,
+                knots: None,
+                weights: None,
+                samples,
+            }),
+            ..Default::default()
+        }
+    }
+
+    /// A circular-arc guide (§3): see [`ArcSpec`].
+    pub fn arc(center: Xyz, start: Xyz, normal: Xyz, angle_deg: f64, samples: usize) -> Self {
+        GuideSpec {
+            arc: Some(ArcSpec {
+                center,
+                start,
+                normal,
+                angle_deg,
+                samples,
+            }),
+            ..Default::default()
+        }
+    }
+
     /// Number of samples the guide will have, known without sampling it
     /// (so that a grid too large for memory is refused before any allocation).
     /// For a malformed spec (no kind, or several), 0.

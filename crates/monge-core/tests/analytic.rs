@@ -7,7 +7,7 @@
 //! values seen and the refinement rates.
 
 use glam::DVec3;
-use monge_core::design::{ArcSpec, BSplineSpec};
+use monge_core::design::ArcSpec;
 use monge_core::measure::measure;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 use nalgebra::DMatrix;
@@ -21,30 +21,14 @@ fn mesh(design: &Design) -> QuadGrid {
         .grid
 }
 
+/// An arc guide starting at the origin.
 fn arc(center: [f64; 3], normal: [f64; 3], angle_deg: f64, samples: usize) -> GuideSpec {
-    GuideSpec {
-        arc: Some(ArcSpec {
-            center,
-            start: [0.0, 0.0, 0.0],
-            normal,
-            angle_deg,
-            samples,
-        }),
-        ..Default::default()
-    }
+    GuideSpec::arc(center, [0.0; 3], normal, angle_deg, samples)
 }
 
+/// A cubic B-spline guide.
 fn bspline(control_points: Vec<[f64; 3]>, samples: usize) -> GuideSpec {
-    GuideSpec {
-        bspline: Some(BSplineSpec {
-            degree: 3,
-            control_points,
-            knots: None,
-            weights: None,
-            samples,
-        }),
-        ..Default::default()
-    }
+    GuideSpec::bspline(3, control_points, samples)
 }
 
 /// All measurements of `measure` within the tolerance; returns the largest.

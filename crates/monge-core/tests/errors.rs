@@ -20,30 +20,14 @@ fn opts() -> GenerateOptions {
     GenerateOptions::default()
 }
 
+/// An arc guide starting at the origin.
 fn arc(center: [f64; 3], normal: [f64; 3], angle_deg: f64, samples: usize) -> GuideSpec {
-    GuideSpec {
-        arc: Some(ArcSpec {
-            center,
-            start: [0.0, 0.0, 0.0],
-            normal,
-            angle_deg,
-            samples,
-        }),
-        ..Default::default()
-    }
+    GuideSpec::arc(center, [0.0; 3], normal, angle_deg, samples)
 }
 
+/// A cubic B-spline guide.
 fn bspline(control_points: Vec<[f64; 3]>, samples: usize) -> GuideSpec {
-    GuideSpec {
-        bspline: Some(BSplineSpec {
-            degree: 3,
-            control_points,
-            knots: None,
-            weights: None,
-            samples,
-        }),
-        ..Default::default()
-    }
+    GuideSpec::bspline(3, control_points, samples)
 }
 
 /// A characteristic design (§3.1): guide_u in y = 0 with start tangent +x,
