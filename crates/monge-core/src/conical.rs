@@ -64,8 +64,15 @@ pub struct ConicalMesh {
 /// ```
 pub fn conical_dual(circular: &QuadGrid) -> ConicalMesh {
     let (rows, cols) = (circular.rows, circular.cols);
-    assert!(rows >= 3 && cols >= 3, "a conical dual needs 3 × 3 vertices");
-    assert_eq!(circular.normals.len(), circular.vertices.len(), "node axes are needed");
+    assert!(
+        rows >= 3 && cols >= 3,
+        "a conical dual needs 3 × 3 vertices"
+    );
+    assert_eq!(
+        circular.normals.len(),
+        circular.vertices.len(),
+        "node axes are needed"
+    );
     let n = |i: usize, j: usize| circular.normals[circular.index(i, j)];
     let x = |i: usize, j: usize| circular.vertex(i, j);
     let mut vertices = Vec::with_capacity((rows - 1) * (cols - 1));

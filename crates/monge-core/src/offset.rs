@@ -21,7 +21,11 @@ use crate::grid::QuadGrid;
 /// assert_eq!(vertex_offset(&g, 0.5).vertices[1], DVec3::new(1.0, 0.0, 0.5));
 /// ```
 pub fn vertex_offset(grid: &QuadGrid, distance: f64) -> QuadGrid {
-    assert_eq!(grid.normals.len(), grid.vertices.len(), "node axes are needed");
+    assert_eq!(
+        grid.normals.len(),
+        grid.vertices.len(),
+        "node axes are needed"
+    );
     let vertices = grid
         .vertices
         .iter()
