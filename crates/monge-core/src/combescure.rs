@@ -70,44 +70,76 @@ pub fn combescure(
     guide_u: &[DVec3],
     guide_v: &[DVec3],
 ) -> Result<(Vec<DVec3>, CombescureReport), ParallelLines> {
-    let (rows, cols) = (gauss.rows, gauss.cols);
-    assert_eq!(guide_u.len(), rows, "guide_u has one point per row");
-    assert_eq!(guide_v.len(), cols, "guide_v has one point per column");
-    let mut x = vec![DVec3::ZERO; rows * cols];
-    x[..cols].copy_from_slice(guide_v);
-    let mut propagation = Propagation::new();
-    let normal_rows = gauss.normals.chunks_exact(cols);
-    for (i, (n_pair, &start)) in normal_rows
-        .clone()
-        .zip(normal_rows.skip(1))
-        .zip(&guide_u[1..])
-        .enumerate()
-    {
-        let (done, rest) = x.split_at_mut((i + 1) * cols);
-        propagation.row(i, n_pair, (&done[i * cols..], &mut rest[..cols]), start)?;
-    }
-    Ok((x, propagation.report))
+    assert_eq!(guide_u.len(), gauss.rows, "guide_u has one point per row");
+    assert_eq!(
+        guide_v.len(),
+        gauss.cols,
+        "guide_v has one point per column"
+    );
+    let rows = gauss.normals.chunks_exact(gauss.cols);
+    let mut rows = rows.map(<[DVec3]>::to_vec);
+    let transform = combescure_rows(guide_u, guide_v, |_, out| {
+        out.copy_from_slice(&rows.next().expect("one Gauss row per guide_u sample"));
+    })?;
+    Ok((transform.vertices, transform.report))
 }
 
-/// The Combescure transform face row by face row (§2.2.3), for callers that
-/// make the Gauss map row by row (see [`combescure`] for the construction).
+/// What [`combescure_rows`] builds.
 #[derive(Clone, Debug)]
-pub struct Propagation {
-    /// What has been seen so far.
+pub struct Transform {
+    /// The vertices, row-major.
+    pub vertices: Vec<DVec3>,
+    /// The Gauss map (node axes), row-major.
+    pub normals: Vec<DVec3>,
+    /// Pinching and folding (§5.2).
     pub report: CombescureReport,
+}
+
+/// The Combescure transform (§2.2.3) of a Gauss map that `gauss_row(i, out)`
+/// writes row by row (one normal per guide_v sample), consuming each Gauss row
+/// while it is still in cache (see [`combescure`] for the construction).
+pub fn combescure_rows(
+    guide_u: &[DVec3],
+    guide_v: &[DVec3],
+    mut gauss_row: impl FnMut(usize, &mut [DVec3]),
+) -> Result<Transform, ParallelLines> {
+    let (rows, cols) = (guide_u.len(), guide_v.len());
+    let mut normals = vec![DVec3::ZERO; rows * cols];
+    let mut vertices = vec![DVec3::ZERO; rows * cols];
+    gauss_row(0, &mut normals[..cols]);
+    vertices[..cols].copy_from_slice(guide_v);
+    let mut propagation = Propagation::new();
+    for (i, &start) in guide_u.iter().enumerate().skip(1) {
+        let (n_done, n_rest) = normals.split_at_mut(i * cols);
+        let (x_done, x_rest) = vertices.split_at_mut(i * cols);
+        let n_cur = &mut n_rest[..cols];
+        gauss_row(i, n_cur);
+        propagation.row(
+            i - 1,
+            (&n_done[(i - 1) * cols..], n_cur),
+            (&x_done[(i - 1) * cols..], &mut x_rest[..cols]),
+            start,
+        )?;
+    }
+    Ok(Transform {
+        vertices,
+        normals,
+        report: propagation.report,
+    })
+}
+
+/// The Combescure transform face row by face row (§2.2.3).
+#[derive(Clone, Debug)]
+struct Propagation {
+    /// What has been seen so far.
+    report: CombescureReport,
     /// Orientation of face (0, 0) with respect to its node axis.
     reference: f64,
 }
 
-impl Default for Propagation {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 impl Propagation {
-    /// A propagation that has seen nothing yet (§2.2.3).
-    pub fn new() -> Self {
+    /// A propagation that has seen nothing yet.
+    fn new() -> Self {
         Propagation {
             report: CombescureReport {
                 min_crossing: ParallelLines {
@@ -125,7 +157,7 @@ impl Propagation {
     /// Face row `i` (§2.2.3): fills vertex row `i + 1`, whose first vertex is
     /// `start` (guide_u's sample `i + 1`), from vertex row `i` and the Gauss map's
     /// rows `i` and `i + 1`.
-    pub fn row(
+    fn row(
         &mut self,
         i: usize,
         (n_prev, n_cur): (&[DVec3], &[DVec3]),

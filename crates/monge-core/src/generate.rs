@@ -2,9 +2,7 @@
 
 use std::fmt;
 
-use glam::DVec3;
-
-use crate::combescure::{CombescureReport, ParallelLines, Propagation};
+use crate::combescure::{combescure_rows, CombescureReport, ParallelLines};
 use crate::design::Design;
 use crate::gauss_map::{
     guide_normals, normalize_theta_deg, pencil_axes, GaussRows, PencilAxes, StartFrame, ThetaRange,
@@ -335,27 +333,9 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
     let along_v = guide_normals(&info.guide_v.points, n_p);
     // The Gauss map and the Combescure transform, row by row, so that each Gauss
     // row is used while it is still in cache.
-    let (rows, cols) = info.grid_size();
     let (guide_u, guide_v) = (&info.guide_u.points, &info.guide_v.points);
     let gauss = GaussRows::new(&axes, &along_u, &along_v);
-    let mut normals = vec![DVec3::ZERO; rows * cols];
-    let mut vertices = vec![DVec3::ZERO; rows * cols];
-    gauss.fill(0, &mut normals[..cols]);
-    vertices[..cols].copy_from_slice(guide_v);
-    let mut propagation = Propagation::new();
-    let propagated: Result<(), ParallelLines> = (1..rows).try_for_each(|i| {
-        let (n_done, n_rest) = normals.split_at_mut(i * cols);
-        let (x_done, x_rest) = vertices.split_at_mut(i * cols);
-        let n_cur = &mut n_rest[..cols];
-        gauss.fill(i, n_cur);
-        propagation.row(
-            i - 1,
-            (&n_done[(i - 1) * cols..], n_cur),
-            (&x_done[(i - 1) * cols..], &mut x_rest[..cols]),
-            guide_u[i],
-        )
-    });
-    propagated
+    let transform = combescure_rows(guide_u, guide_v, |i, out| gauss.fill(i, out))
         .map_err(|ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
             face,
             sine,
@@ -369,9 +349,14 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
             },
         })?;
     Ok(Generated {
-        grid: QuadGrid::new(rows, cols, vertices, normals),
+        grid: QuadGrid::new(
+            guide_u.len(),
+            guide_v.len(),
+            transform.vertices,
+            transform.normals,
+        ),
         info,
         axes,
-        report: propagation.report,
+        report: transform.report,
     })
 }
