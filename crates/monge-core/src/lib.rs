@@ -28,3 +28,4 @@ pub mod projective;
 pub mod conical;
 pub mod offset;
 pub mod darboux;
+pub mod developable;
