@@ -31,6 +31,14 @@
 //! orthogonal to the rulings; the vertex offset at distance `d` along them is
 //! again such a mesh: the same construction on the helix translated by
 //! `d / cos α` along `N`.
+//!
+//! # Limits
+//!
+//! The projection of the helix onto the reference plane must not cross itself
+//! (checked pairwise, quadratic in the number of points), so a helix winds at
+//! most once around; a closed projection (last point = first) is allowed. Every
+//! helix vertex where two rulings meet (all but the first and last) must lie
+//! outside the range of the cutting heights, or some face would cross the helix.
 
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -42,10 +50,16 @@ use crate::grid::{bbox_diagonal, QuadGrid};
 /// (see [`DevelopableError`]), slopes relative to the mean slope, angles in radians.
 pub const TOLERANCE: f64 = 1e-9;
 
+/// Largest absolute coordinate or height accepted (§3.3).
+pub const MAX_EXTENT: f64 = 1e100;
+
+/// Smallest non-zero largest absolute coordinate or height accepted (§3.3).
+pub const MIN_EXTENT: f64 = 1e-100;
+
 /// A design file holding a developable mesh (§3.3): `{"developable": {…}}`.
 ///
 /// ```
-/// use monge_core::developable::{DevelopableDesign, DevelopableSpec, ProjectionSpec};
+/// use monge_core::developable::{DevelopableDesign, DevelopableSpec};
 /// let d = DevelopableDesign {
 ///     developable: DevelopableSpec::projection(
 ///         vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
@@ -221,6 +235,16 @@ pub enum DevelopableError {
         index: usize,
         /// The value.
         value: f64,
+    },
+    /// Coordinates too large or too small for the squared lengths of `f64`.
+    #[error(
+        "the design's largest coordinate or height is {extent:e}, outside [{MIN_EXTENT:e}, \
+         {MAX_EXTENT:e}] where squared lengths overflow or underflow: rescale the design (change \
+         its unit)"
+    )]
+    Scale {
+        /// The largest absolute coordinate or height.
+        extent: f64,
     },
     /// The reference normal is the zero vector.
     #[error(
@@ -448,6 +472,14 @@ pub fn developable(spec: &DevelopableSpec) -> Result<DevelopableMesh, Developabl
     }
     for (index, h) in spec.heights.iter().enumerate() {
         finite(Field::Height, index, std::slice::from_ref(h))?;
+    }
+    let extent = points
+        .iter()
+        .flatten()
+        .chain(&spec.heights)
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    if extent > MAX_EXTENT || (extent > 0.0 && extent < MIN_EXTENT) {
+        return Err(DevelopableError::Scale { extent });
     }
     let normal = DVec3::from_array(spec.reference_normal);
     // Scale first, so that tiny or huge normals normalise without under/overflow.

@@ -29,3 +29,4 @@ pub mod conical;
 pub mod offset;
 pub mod darboux;
 pub mod developable;
+pub mod cyclidic;

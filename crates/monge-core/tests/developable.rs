@@ -92,7 +92,7 @@ fn check(mesh: &DevelopableMesh, heights: &[f64], normal: DVec3, alpha_deg: f64)
                 .isosceles
                 .max(((dd - a).length() - (c - b).length()).abs() / size)
                 .max(((c - a).length() - (dd - b).length()).abs() / size);
-            let (ab, dc) = (b - a, c - dd);
+            let (ab, dc) = ((b - a) / size, (c - dd) / size);
             w.bases = w
                 .bases
                 .max(ab.cross(dc).length() / (ab.length() * dc.length()));
@@ -643,6 +643,69 @@ fn error_face_crosses_the_helix() {
         msg.contains("helix vertex 1") && msg.contains("rulings 0 and 1"),
         "{msg}"
     );
+}
+
+#[test]
+fn error_scale_and_extreme_scales() {
+    let scaled = |k: f64| {
+        let pts = square().iter().map(|p| p.map(|x| x * k)).collect();
+        DevelopableSpec::projection(pts, 30.0, vec![-k, -2.0 * k])
+    };
+    for k in [1e-90, 1e-40, 1e-5, 1e5, 1e40, 1e90] {
+        generate_checked(&scaled(k), 30.0);
+    }
+    for k in [1e-120, 1e120, 1e300] {
+        let (e, msg) = err(&scaled(k));
+        assert_eq!(e, DevelopableError::Scale { extent: 2.0 * k });
+        assert!(msg.contains("rescale"), "{msg}");
+    }
+}
+
+#[test]
+fn garbage_never_panics() {
+    // Random, often invalid specs: refused with an error or measured exact.
+    let num = prop_oneof![
+        -3.0f64..3.0,
+        Just(0.0),
+        Just(1.0),
+        Just(90.0),
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(1e200),
+        Just(1e-200),
+    ];
+    let xyz = [num.clone(), num.clone(), num.clone()];
+    let strategy = (
+        prop::collection::vec(xyz.clone(), 0..7),
+        num.clone(),
+        prop::collection::vec(num.clone(), 0..5),
+        xyz,
+        any::<bool>(),
+    );
+    let mut runner = TestRunner::new(Config {
+        cases: 2000,
+        ..Config::default()
+    });
+    runner
+        .run(&strategy, |(points, alpha, heights, normal, direct)| {
+            let mut spec = if direct {
+                DevelopableSpec::helix(points, heights)
+            } else {
+                DevelopableSpec::projection(points, alpha, heights)
+            };
+            spec.reference_normal = normal;
+            if let Ok(mesh) = developable(&spec) {
+                let w = check(
+                    &mesh,
+                    &spec.heights,
+                    DVec3::from_array(normal),
+                    mesh.alpha_deg,
+                );
+                prop_assert!(w.max() <= TOL, "{:?} {:?}", spec, w);
+            }
+            Ok(())
+        })
+        .unwrap();
 }
 
 // ---------------------------------------------------------------- property test
