@@ -30,3 +30,4 @@ pub mod offset;
 pub mod darboux;
 pub mod developable;
 pub mod cyclidic;
+pub mod fabrication;
