@@ -30,4 +30,3 @@ pub mod offset;
 pub mod darboux;
 pub mod developable;
 pub mod cyclidic;
-pub mod fabrication;
