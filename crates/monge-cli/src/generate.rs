@@ -7,10 +7,13 @@ use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
 use monge_core::conical::conical_dual;
+use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::gauss_map::ThetaRange;
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode, QuadGrid};
-use monge_io::{is_stdio, read_design, write_mesh_json, write_mesh_to, write_output, MeshFormat};
+use monge_io::{
+    is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output, AnyDesign, MeshFormat,
+};
 use serde_json::{json, Map, Value};
 
 use crate::cli::GenerateArgs;
@@ -35,7 +38,10 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         bail!("--offset writes one file per offset next to OUT: give a file for -o, not `-`");
     }
 
-    let design = read_design(&args.design)?;
+    let design = match read_any_design(&args.design)? {
+        AnyDesign::Surface(design) => *design,
+        AnyDesign::Developable(d) => return run_developable(args, format, &d.developable),
+    };
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
@@ -45,20 +51,8 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     let generation = start.elapsed().as_secs_f64();
 
     let start = Instant::now();
-    let mut extra = json_extras(&generated);
     let layers = layers(&generated, design.mesh, &args.offsets);
-    for (k, layer) in layers.iter().enumerate() {
-        let path = if k == 0 {
-            out.to_path_buf()
-        } else {
-            offset_path(out, layer.offset)
-        };
-        extra.extend(layer.extra.clone());
-        write_output(&path, |w| match format {
-            MeshFormat::Json => write_mesh_json(&layer.grid, &extra, w),
-            other => write_mesh_to(&layer.grid, other, w),
-        })?;
-    }
+    write_layers(out, format, json_extras(&generated), &layers)?;
     let writing = start.elapsed().as_secs_f64();
 
     eprint(&summary(
@@ -79,13 +73,6 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
             g.face_count()
         ));
     }
-    for layer in &layers[1..] {
-        eprint(&format!(
-            "wrote the offset at {}: `{}`.\n",
-            num(layer.offset),
-            offset_path(out, layer.offset).display()
-        ));
-    }
     Ok(Outcome::Success)
 }
 
@@ -98,9 +85,9 @@ struct Layer {
     extra: Map<String, Value>,
 }
 
-/// The design's mesh (circular, or its conical dual) and its offsets (§2.2, §2.3).
-fn layers(g: &Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer> {
-    let layer = |offset: f64, grid: QuadGrid, kind: &str, face_normals: Option<&[DVec3]>| {
+impl Layer {
+    /// The layer at distance `offset`, of `kind`, with its face normals if any.
+    fn new(offset: f64, grid: QuadGrid, kind: &str, face_normals: Option<&[DVec3]>) -> Layer {
         let mut extra = Map::new();
         extra.insert("kind".into(), json!(kind));
         extra.insert("offset".into(), json!(offset));
@@ -113,7 +100,12 @@ fn layers(g: &Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer> {
             grid,
             extra,
         }
-    };
+    }
+}
+
+/// The design's mesh (circular, or its conical dual) and its offsets (§2.2, §2.3).
+fn layers(g: &Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer> {
+    let layer = Layer::new;
     let distances = std::iter::once(0.0).chain(offsets.iter().copied());
     match kind {
         MeshKind::Circular => distances
@@ -129,6 +121,70 @@ fn layers(g: &Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer> {
                 .collect()
         }
     }
+}
+
+/// Writes the layers: the first to OUT, each offset next to it, JSON with `extra`
+/// and each layer's own keys.
+fn write_layers(
+    out: &Path,
+    format: MeshFormat,
+    mut extra: Map<String, Value>,
+    layers: &[Layer],
+) -> anyhow::Result<()> {
+    for (k, layer) in layers.iter().enumerate() {
+        let path = if k == 0 {
+            out.to_path_buf()
+        } else {
+            offset_path(out, layer.offset)
+        };
+        extra.extend(layer.extra.clone());
+        write_output(&path, |w| match format {
+            MeshFormat::Json => write_mesh_json(&layer.grid, &extra, w),
+            other => write_mesh_to(&layer.grid, other, w),
+        })?;
+        if k > 0 {
+            eprint(&format!(
+                "wrote the offset at {}: `{}`.\n",
+                num(layer.offset),
+                path.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `monge generate` of a developable design (§3.3): the mesh and its node
+/// offsets (the binormal node axes are torsion-free).
+fn run_developable(
+    args: &GenerateArgs,
+    format: MeshFormat,
+    spec: &DevelopableSpec,
+) -> anyhow::Result<Outcome> {
+    let start = Instant::now();
+    let mesh = developable(spec).with_context(|| args.design.display().to_string())?;
+    let generation = start.elapsed().as_secs_f64();
+    let layers: Vec<Layer> = std::iter::once(0.0)
+        .chain(args.offsets.iter().copied())
+        .map(|d| Layer::new(d, vertex_offset(&mesh.grid, d), "developable", None))
+        .collect();
+    let mut extra = Map::new();
+    extra.insert("alpha_deg".into(), json!(mesh.alpha_deg));
+    let start = Instant::now();
+    write_layers(&args.output, format, extra, &layers)?;
+    let g = &mesh.grid;
+    eprint(&format!(
+        "{}: developable circular mesh (§3.3), slope α = {}°: {} rulings × {} cutting planes, \
+         {} faces (isosceles trapezoids). Generated in {} ms; wrote {} in {} ms.\n",
+        args.design.display(),
+        num(mesh.alpha_deg),
+        g.rows,
+        g.cols,
+        g.face_count(),
+        millis(generation),
+        format.extension().to_uppercase(),
+        millis(start.elapsed().as_secs_f64()),
+    ));
+    Ok(Outcome::Success)
 }
 
 /// `dir/stem.offset+D.ext` (or `-D`) for OUT = `dir/stem.ext`.

@@ -1,9 +1,10 @@
 //! `monge info`: validate a design and describe it, without generating.
 
 use anyhow::Context;
+use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::guide::Guide;
 use monge_core::{inspect, DesignInfo, GenerateOptions, GuideSpec, Mode};
-use monge_io::read_design;
+use monge_io::{read_any_design, AnyDesign};
 use serde_json::{json, Value};
 
 use crate::cli::InfoArgs;
@@ -13,7 +14,10 @@ use crate::Outcome;
 
 /// Runs `monge info`.
 pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
-    let design = read_design(&args.design)?;
+    let design = match read_any_design(&args.design)? {
+        AnyDesign::Surface(design) => *design,
+        AnyDesign::Developable(d) => return developable_info(args, &d.developable),
+    };
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
@@ -33,6 +37,40 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
             &info,
             planarity_tol,
             &guides,
+        )
+    };
+    print(&text)?;
+    Ok(Outcome::Success)
+}
+
+/// `monge info` of a developable design (§3.3): validated by building it (it is
+/// cheap: one vertex per ruling and cutting plane).
+fn developable_info(args: &InfoArgs, spec: &DevelopableSpec) -> anyhow::Result<Outcome> {
+    let mesh = developable(spec).with_context(|| args.design.display().to_string())?;
+    let (rows, cols) = (mesh.grid.rows, mesh.grid.cols);
+    let file = args.design.display().to_string();
+    let text = if args.json {
+        format!(
+            "{}\n",
+            json!({
+                "file": file,
+                "kind": "developable",
+                "alpha_deg": mesh.alpha_deg,
+                "helix_points": mesh.helix.len(),
+                "rows": rows,
+                "cols": cols,
+                "faces": mesh.grid.face_count(),
+            })
+        )
+    } else {
+        format!(
+            "{file}: valid developable design (§3.3)\n\
+             discrete general helix of {} points, slope α = {}° to the reference plane\n\
+             grid: {rows} rulings × {cols} cutting planes ({} vertices), {} faces, each an isosceles trapezoid\n",
+            mesh.helix.len(),
+            num(mesh.alpha_deg),
+            rows * cols,
+            mesh.grid.face_count()
         )
     };
     print(&text)?;

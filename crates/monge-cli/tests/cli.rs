@@ -696,3 +696,47 @@ fn conical_meshes_and_offsets_are_written_and_pass_check() {
         .code(2)
         .stderr(predicate::str::contains("the grids differ"));
 }
+
+#[test]
+fn developable_designs_generate_check_and_report() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("d.json");
+    monge()
+        .arg("generate")
+        .arg(example("fig11-developable.json"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--offset", "0.5"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("developable circular mesh (§3.3)"));
+    let mesh = read_json(&out);
+    assert_eq!(mesh["kind"], "developable");
+    assert_eq!(mesh["alpha_deg"], 25.0);
+    for path in [out.clone(), dir.path().join("d.offset+0.5.json")] {
+        monge().arg("check").arg(&path).assert().success();
+    }
+    monge()
+        .arg("info")
+        .arg(example("fig11-developable.json"))
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("slope α = 25°"));
+    // A flat helix is refused with its reason, and nothing is written.
+    let flat = write(
+        &dir,
+        "flat.json",
+        r#"{"developable": {"projection": {"points": [[0,0,0],[1,0,0],[2,1,0]], "alpha_deg": 0},
+            "heights": [1, 2]}}"#,
+    );
+    let bad = dir.path().join("flat.obj");
+    monge()
+        .arg("generate")
+        .arg(&flat)
+        .arg("-o")
+        .arg(&bad)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("α"));
+    assert!(!bad.exists());
+}

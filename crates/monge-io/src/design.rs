@@ -4,6 +4,8 @@ use std::io::{self, Write};
 use std::path::Path;
 
 use monge_core::design::{Design, GuideSpec};
+use monge_core::developable::DevelopableDesign;
+use serde::de::DeserializeOwned;
 
 use crate::atomic::write_atomic;
 use crate::error::IoError;
@@ -89,15 +91,67 @@ pub fn parse_design(text: &str, format: DesignFormat) -> Result<Design, IoError>
 }
 
 fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
-    let design: Design = match format {
-        DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e))?,
+    let design: Design = parse_as(text, format, file)?;
+    check_finite(&design, file)?;
+    Ok(design)
+}
+
+/// `text` deserialised as a `T`, with [`IoError::Parse`] locating what is wrong.
+fn parse_as<T: DeserializeOwned>(
+    text: &str,
+    format: DesignFormat,
+    file: &str,
+) -> Result<T, IoError> {
+    match format {
+        DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e)),
         DesignFormat::Toml => toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start);
             IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
-        })?,
+        }),
+    }
+}
+
+/// Any design file monge reads (§3, §3.3).
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyDesign {
+    /// A surface from two guide curves and θ (§3): circular or conical.
+    Surface(Box<Design>),
+    /// A developable circular mesh from a discrete general helix (§3.3): a file
+    /// whose only top-level key is `developable`.
+    Developable(DevelopableDesign),
+}
+
+/// Reads a design file of either kind, JSON or TOML by its extension: a
+/// developable design if its top level has the key `developable`, a surface
+/// design otherwise (with the errors of [`read_design`]).
+///
+/// ```
+/// use monge_io::{read_any_design, AnyDesign};
+/// let dir = std::env::temp_dir().join("monge-doc-any-design");
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("helix.json");
+/// std::fs::write(&path, r#"{"developable": {"projection": {"points": [[0,0,0],[1,0,0],[2,1,0]],
+///     "alpha_deg": 30}, "heights": [2, 3]}}"#).unwrap();
+/// assert!(matches!(read_any_design(&path).unwrap(), AnyDesign::Developable(_)));
+/// ```
+pub fn read_any_design(path: &Path) -> Result<AnyDesign, IoError> {
+    let format = DesignFormat::from_path(path)?;
+    let text = crate::read_to_string(path)?;
+    let file = path_name(path);
+    let developable = match format {
+        DesignFormat::Json => {
+            serde_json::from_str::<serde_json::Map<String, serde_json::Value>>(&text)
+                .is_ok_and(|m| m.contains_key("developable"))
+        }
+        DesignFormat::Toml => {
+            toml::from_str::<toml::Table>(&text).is_ok_and(|t| t.contains_key("developable"))
+        }
     };
-    check_finite(&design, file)?;
-    Ok(design)
+    if developable {
+        parse_as(&text, format, &file).map(AnyDesign::Developable)
+    } else {
+        parse_design_named(&text, format, &file).map(|d| AnyDesign::Surface(Box::new(d)))
+    }
 }
 
 /// An [`IoError::Parse`] from a serde_json error on `text`.

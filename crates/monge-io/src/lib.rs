@@ -35,7 +35,10 @@ use std::io;
 use std::path::Path;
 
 pub use atomic::{is_stdio, write_atomic, write_output};
-pub use design::{parse_design, read_design, write_design, write_design_to, DesignFormat};
+pub use design::{
+    parse_design, read_any_design, read_design, write_design, write_design_to, AnyDesign,
+    DesignFormat,
+};
 pub use error::IoError;
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
