@@ -10,23 +10,23 @@
 //! [`combescure`] (the discrete Combescure transform, §2.2.3) → a [`QuadGrid`].
 //! [`measure`] measures any quad mesh independently of how it was made.
 
+pub mod combescure;
+pub mod conical;
+pub mod cyclidic;
+pub mod darboux;
 pub mod design;
+pub mod developable;
+pub mod gauss_map;
+pub mod generate;
 pub mod grid;
 pub mod guide;
 pub mod measure;
+pub mod offset;
+pub mod projective;
 
 pub use design::{Design, GuideSpec, MeshKind, Tolerances};
 pub use grid::QuadGrid;
-pub mod generate;
 pub use generate::{
     generate, inspect, DesignInfo, GenerateError, GenerateOptions, Generated, Mode,
     SINGULAR_WINDOW_DEG,
 };
-pub mod combescure;
-pub mod gauss_map;
-pub mod projective;
-pub mod conical;
-pub mod offset;
-pub mod darboux;
-pub mod developable;
-pub mod cyclidic;
