@@ -25,8 +25,8 @@ pub mod offset;
 pub mod projective;
 
 pub use design::{Design, GuideSpec, MeshKind, Tolerances};
-pub use grid::QuadGrid;
 pub use generate::{
     generate, inspect, DesignInfo, GenerateError, GenerateOptions, Generated, Mode,
     SINGULAR_WINDOW_DEG,
 };
+pub use grid::QuadGrid;
