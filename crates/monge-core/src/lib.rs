@@ -30,3 +30,4 @@ pub use generate::{
     SINGULAR_WINDOW_DEG,
 };
 pub use grid::QuadGrid;
+pub mod fabrication;
