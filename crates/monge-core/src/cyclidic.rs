@@ -368,16 +368,6 @@ fn unit_from(x: DVec3, y: DVec3) -> DVec3 {
     (y - x).normalize()
 }
 
-/// `det(a, b, c) = a · (b × c)`.
-fn det(a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    a.dot(b.cross(c))
-}
-
-/// `S_e(x)`, the reflection of `x` in the plane with unit normal `e`.
-fn reflect(x: DVec3, e: DVec3) -> DVec3 {
-    x - 2.0 * x.dot(e) * e
-}
-
 /// The quadratic Bernstein basis at `t` and its derivative.
 fn bernstein2(t: f64) -> ([f64; 3], [f64; 3]) {
     let s = 1.0 - t;
@@ -464,19 +454,6 @@ impl RationalBezier {
         let (_, su, sv) = self.derivatives(u, v);
         su.cross(sv).normalize()
     }
-
-    /// The Bézier form scaled to corner quaternion weights of norms `1, a, a·b·…, b`:
-    /// weight `[α][β]` times `a^α b^β` (the same surface, reparametrised).
-    fn scaled(mut self, a: f64, b: f64) -> RationalBezier {
-        let pa = [1.0, a, a * a];
-        let pb = [1.0, b, b * b];
-        for (al, row) in self.weights.iter_mut().enumerate() {
-            for (be, w) in row.iter_mut().enumerate() {
-                *w *= pa[al] * pb[be];
-            }
-        }
-        self
-    }
 }
 
 /// The quantities of a circular quad with a frame at its first corner (§4.4).
@@ -503,40 +480,6 @@ impl QuadFrame {
         ]
     }
 
-    /// The rational biquadratic Bézier form of the design note (corner weights 1, 1, k², 1).
-    fn bezier(&self) -> RationalBezier {
-        let [a, b, c, d] = self.corners;
-        let Frame { t1, t2, n } = self.frame;
-        let (sig, k) = (self.sigma, self.k);
-        let (e1, e2, f, g) = (
-            unit_from(a, b),
-            unit_from(a, d),
-            unit_from(b, c),
-            unit_from(d, c),
-        );
-        let t2b = reflect(t2, e1);
-        let t1d = reflect(t1, e2);
-        let w10 = t1.dot(e1);
-        let w01 = t2.dot(e2);
-        let w21 = sig * k * t2b.dot(f);
-        let w12 = sig * k * t1d.dot(g);
-        let p10 = a + t1 * (a.distance(b) / (2.0 * w10));
-        let p01 = a + t2 * (a.distance(d) / (2.0 * w01));
-        let p21 = b + t2b * (b.distance(c) / (2.0 * t2b.dot(f)));
-        let p12 = d + t1d * (d.distance(c) / (2.0 * t1d.dot(g)));
-        let w = -sig * k * det(f, e1, n);
-        let omega = (f.dot(n) * e1 - e1.dot(n) * f - f.dot(e1) * n) * (sig * k);
-        let q0 = det(e1, e2, n);
-        let q = e1.dot(e2) * n - n.dot(e2) * e1 - n.dot(e1) * e2;
-        let w11 = (w + q0) / 2.0;
-        let p11 =
-            (w * (a + c) + (c - a).cross(omega) + q0 * (b + d) + (b - d).cross(q)) / (4.0 * w11);
-        RationalBezier {
-            points: [[a, p01, d], [p10, p11, p12], [b, p21, c]],
-            weights: [[1.0, w01, 1.0], [w10, w11, w12], [1.0, w21, k * k]],
-        }
-    }
-
     /// The first fold of this quad, if any (§4.4): crossed corners, an arc of
     /// 180° or more, a non-positive centre weight.
     fn fold(&self, bez: &RationalBezier) -> Option<FoldReason> {
@@ -544,11 +487,13 @@ impl QuadFrame {
             return Some(FoldReason::Crossed);
         }
         let wt = bez.weights;
+        // A rational quadratic arc with weights w0, w1, w2 turns by 2·acos(w1 / √(w0 w2)).
+        let cos = |w0: f64, w1: f64, w2: f64| w1 / (w0 * w2).sqrt();
         let edges = [
-            ("AB", wt[1][0]),
-            ("AD", wt[0][1]),
-            ("BC", wt[2][1] / self.k),
-            ("DC", wt[1][2] / self.k),
+            ("AB", cos(wt[0][0], wt[1][0], wt[2][0])),
+            ("AD", cos(wt[0][0], wt[0][1], wt[0][2])),
+            ("BC", cos(wt[2][0], wt[2][1], wt[2][2])),
+            ("DC", cos(wt[0][2], wt[1][2], wt[2][2])),
         ];
         if let Some(&(edge, cos_half)) = edges.iter().find(|(_, c)| *c <= 0.0 || c.is_nan()) {
             return Some(FoldReason::ArcOver180 { edge, cos_half });
@@ -557,6 +502,40 @@ impl QuadFrame {
             .then_some(FoldReason::CentreWeight { weight: wt[1][1] })
     }
 }
+
+/// The rational biquadratic Bézier form of the QB patch with corners `[A, B, C, D]`
+/// and quaternion weights `qb` in the same order (§4.4): the Bernstein coefficients
+/// of `|D|²` (the weights) and of `N·D̄` (weight × control point). With `W00 = 1`,
+/// `|W10| = |W01| = 1` they are the design note's closed forms, centre included.
+fn bezier_of(corners: [DVec3; 4], qb: [Quat; 4]) -> RationalBezier {
+    // Corner (a, b) of the parameter square is corners[CORNER[a][b]].
+    let at = |a: usize, b: usize| CORNER[a][b];
+    // Index pairs (i, k) with i + k = s, for the degree-2 Bernstein index s.
+    const PAIRS: [&[(usize, usize)]; 3] = [&[(0, 0)], &[(0, 1), (1, 0)], &[(1, 1)]];
+    let mut points = [[DVec3::ZERO; 3]; 3];
+    let mut weights = [[0.0; 3]; 3];
+    for s in 0..3 {
+        for t in 0..3 {
+            let (mut num, mut den) = (Quat::pure(DVec3::ZERO), Quat::pure(DVec3::ZERO));
+            for &(i, k) in PAIRS[s] {
+                for &(j, l) in PAIRS[t] {
+                    let (c, d) = (at(i, j), at(k, l));
+                    let prod = qb[c] * qb[d].conj();
+                    num = num + Quat::pure(corners[c]) * prod;
+                    den = den + prod;
+                }
+            }
+            // The mean over the pairs; den is real (its pairs are conjugate), num imaginary.
+            let m = (PAIRS[s].len() * PAIRS[t].len()) as f64;
+            weights[s][t] = den.w / m;
+            points[s][t] = num.v / den.w;
+        }
+    }
+    RationalBezier { points, weights }
+}
+
+/// Corner `(a, b)` of the parameter square is `corners[CORNER[a][b]]` (corners A, B, C, D).
+const CORNER: [[usize; 2]; 2] = [[0, 3], [1, 2]];
 
 /// One Dupin cyclide patch on a circular quad (§4.4), in closed QB form and as a
 /// rational biquadratic Bézier patch.
@@ -601,10 +580,11 @@ impl Patch {
             (0, 0),
             CyclidicOptions::default().circularity_tolerance,
         )?;
-        let bezier = quad.bezier();
+        let qb = quad.qb_weights();
+        let bezier = bezier_of(corners, qb);
         Ok(Patch {
             corners,
-            qb: quad.qb_weights(),
+            qb,
             fold: quad.fold(&bezier),
             bezier,
         })
@@ -627,8 +607,6 @@ impl Patch {
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
         let bu = [1.0 - u, u];
         let bv = [1.0 - v, v];
-        // Corner (a, b) of the parameter square is corners[CORNER[a][b]].
-        const CORNER: [[usize; 2]; 2] = [[0, 3], [1, 2]];
         let (mut num, mut den) = (Quat::pure(DVec3::ZERO), Quat::pure(DVec3::ZERO));
         for a in 0..2 {
             for b in 0..2 {
@@ -991,7 +969,7 @@ impl CyclidicNet {
                     w[(i + 1) * cols + j + 1] * inv,
                     w[i * cols + j + 1] * inv,
                 ];
-                let bezier = quad.bezier().scaled(lambda, mu);
+                let bezier = bezier_of(corners, qb);
                 let fold = quad.fold(&bezier);
                 if let (Some(reason), false) = (fold, options.allow_folded) {
                     return Err(CyclidicError::Folded {

@@ -333,6 +333,109 @@ fn random_patches_closed_form_matches_bezier_and_isolines_are_circles() {
     assert!(unfolded > 100 && agree <= 1e-9 && circ <= 1e-9);
 }
 
+/// The design note's closed-form Bézier patch of a quad with the frame `f` at A
+/// (embedded quads: σ = σ_B = σ_D = +1), written out independently of the library.
+fn note_bezier([a, b, c, d]: [DVec3; 4], f: Frame) -> ([[DVec3; 3]; 3], [[f64; 3]; 3]) {
+    let unit = |x: DVec3, y: DVec3| (y - x).normalize();
+    let (e1, e2, ef, g) = (unit(a, b), unit(a, d), unit(b, c), unit(d, c));
+    let k = b.distance(d) / a.distance(c);
+    let refl = |x: DVec3, e: DVec3| x - 2.0 * x.dot(e) * e;
+    let det = |x: DVec3, y: DVec3, z: DVec3| x.dot(y.cross(z));
+    let (t2b, t1d) = (refl(f.t2, e1), refl(f.t1, e2));
+    let (w10, w01) = (f.t1.dot(e1), f.t2.dot(e2));
+    let (w21, w12) = (k * t2b.dot(ef), k * t1d.dot(g));
+    let p10 = a + f.t1 * a.distance(b) / (2.0 * w10);
+    let p01 = a + f.t2 * a.distance(d) / (2.0 * w01);
+    let p21 = b + t2b * b.distance(c) / (2.0 * t2b.dot(ef));
+    let p12 = d + t1d * d.distance(c) / (2.0 * t1d.dot(g));
+    let n = f.n;
+    let w = -k * det(ef, e1, n);
+    let omega = k * (ef.dot(n) * e1 - e1.dot(n) * ef - ef.dot(e1) * n);
+    let q0 = det(e1, e2, n);
+    let q = e1.dot(e2) * n - n.dot(e2) * e1 - n.dot(e1) * e2;
+    let w11 = (w + q0) / 2.0;
+    let p11 = (w * (a + c) + (c - a).cross(omega) + q0 * (b + d) + (b - d).cross(q)) / (4.0 * w11);
+    (
+        [[a, p01, d], [p10, p11, p12], [b, p21, c]],
+        [[1.0, w01, 1.0], [w10, w11, w12], [1.0, w21, k * k]],
+    )
+}
+
+#[test]
+fn bezier_form_is_the_design_notes_and_the_naive_centre_is_wrong() {
+    let (mut points, mut weights, mut naive, mut naive_circle, mut n) =
+        (0f64, 0f64, f64::INFINITY, 0f64, 0);
+    for (quad, frame) in random_patches(5).take(1000) {
+        let p = Patch::new(quad, frame).unwrap();
+        if p.fold().is_some() {
+            continue;
+        }
+        n += 1;
+        let size = quad[0].distance(quad[2]).max(quad[1].distance(quad[3]));
+        let (np, nw) = note_bezier(quad, frame);
+        let b = p.bezier();
+        for s in 0..3 {
+            for t in 0..3 {
+                points = points.max(b.points[s][t].distance(np[s][t]) / size);
+                weights = weights.max((b.weights[s][t] - nw[s][t]).abs() / nw[s][t].abs().max(1.0));
+            }
+        }
+        // The naive tensor-product centre: w11 = w10·w01, P11 = P10 + P01 − A.
+        let mut bad = *b;
+        bad.weights[1][1] = nw[1][0] * nw[0][1];
+        bad.points[1][1] = np[1][0] + np[0][1] - quad[0];
+        naive = naive.min(bad.points[1][1].distance(b.points[1][1]) / size);
+        let iso: Vec<DVec3> = params(7).iter().map(|&v| bad.point(0.5, v)).collect();
+        let circle = circle3(iso[0], iso[3], iso[6]);
+        let off = iso
+            .iter()
+            .map(|q| circle_distance(*q, circle))
+            .fold(0.0, f64::max);
+        naive_circle = naive_circle.max(off / size);
+    }
+    println!(
+        "{n} random embedded patches: Bézier vs the note's formulas: points {points:.2e}, weights {weights:.2e}; \
+         naive centre off by at least {naive:.2e}, its u = 1/2 isoline off a circle by up to {naive_circle:.2e}"
+    );
+    assert!(n > 100 && points <= 1e-9 && weights <= 1e-9 && naive > 0.0 && naive_circle > 1e-3);
+}
+
+#[test]
+fn crossed_patches_closed_form_matches_bezier_away_from_poles() {
+    // With `allow_folded`, a crossed quad (σ = −1) still gets a patch whose two forms agree.
+    let (mut worst, mut n) = (0f64, 0);
+    for (q, frame) in random_patches(3).take(300) {
+        let quad = [q[0], q[2], q[1], q[3]];
+        let p = Patch::new(quad, frame).unwrap();
+        assert_eq!(p.fold(), Some(FoldReason::Crossed));
+        let b = p.bezier();
+        let wmax = b
+            .weights
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, w| m.max(w.abs()));
+        let size = quad[0].distance(quad[2]).max(quad[1].distance(quad[3]));
+        for u in params(7) {
+            for v in params(7) {
+                let (bu, bv) = (
+                    [(1.0 - u) * (1.0 - u), 2.0 * u * (1.0 - u), u * u],
+                    [(1.0 - v) * (1.0 - v), 2.0 * v * (1.0 - v), v * v],
+                );
+                let w: f64 = (0..9)
+                    .map(|s| b.weights[s / 3][s % 3] * bu[s / 3] * bv[s % 3])
+                    .sum();
+                if w.abs() > 1e-2 * wmax {
+                    n += 1;
+                    let x = p.point(u, v);
+                    worst = worst.max(x.distance(b.point(u, v)) / size.max(x.length()));
+                }
+            }
+        }
+    }
+    println!("crossed patches: closed form vs Bézier {worst:.2e} at {n} samples away from poles");
+    assert!(n > 5000 && worst <= 1e-9);
+}
+
 #[test]
 fn isoparametric_lines_are_circular_arcs() {
     let k = 9;
