@@ -961,3 +961,29 @@ fn errors() {
         "{e}"
     );
 }
+
+#[test]
+fn gauss_frames_on_a_strip_of_one_face_row() {
+    // The first two rows of the Dupin mesh: t1 comes from orthogonality to the
+    // v-lines' Gauss circles.
+    let full = mesh(&dupin30());
+    let n = 2 * full.cols;
+    let g = QuadGrid::new(
+        2,
+        full.cols,
+        full.vertices[..n].to_vec(),
+        full.normals[..n].to_vec(),
+    );
+    let net = CyclidicNet::from_normals(&g, &CyclidicOptions::default()).unwrap();
+    let carried =
+        CyclidicNet::from_frame(&g, net.frame(0, 0), &CyclidicOptions::default()).unwrap();
+    let mut worst = 0f64;
+    for i in 0..g.rows {
+        for j in 0..g.cols {
+            let (a, b) = (net.frame(i, j), carried.frame(i, j));
+            worst = worst.max(a.t1.distance(b.t1)).max(a.t2.distance(b.t2));
+        }
+    }
+    println!("2 × 7 strip: §4.4 frames vs carried {worst:.2e}");
+    assert!(worst <= 1e-9);
+}
