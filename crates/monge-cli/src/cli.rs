@@ -70,6 +70,28 @@ pub enum Command {
     )]
     Generate(GenerateArgs),
 
+    /// Build the smooth C¹ surface of a design: a cyclidic net of Dupin cyclide patches.
+    #[command(
+        long_about = format!(
+            "Build the cyclidic net of a design (§4.4): one Dupin cyclide patch per face of its \
+             circular mesh, with the frames of §4.4, so that patches share their boundary arcs and \
+             tangent planes (C¹) and every curvature line is a planar chain of circular arcs: \
+             one arc where the mesh line is inscribed in a circle, bi-arcs where it is inscribed \
+             in two (§4.6).\n\n\
+             OUT `.json`: `patches` (per face (i, j): the patch sampled on a K × K grid of its own \
+             (u, v), row-major, (0, 0) at vertex (i, j), u towards (i+1, j), v towards (i, j+1)) and \
+             `lines` (per mesh line: family `u` or `v`, index, and its arcs: center, radius, \
+             normal, start, end). OUT `.obj` or `.ply`: the dense mesh of the whole net. Folded \
+             faces (crossed quads, arcs over 180°) are refused unless --allow-folded."
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge smooth examples/fig12-dupin-theta30.json -o net.json --samples 9\n  \
+             monge smooth examples/fig13-freeform.json -o smooth.obj\n\n{EXIT}"
+        )
+    )]
+    Smooth(SmoothArgs),
+
     /// Measure a quad mesh: planarity, circularity, planar lines, node axes.
     #[command(
         long_about = format!(
@@ -226,6 +248,23 @@ pub struct InfoArgs {
     /// Refuse designs of more than N grid vertices (as `monge generate` would).
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
+}
+
+/// Arguments of `monge smooth`.
+#[derive(Debug, clap::Args)]
+pub struct SmoothArgs {
+    /// The design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output: `.json` (patches and arcs), `.obj` or `.ply` (dense mesh).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Samples per patch side, K ≥ 2 (K × K points a patch).
+    #[arg(long, value_name = "K", default_value_t = 9, value_parser = clap::value_parser!(u32).range(2..=1000))]
+    pub samples: u32,
+    /// Build folded faces instead of refusing the design.
+    #[arg(long)]
+    pub allow_folded: bool,
 }
 
 /// Arguments of `monge bench`.

@@ -740,3 +740,82 @@ fn developable_designs_generate_check_and_report() {
         .stderr(predicate::str::contains("α"));
     assert!(!bad.exists());
 }
+
+#[test]
+fn smooth_writes_the_cyclidic_net_contract() {
+    let dir = TempDir::new().unwrap();
+    let design = example("fig12-dupin-theta30.json");
+    let (net, mesh) = (dir.path().join("net.json"), dir.path().join("m.json"));
+    monge()
+        .arg("smooth")
+        .arg(&design)
+        .arg("-o")
+        .arg(&net)
+        .args(["--samples", "4"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("cyclidic net (§4.4)"));
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&mesh)
+        .assert()
+        .success();
+    let (net, mesh) = (read_json(&net), read_json(&mesh));
+    let (rows, cols) = (
+        mesh["rows"].as_u64().unwrap() as usize,
+        mesh["cols"].as_u64().unwrap() as usize,
+    );
+    let patches = net["patches"].as_array().unwrap();
+    assert_eq!(patches.len(), (rows - 1) * (cols - 1));
+    let size = 20.0;
+    for p in patches {
+        let (i, j) = (
+            p["i"].as_u64().unwrap() as usize,
+            p["j"].as_u64().unwrap() as usize,
+        );
+        assert_eq!((p["rows"].as_u64(), p["cols"].as_u64()), (Some(4), Some(4)));
+        let pts = p["points"].as_array().unwrap();
+        assert_eq!(pts.len(), 16);
+        // (u, v) = (0, 0) at vertex (i, j), (1, 0) at (i+1, j), (0, 1) at (i, j+1), (1, 1) at (i+1, j+1).
+        for (k, (a, b)) in [
+            (0, (i, j)),
+            (12, (i + 1, j)),
+            (3, (i, j + 1)),
+            (15, (i + 1, j + 1)),
+        ] {
+            let p: Vec<f64> = pts[k]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            let v = vertex(&mesh, a, b);
+            let d = (0..3).map(|c| (p[c] - v[c]).powi(2)).sum::<f64>().sqrt();
+            assert!(d < 1e-12 * size, "patch ({i}, {j}) corner {k}: {d}");
+        }
+    }
+    // One line per mesh row and column; on a Dupin cyclide each is a single arc (§4.6).
+    let lines = net["lines"].as_array().unwrap();
+    assert_eq!(lines.len(), rows + cols);
+    assert!(lines
+        .iter()
+        .all(|l| l["arcs"].as_array().unwrap().len() == 1));
+    // The dense mesh opens as a mesh and is itself circular with planar lines.
+    let obj = dir.path().join("smooth.obj");
+    monge()
+        .arg("smooth")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(&obj)
+        .assert()
+        .success();
+    monge().arg("check").arg(&obj).assert().success();
+    monge()
+        .arg("smooth")
+        .arg(&design)
+        .args(["-o", "x.json", "--samples", "1"])
+        .assert()
+        .code(2);
+}
