@@ -1,8 +1,9 @@
 //! `monge`: the command-line program of the monge workspace.
 //!
 //! Commands: `generate` (design → OBJ/PLY/JSON mesh), `check` (measure a mesh
-//! against a tolerance), `info` (validate a design without generating) and
-//! `bench` (time the generator in-process). See `monge --help`.
+//! against a tolerance), `info` (validate a design without generating),
+//! `bench` (time the generator in-process) and `render` (design → PNG/SVG
+//! picture). See `monge --help`.
 //!
 //! Exit statuses: 0 success, 1 `check` found a metric above its tolerance,
 //! 2 any error (printed as `error: <message>` on stderr).
@@ -13,6 +14,7 @@ mod cli;
 mod generate;
 mod info;
 mod output;
+mod render;
 mod smooth;
 
 use std::process::ExitCode;
@@ -50,6 +52,7 @@ fn main() -> ExitCode {
         Command::Check(args) => check::run(&args),
         Command::Info(args) => info::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Render(args) => render::run(&args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

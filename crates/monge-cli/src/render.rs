@@ -1,0 +1,231 @@
+//! `monge render`: designs → a picture (PNG or SVG).
+
+use std::path::Path;
+
+use anyhow::{bail, Context};
+use monge_core::conical::conical_dual;
+use monge_core::developable::developable;
+use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, MeshKind};
+use monge_io::{read_any_design, write_atomic, AnyDesign};
+use monge_render::{
+    gauss_net, guide_highlights, render_png, render_svg, sheet_png, sheet_svg, Panel, Projection,
+    RenderOptions, Scene, View,
+};
+
+use crate::cli::RenderArgs;
+use crate::output::{eprint, num};
+use crate::Outcome;
+
+/// The picture formats, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Picture {
+    Png,
+    Svg,
+}
+
+impl Picture {
+    /// The format of `out`'s extension.
+    fn of(out: &Path) -> anyhow::Result<Picture> {
+        let ext = out
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("png") => Ok(Picture::Png),
+            Some("svg") => Ok(Picture::Svg),
+            _ => bail!(
+                "cannot tell the picture format of `{}`: OUT must end in `.png` or `.svg`",
+                out.display()
+            ),
+        }
+    }
+}
+
+/// Runs `monge render`.
+pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
+    let out = args.output.as_path();
+    let format = Picture::of(out)?;
+    let (width, height) = args.size;
+    let options = RenderOptions {
+        width,
+        height,
+        view: View {
+            azimuth_deg: args.view.0,
+            elevation_deg: args.view.1,
+        },
+        projection: if args.orthographic {
+            Projection::Orthographic
+        } else {
+            Projection::default()
+        },
+        ..RenderOptions::default()
+    };
+    let generate_options = GenerateOptions::default();
+
+    let (bytes, what) = if let Some(thetas) = &args.theta_sweep {
+        let [path] = args.designs.as_slice() else {
+            bail!("--theta-sweep renders one design at several θ: give exactly one DESIGN");
+        };
+        let AnyDesign::Surface(design) = read_any_design(path)? else {
+            bail!(
+                "--theta-sweep varies the θ of a design with two guides; `{}` is a developable design (no θ)",
+                path.display()
+            );
+        };
+        let panels: Vec<Panel> = thetas
+            .iter()
+            .map(|&theta| {
+                let design = Design {
+                    theta_deg: theta,
+                    ..(*design).clone()
+                };
+                let caption = format!("θ = {}°", num(theta));
+                match generate(&design, &generate_options) {
+                    Ok(g) => Ok(Panel {
+                        scene: Some(scene(&g, design.mesh, args.gauss, path)?),
+                        caption,
+                    }),
+                    Err(e) => Ok(Panel {
+                        scene: None,
+                        caption: format!("{caption}\n{}", short_reason(&e)),
+                    }),
+                }
+            })
+            .collect::<anyhow::Result<_>>()?;
+        let failed = panels.iter().filter(|p| p.scene.is_none()).count();
+        let what = format!(
+            "a sheet of {} θ ({failed} failed) of `{}`",
+            panels.len(),
+            path.display()
+        );
+        (sheet(&panels, args.columns, &options, format)?, what)
+    } else if let [path] = args.designs.as_slice() {
+        let (scene, _) = load(path, args.gauss, &generate_options)?;
+        let bytes = match format {
+            Picture::Png => render_png(&scene, &options)?,
+            Picture::Svg => render_svg(&scene, &options)?.into_bytes(),
+        };
+        (bytes, format!("`{}`", path.display()))
+    } else {
+        let panels: Vec<Panel> = args
+            .designs
+            .iter()
+            .map(|path| {
+                let (scene, what) = load(path, args.gauss, &generate_options)?;
+                let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+                Ok(Panel {
+                    scene: Some(scene),
+                    caption: format!("{stem}: {what}"),
+                })
+            })
+            .collect::<anyhow::Result<_>>()?;
+        let what = format!("a sheet of {} designs", panels.len());
+        (sheet(&panels, args.columns, &options, format)?, what)
+    };
+    write_atomic(out, |w| w.write_all(&bytes))?;
+    eprint(&format!(
+        "wrote `{}` ({width} × {height}, {} bytes): {what}.\n",
+        out.display(),
+        bytes.len()
+    ));
+    Ok(Outcome::Success)
+}
+
+/// The scene of the design at `path` (with its Gauss map if `gauss`), and a
+/// few words on it for a caption (`θ = 30°`, or `developable`).
+///
+/// A developable design (§3.3) is drawn with its helix in red and its first
+/// curvature line in a cutting plane (column 0) in blue.
+fn load(path: &Path, gauss: bool, options: &GenerateOptions) -> anyhow::Result<(Scene, String)> {
+    let context = || path.display().to_string();
+    match read_any_design(path)? {
+        AnyDesign::Surface(design) => {
+            let g = generate(&design, options).with_context(context)?;
+            let what = format!("θ = {}°", num(g.info.theta_deg));
+            Ok((scene(&g, design.mesh, gauss, path)?, what))
+        }
+        AnyDesign::Developable(d) => {
+            let mesh = developable(&d.developable).with_context(context)?;
+            let column: Vec<_> = mesh.grid.column(0).collect();
+            let scene = Scene {
+                highlights: guide_highlights(&mesh.helix, &column),
+                gauss: if gauss { gauss_net(&mesh.grid) } else { None },
+                mesh: mesh.grid,
+            };
+            Ok((scene, "developable".to_owned()))
+        }
+    }
+}
+
+/// A contact sheet in `format`.
+fn sheet(
+    panels: &[Panel],
+    columns: usize,
+    options: &RenderOptions,
+    format: Picture,
+) -> anyhow::Result<Vec<u8>> {
+    Ok(match format {
+        Picture::Png => sheet_png(panels, columns, options)?,
+        Picture::Svg => sheet_svg(panels, columns, options)?.into_bytes(),
+    })
+}
+
+/// What to draw of a generated design: the circular mesh with its guides (row 0
+/// and column 0), or the conical dual with the guide samples; and the Gauss map
+/// (the circular mesh's node axes) if asked.
+fn scene(g: &Generated, kind: MeshKind, gauss: bool, path: &Path) -> anyhow::Result<Scene> {
+    let mut scene = match kind {
+        MeshKind::Circular => Scene::new(g.grid.clone()),
+        MeshKind::Conical => {
+            if g.grid.rows < 3 || g.grid.cols < 3 {
+                bail!(
+                    "{}: a conical mesh needs at least 3 samples on each guide (the grid is {} × {})",
+                    path.display(),
+                    g.grid.rows,
+                    g.grid.cols
+                );
+            }
+            Scene {
+                mesh: conical_dual(&g.grid).grid,
+                highlights: guide_highlights(&g.info.guide_u.points, &g.info.guide_v.points),
+                gauss: None,
+            }
+        }
+    };
+    if gauss {
+        scene.gauss = gauss_net(&g.grid);
+    }
+    Ok(scene)
+}
+
+/// Why a θ of a sweep failed, in a few words for a caption.
+fn short_reason(e: &GenerateError) -> &'static str {
+    match e {
+        GenerateError::ThetaSingular { .. } => "singular",
+        GenerateError::ThetaInadmissible { .. } => "not admissible",
+        GenerateError::Degenerate { .. } => "degenerate",
+        GenerateError::ThetaNotFinite(_) => "not finite",
+        _ => "invalid design",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn format_follows_the_extension() {
+        assert_eq!(Picture::of(Path::new("a/b.PNG")).unwrap(), Picture::Png);
+        assert_eq!(Picture::of(Path::new("b.svg")).unwrap(), Picture::Svg);
+        assert!(Picture::of(Path::new("b.jpg")).is_err());
+        assert!(Picture::of(Path::new("-")).is_err());
+    }
+
+    #[test]
+    fn reasons_are_short() {
+        let e = GenerateError::ThetaSingular {
+            theta_deg: 90.0,
+            window: 1e-3,
+        };
+        assert_eq!(short_reason(&e), "singular");
+    }
+}
