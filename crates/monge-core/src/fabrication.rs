@@ -946,8 +946,9 @@ fn distinct(mut values: Vec<f64>, tol: f64) -> Vec<f64> {
     values.sort_by(f64::total_cmp);
     let mut out: Vec<f64> = Vec::new();
     for v in values {
-        if out.last().map_or(true, |&first| v - first > tol) {
-            out.push(v);
+        match out.last() {
+            Some(&first) if v - first <= tol => {}
+            _ => out.push(v),
         }
     }
     out

@@ -31,3 +31,6 @@ pub use generate::{
 };
 pub use grid::QuadGrid;
 pub mod fabrication;
+pub mod multipatch;
+pub mod optimise;
+pub mod symmetry;

@@ -1,0 +1,63 @@
+//! Every fabrication output of a gridshell in one directory (§6).
+
+use std::io;
+use std::path::{Path, PathBuf};
+
+use monge_core::fabrication::Fabrication;
+
+use crate::dxf::{write_beams_dxf, write_panels_dxf};
+use crate::error::IoError;
+use crate::gltf::write_glb;
+use crate::schedule::{
+    write_beams_csv, write_nodes_csv, write_panels_csv, write_schedule_json, write_segments_csv,
+};
+use crate::svg::write_overview_svg;
+use crate::write_atomic;
+
+/// The files [`write_fabrication`] writes, in order (§6).
+pub const FABRICATION_FILES: [&str; 9] = [
+    "panels.csv",
+    "beams.csv",
+    "segments.csv",
+    "nodes.csv",
+    "schedule.json",
+    "panels.dxf",
+    "beams.dxf",
+    "overview.svg",
+    "gridshell.glb",
+];
+
+/// Writes the schedules, drawings and model of a gridshell into `dir` (§6),
+/// creating it if needed, each file atomically ([`write_atomic`]); returns the
+/// paths written, in the order of [`FABRICATION_FILES`]. Beams in the glTF are
+/// swept with a `section.0 × section.1` rectangle (width along the beam plane's
+/// normal, depth in the plane).
+pub fn write_fabrication(
+    dir: &Path,
+    f: &Fabrication,
+    section: (f64, f64),
+) -> Result<Vec<PathBuf>, IoError> {
+    std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
+        path: dir.to_owned(),
+        source,
+    })?;
+    type Writer<'a> = Box<dyn Fn(&mut dyn io::Write) -> io::Result<()> + 'a>;
+    let writers: [Writer<'_>; 9] = [
+        Box::new(|w| write_panels_csv(f, w)),
+        Box::new(|w| write_beams_csv(f, w)),
+        Box::new(|w| write_segments_csv(f, w)),
+        Box::new(|w| write_nodes_csv(f, w)),
+        Box::new(|w| write_schedule_json(f, w)),
+        Box::new(|w| write_panels_dxf(f, w)),
+        Box::new(|w| write_beams_dxf(f, w)),
+        Box::new(|w| write_overview_svg(f, w)),
+        Box::new(|w| write_glb(f, section.0, section.1, w)),
+    ];
+    let mut paths = Vec::with_capacity(writers.len());
+    for (name, writer) in FABRICATION_FILES.iter().zip(writers) {
+        let path = dir.join(name);
+        write_atomic(&path, |w| writer(w))?;
+        paths.push(path);
+    }
+    Ok(paths)
+}
