@@ -27,9 +27,14 @@
 
 mod atomic;
 mod design;
+mod dxf;
 mod error;
+mod fabrication;
+mod gltf;
 mod mesh_read;
 mod mesh_write;
+mod schedule;
+mod svg;
 
 use std::io;
 use std::path::Path;
@@ -39,11 +44,19 @@ pub use design::{
     parse_design, read_any_design, read_design, write_design, write_design_to, AnyDesign,
     DesignFormat,
 };
+pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
+pub use fabrication::{write_fabrication, FABRICATION_FILES};
+pub use gltf::write_glb;
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
     write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, MeshFormat, MESH_JSON_KEYS,
 };
+pub use schedule::{
+    beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,
+    write_schedule_json, write_segments_csv,
+};
+pub use svg::write_overview_svg;
 
 /// The whole file as text; [`IoError::NotFound`] or [`IoError::Read`] naming it.
 fn read_to_string(path: &Path) -> Result<String, IoError> {
