@@ -295,6 +295,20 @@ pub struct SmoothArgs {
     /// Build folded faces instead of refusing the design.
     #[arg(long)]
     pub allow_folded: bool,
+    /// DESIGN is a circular quad mesh (`.obj`, `.ply` or `.json`, row-major grid), not a design:
+    /// the net is built on it (its lines need not be planar; then neither are the net's).
+    #[arg(long)]
+    pub mesh: bool,
+    /// The frame at vertex (0, 0), carried over the whole mesh by reflections (§4.4), as
+    /// `t1x,t1y,t1z,t2x,t2y,t2z` (orthonormal; t1 towards (1, 0), t2 towards (0, 1)).
+    /// Default: the frames of §4.4 from the node axes, which make the curvature lines planar.
+    #[arg(
+        long,
+        value_name = "T1,T2",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub frame: Option<Vec<f64>>,
 }
 
 /// Arguments of `monge bench`.

@@ -4,10 +4,11 @@
 use std::io::{self, Write};
 use std::time::Instant;
 
-use anyhow::Context;
-use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
+use anyhow::{bail, Context};
+use glam::DVec3;
+use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family, Frame};
 use monge_core::{generate, GenerateOptions};
-use monge_io::{read_design, write_mesh_to, write_output, MeshFormat};
+use monge_io::{read_design, read_mesh, write_mesh_to, write_output, MeshFormat};
 use serde_json::{json, Value};
 
 use crate::cli::SmoothArgs;
@@ -23,17 +24,33 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
             "monge smooth writes `.json` (patches and arcs), or `.obj`/`.ply` (a dense mesh)",
         )?),
     };
-    let design = read_design(&args.design)?;
     let start = Instant::now();
-    let grid = generate(&design, &GenerateOptions::default())
-        .with_context(|| args.design.display().to_string())?
-        .grid;
+    let grid = if args.mesh {
+        read_mesh(&args.design)?
+    } else {
+        let design = read_design(&args.design)?;
+        generate(&design, &GenerateOptions::default())
+            .with_context(|| args.design.display().to_string())?
+            .grid
+    };
     let options = CyclidicOptions {
         allow_folded: args.allow_folded,
         ..CyclidicOptions::default()
     };
-    let net = CyclidicNet::from_normals(&grid, &options)
-        .with_context(|| format!("{}: the cyclidic net", args.design.display()))?;
+    let net = match &args.frame {
+        Some(f) => {
+            if f.len() != 6 {
+                bail!(
+                    "--frame takes 6 numbers, t1x,t1y,t1z,t2x,t2y,t2z; got {}",
+                    f.len()
+                );
+            }
+            let frame = Frame::new(DVec3::new(f[0], f[1], f[2]), DVec3::new(f[3], f[4], f[5]));
+            CyclidicNet::from_frame(&grid, frame, &options)
+        }
+        None => CyclidicNet::from_normals(&grid, &options),
+    }
+    .with_context(|| format!("{}: the cyclidic net", args.design.display()))?;
     let elapsed = start.elapsed().as_secs_f64();
     let k = args.samples as usize;
     match format {
@@ -46,12 +63,17 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
     let lines = net.curvature_lines();
     let arcs: usize = lines.iter().map(|l| l.arcs.len()).sum();
     eprint(&format!(
-        "{}: cyclidic net (§4.4) of {} × {} Dupin cyclide patches, C¹, with planar curvature lines: \
+        "{}: cyclidic net (§4.4) of {} × {} Dupin cyclide patches, C¹, {}: \
          {} mesh lines made of {arcs} circular arcs. Built in {} ms; wrote `{}` ({k} × {k} samples \
          a patch).\n",
         args.design.display(),
         net.rows() - 1,
         net.cols() - 1,
+        if args.frame.is_some() {
+            "frames carried from the given one (curvature lines planar only if it is the §4.4 frame)"
+        } else {
+            "frames from the node axes: planar curvature lines"
+        },
         lines.len(),
         millis(elapsed),
         out.display()
@@ -62,7 +84,7 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
 /// The JSON contract of `monge smooth -o net.json`: `patches` (each sampled on
 /// a K × K grid of its own (u, v), row-major) and `lines` (chains of arcs).
 fn write_net_json(net: &CyclidicNet, k: usize, w: &mut dyn Write) -> io::Result<()> {
-    let xyz = |p: glam::DVec3| json!([p.x, p.y, p.z]);
+    let xyz = |p: DVec3| json!([p.x, p.y, p.z]);
     let patches: Vec<Value> = (0..net.rows() - 1)
         .flat_map(|i| (0..net.cols() - 1).map(move |j| (i, j)))
         .map(|(i, j)| {

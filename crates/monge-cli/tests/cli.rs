@@ -818,4 +818,26 @@ fn smooth_writes_the_cyclidic_net_contract() {
         .args(["-o", "x.json", "--samples", "1"])
         .assert()
         .code(2);
+    // On a mesh read from a file: from its node axes, or from one given frame.
+    let mesh_path = dir.path().join("m.json");
+    let frame_out = dir.path().join("f.obj");
+    monge()
+        .arg("smooth")
+        .arg(&mesh_path)
+        .arg("--mesh")
+        .args(["--frame=1,0,0,0,1,0", "--samples", "3", "-o"])
+        .arg(&frame_out)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "frames carried from the given one",
+        ));
+    monge().arg("check").arg(&frame_out).assert().success();
+    monge()
+        .arg("smooth")
+        .arg(&mesh_path)
+        .args(["--mesh", "--frame=1,0,0", "-o", "x.json"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--frame takes 6 numbers"));
 }
