@@ -31,6 +31,7 @@ mod dxf;
 mod error;
 mod fabrication;
 mod gltf;
+mod iges;
 mod mesh_read;
 mod mesh_write;
 mod schedule;
@@ -48,6 +49,7 @@ pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
 pub use fabrication::{write_fabrication, FABRICATION_FILES};
 pub use gltf::write_glb;
+pub use iges::{read_iges_surfaces, write_iges, IgesSurface};
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
     write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, MeshFormat, MESH_JSON_KEYS,
