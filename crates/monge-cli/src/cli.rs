@@ -182,6 +182,96 @@ pub enum Command {
         )
     )]
     Render(RenderArgs),
+
+    /// Build a multi-patch mesh (§4.7), optionally assembled by symmetry (§4.5).
+    #[command(
+        long_about = format!(
+            "Build a mesh with piecewise planar curvature lines from a multi-patch design \
+             (§4.7, Figures 20 and 21) and write it as OBJ, PLY or JSON.\n\n\
+             A multi-patch design (`.json` or `.toml`) has `patches`: the first with `theta_deg`, \
+             `guide_u` and `guide_v` like a design file; every later one with its own \
+             `theta_deg`, `attach`: {{\"patch\": K, \"side\": S}} (S = `last_row`, `first_row`, \
+             `last_column` or `first_column` of the earlier patch K, in K's own grid) and \
+             `guide`: the continuation, which must start at the first vertex of that line. The \
+             line becomes one guide of the new patch, the continuation the other (for a row \
+             side it continues guide_u, for a column side guide_v; a `first_` side runs \
+             backwards). Start tangents are forced so that the node axes continue across the \
+             seam: draw the continuation in the plane of the guide it continues (one planar \
+             bottom guide cut in pieces) and the beams are C¹ there. All patches must follow \
+             each other along rows, or all along columns: the result is one grid, shared lines \
+             stored once.\n\n\
+             Optional `symmetry`: a list of {{\"mirror\": {{\"point\", \"normal\"}}}} and \
+             {{\"rotate\": {{\"point\", \"axis\", \"order\"}}}}, applied in order to all copies so \
+             far (Figure 18: a mirror then order 5); the copies are merged where vertices \
+             coincide (1e-9 of the size) into one quad mesh (OBJ/PLY/JSON with `quads`).\n\n\
+             Without symmetry, JSON output has the grid plus `patches` (range, θ, mode, measured \
+             max error, seam and axis gaps, kink) and `line_planes` (for each row and column the \
+             plane it lies in within each patch it crosses). A summary goes to stderr.\n\n{THETA}"
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge patches examples/fig20-piecewise.json -o dome.obj\n  \
+             monge patches examples/fig21-hippohaus.json -o - > hippo.json\n\n{EXIT}"
+        )
+    )]
+    Patches(PatchesArgs),
+
+    /// Fit θ (and guide coordinates) of a multi-patch design to a target with BOBYQA (§4.7).
+    #[command(
+        long_about = format!(
+            "Choose free parameters of a multi-patch design so that a patch boundary comes as \
+             close as possible to a target (§4.7, the HippoHaus of Figure 21), with BOBYQA \
+             (Powell 2007), and write the design with the fitted values to FITTED_DESIGN (the \
+             `fit` section is kept, so the file can be fitted again or built with `monge \
+             patches`). Prints the largest and rms distances before and after, and each value.\n\n\
+             The design's `fit` key: `free`: a list of {{\"theta\": {{\"patch\": K, \"bounds\": \
+             [lo, hi]}}}} (bounds optional) and {{\"control_point\": {{\"patch\": K, \"guide\": \
+             \"guide_u\"|\"guide_v\"|\"guide\", \"index\": I, \"coordinate\": 0|1|2, \"bounds\": \
+             [lo, hi]}}}} (a point of a `points` guide or a control point of a `bspline`); \
+             `boundary`: {{\"patch\": K, \"side\": S}}; `target`: {{\"polyline\": [[x, y, z], …]}} \
+             or {{\"plane\": {{\"point\", \"normal\"}}}} (e.g. the plane a patch must end in for a \
+             mirror, Figure 20); optional `max_distance` (fail above it) and `max_evaluations`. \
+             θ stays in its patch's admissible range at the start values (on the start's side of \
+             0 when the range excludes 0) and 1° away from the singular +90°.\n\n{EXIT}"
+        ),
+        after_help = format!(
+            "Examples:\n  \
+             monge fit examples/fig21-hippohaus-fit.json -o fitted.json\n  \
+             monge patches fitted.json -o hippo.obj\n\n{EXIT}"
+        )
+    )]
+    Fit(FitArgs),
+}
+
+/// Arguments of `monge patches`.
+#[derive(Debug, clap::Args)]
+pub struct PatchesArgs {
+    /// The multi-patch design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Output format; overrides OUT's extension. With `-o -` it defaults to json.
+    #[arg(long, value_enum)]
+    pub format: Option<FormatArg>,
+    /// Refuse patches of more than N grid vertices each.
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
+
+/// Arguments of `monge fit`.
+#[derive(Debug, clap::Args)]
+pub struct FitArgs {
+    /// The multi-patch design file with a `fit` key (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Where to write the fitted design (`.json` or `.toml`).
+    #[arg(short, long, value_name = "FITTED_DESIGN")]
+    pub output: PathBuf,
+    /// Refuse patches of more than N grid vertices each.
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
 }
 
 /// Mesh formats on the command line.

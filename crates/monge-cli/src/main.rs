@@ -14,6 +14,7 @@ mod cli;
 mod generate;
 mod info;
 mod output;
+mod patches;
 mod render;
 mod smooth;
 
@@ -53,6 +54,8 @@ fn main() -> ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Patches(args) => patches::run_patches(&args),
+        Command::Fit(args) => patches::run_fit(&args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

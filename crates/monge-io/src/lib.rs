@@ -34,6 +34,7 @@ mod gltf;
 mod iges;
 mod mesh_read;
 mod mesh_write;
+mod multipatch;
 mod schedule;
 mod svg;
 
@@ -53,6 +54,9 @@ pub use iges::{read_iges_surfaces, write_iges, IgesSurface};
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
     write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, MeshFormat, MESH_JSON_KEYS,
+};
+pub use multipatch::{
+    parse_multipatch, read_multipatch, write_multipatch, write_quad_mesh, write_quad_mesh_to,
 };
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,

@@ -1,0 +1,212 @@
+//! Multi-patch design files (§4.7) and assembled quad meshes (§4.5).
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use monge_core::multipatch::MultiPatchDesign;
+use monge_core::symmetry::QuadMesh;
+
+use crate::atomic::{write_atomic, write_output};
+use crate::design::{json_error, DesignFormat};
+use crate::error::IoError;
+use crate::mesh_write::MeshFormat;
+use crate::path_name;
+
+/// Reads a multi-patch design file (§4.7), JSON or TOML by its extension.
+///
+/// The keys are those of [`MultiPatchDesign`]: `patches` (the first with
+/// `theta_deg`, `guide_u`, `guide_v`; the others with `theta_deg`, `attach`
+/// `{patch, side}` and `guide`), optional `tolerance`, `fit` and `symmetry`.
+/// Errors as [`crate::read_design`]: unknown extension, missing file, parse
+/// errors with line and column, non-finite numbers (TOML's `nan`, `inf`).
+pub fn read_multipatch(path: &Path) -> Result<MultiPatchDesign, IoError> {
+    let format = DesignFormat::from_path(path)?;
+    let text = crate::read_to_string(path)?;
+    parse_multipatch_named(&text, format, &path_name(path))
+}
+
+/// Parses the text of a multi-patch design file (§4.7); errors name the file `<input>`.
+///
+/// ```
+/// use monge_io::{parse_multipatch, DesignFormat};
+/// let d = parse_multipatch(r#"{"patches": [
+///   {"theta_deg": 30, "guide_u": {"points": [[0,0,0],[1,0,0.2],[2,0,0.7]]},
+///                     "guide_v": {"points": [[0,0,0],[0,1,0.1],[0,2,0.5]]}},
+///   {"theta_deg": -20, "attach": {"patch": 0, "side": "last_row"},
+///    "guide": {"points": [[2,0,0.7],[3,0,1.5],[4,0,2.6]]}}]}"#, DesignFormat::Json).unwrap();
+/// assert_eq!(d.patches.len(), 2);
+/// ```
+pub fn parse_multipatch(text: &str, format: DesignFormat) -> Result<MultiPatchDesign, IoError> {
+    parse_multipatch_named(text, format, "<input>")
+}
+
+fn parse_multipatch_named(
+    text: &str,
+    format: DesignFormat,
+    file: &str,
+) -> Result<MultiPatchDesign, IoError> {
+    let toml_error = |e: toml::de::Error| {
+        let offset = e.span().map(|s| s.start);
+        IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
+    };
+    match format {
+        // JSON has no NaN or infinity: serde_json refuses them.
+        DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e)),
+        DesignFormat::Toml => {
+            let value: toml::Value = toml::from_str(text).map_err(toml_error)?;
+            if let Some(key) = non_finite(&value, String::new()) {
+                return Err(IoError::NonFinite {
+                    file: file.to_owned(),
+                    key,
+                });
+            }
+            toml::from_str(text).map_err(toml_error)
+        }
+    }
+}
+
+/// The key path of the first non-finite float in a TOML value.
+fn non_finite(value: &toml::Value, key: String) -> Option<String> {
+    match value {
+        toml::Value::Float(x) if !x.is_finite() => Some(key),
+        toml::Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(k, v)| non_finite(v, format!("{key}[{k}]"))),
+        toml::Value::Table(t) => t.iter().find_map(|(name, v)| {
+            let key = if key.is_empty() {
+                name.clone()
+            } else {
+                format!("{key}.{name}")
+            };
+            non_finite(v, key)
+        }),
+        _ => None,
+    }
+}
+
+/// Writes a multi-patch design (§4.7), pretty JSON or TOML by the path's extension, atomically.
+pub fn write_multipatch(design: &MultiPatchDesign, path: &Path) -> Result<(), IoError> {
+    let format = DesignFormat::from_path(path)?;
+    write_atomic(path, |w| match format {
+        DesignFormat::Json => {
+            serde_json::to_writer_pretty(&mut *w, design)?;
+            w.write_all(b"\n")
+        }
+        DesignFormat::Toml => {
+            let text = toml::to_string_pretty(design)
+                .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
+            w.write_all(text.as_bytes())
+        }
+    })
+}
+
+/// Writes an assembled [`QuadMesh`] (§4.5) to `path` (atomically, `-` for standard
+/// output with `format`): OBJ (`v`, `vn`, `f a//a …`), ASCII PLY (vertices with
+/// `nx ny nz`, quads) or JSON (`{"vertices", "normals", "quads"}`, 0-based), every
+/// coordinate written so that it reads back to the same `f64`.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::symmetry::QuadMesh;
+/// # let dir = tempfile::tempdir().unwrap();
+/// let mesh = QuadMesh { vertices: vec![DVec3::ZERO, DVec3::X, DVec3::ONE, DVec3::Y],
+///                       normals: vec![DVec3::Z; 4], quads: vec![[0, 1, 2, 3]] };
+/// let path = dir.path().join("m.obj");
+/// monge_io::write_quad_mesh(&mesh, &path, None).unwrap();
+/// assert!(std::fs::read_to_string(&path).unwrap().contains("f 1//1 2//2 3//3 4//4"));
+/// ```
+pub fn write_quad_mesh(
+    mesh: &QuadMesh,
+    path: &Path,
+    format: Option<MeshFormat>,
+) -> Result<(), IoError> {
+    let format = match format {
+        Some(f) => f,
+        None => MeshFormat::from_path(path)?,
+    };
+    write_output(path, |w| write_quad_mesh_to(mesh, format, w))
+}
+
+/// Writes an assembled [`QuadMesh`] to `w` in `format` (§4.5); see [`write_quad_mesh`].
+pub fn write_quad_mesh_to<W: Write + ?Sized>(
+    mesh: &QuadMesh,
+    format: MeshFormat,
+    w: &mut W,
+) -> io::Result<()> {
+    if mesh
+        .vertices
+        .iter()
+        .chain(&mesh.normals)
+        .any(|p| !p.is_finite())
+    {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "the mesh has a non-finite coordinate",
+        ));
+    }
+    let mut buf = ryu::Buffer::new();
+    let mut xyz = |w: &mut W, tag: &str, p: glam::DVec3| -> io::Result<()> {
+        write!(w, "{tag}")?;
+        for x in p.to_array() {
+            write!(w, " {}", buf.format_finite(x))?;
+        }
+        writeln!(w)
+    };
+    match format {
+        MeshFormat::Obj => {
+            writeln!(
+                w,
+                "# monge quad mesh vertices={} quads={}",
+                mesh.vertices.len(),
+                mesh.quads.len()
+            )?;
+            for p in &mesh.vertices {
+                xyz(w, "v", *p)?;
+            }
+            for n in &mesh.normals {
+                xyz(w, "vn", *n)?;
+            }
+            for q in &mesh.quads {
+                let [a, b, c, d] = q.map(|k| k + 1);
+                writeln!(w, "f {a}//{a} {b}//{b} {c}//{c} {d}//{d}")?;
+            }
+            Ok(())
+        }
+        MeshFormat::Ply => {
+            write!(
+                w,
+                "ply\nformat ascii 1.0\ncomment monge quad mesh\nelement vertex {}\n\
+                 property double x\nproperty double y\nproperty double z\n\
+                 property double nx\nproperty double ny\nproperty double nz\n\
+                 element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+                mesh.vertices.len(),
+                mesh.quads.len()
+            )?;
+            for (p, n) in mesh.vertices.iter().zip(&mesh.normals) {
+                let v: Vec<String> = p
+                    .to_array()
+                    .into_iter()
+                    .chain(n.to_array())
+                    .map(|x| buf.format_finite(x).to_owned())
+                    .collect();
+                writeln!(w, "{}", v.join(" "))?;
+            }
+            for [a, b, c, d] in &mesh.quads {
+                writeln!(w, "4 {a} {b} {c} {d}")?;
+            }
+            Ok(())
+        }
+        MeshFormat::Json => {
+            let arr =
+                |v: &[glam::DVec3]| -> Vec<[f64; 3]> { v.iter().map(|p| p.to_array()).collect() };
+            let value = serde_json::json!({
+                "vertices": arr(&mesh.vertices),
+                "normals": arr(&mesh.normals),
+                "quads": mesh.quads,
+            });
+            serde_json::to_writer(&mut *w, &value)?;
+            w.write_all(b"\n")
+        }
+    }
+}
