@@ -81,7 +81,9 @@ pub enum Command {
              OUT `.json`: `patches` (per face (i, j): the patch sampled on a K × K grid of its own \
              (u, v), row-major, (0, 0) at vertex (i, j), u towards (i+1, j), v towards (i, j+1)) and \
              `lines` (per mesh line: family `u` or `v`, index, and its arcs: center, radius, \
-             normal, start, end). OUT `.obj` or `.ply`: the dense mesh of the whole net. Folded \
+             normal, start, end). OUT `.igs`: the whole net as one exact NURBS surface (IGES \
+             entity 128, rational, degree 2 × 2), which Rhino and other CAD tools open. OUT `.obj` \
+             or `.ply`: the dense mesh of the whole net. Folded \
              faces (crossed quads, arcs over 180°) are refused unless --allow-folded."
         ),
         after_help = format!(
@@ -376,7 +378,7 @@ pub struct SmoothArgs {
     /// The design file (`.json` or `.toml`).
     #[arg(value_name = "DESIGN")]
     pub design: PathBuf,
-    /// Output: `.json` (patches and arcs), `.obj` or `.ply` (dense mesh).
+    /// Output: `.json` (patches and arcs), `.igs` (exact NURBS), `.obj` or `.ply` (dense mesh).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
     /// Samples per patch side, K ≥ 2 (K × K points a patch).

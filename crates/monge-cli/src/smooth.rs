@@ -8,7 +8,7 @@ use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family, Frame};
 use monge_core::{generate, GenerateOptions};
-use monge_io::{read_design, read_mesh, write_mesh_to, write_output, MeshFormat};
+use monge_io::{read_design, read_mesh, write_iges, write_mesh_to, write_output, MeshFormat};
 use serde_json::{json, Value};
 
 use crate::cli::SmoothArgs;
@@ -18,11 +18,16 @@ use crate::Outcome;
 /// Runs `monge smooth`.
 pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
     let out = args.output.as_path();
-    let format = match out.extension().and_then(|e| e.to_str()) {
-        Some(e) if e.eq_ignore_ascii_case("json") => None,
-        _ => Some(MeshFormat::from_path(out).context(
-            "monge smooth writes `.json` (patches and arcs), or `.obj`/`.ply` (a dense mesh)",
-        )?),
+    let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let output = if ext.eq_ignore_ascii_case("json") {
+        SmoothOutput::Json
+    } else if ext.eq_ignore_ascii_case("igs") || ext.eq_ignore_ascii_case("iges") {
+        SmoothOutput::Iges
+    } else {
+        SmoothOutput::Mesh(MeshFormat::from_path(out).context(
+            "monge smooth writes `.json` (patches and arcs), `.igs` (the exact NURBS surface), \
+             or `.obj`/`.ply` (a dense mesh)",
+        )?)
     };
     let start = Instant::now();
     let grid = if args.mesh {
@@ -53,9 +58,13 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
     .with_context(|| format!("{}: the cyclidic net", args.design.display()))?;
     let elapsed = start.elapsed().as_secs_f64();
     let k = args.samples as usize;
-    match format {
-        None => write_output(out, |w| write_net_json(&net, k, w))?,
-        Some(f) => {
+    match output {
+        SmoothOutput::Json => write_output(out, |w| write_net_json(&net, k, w))?,
+        SmoothOutput::Iges => {
+            let surface = net.nurbs();
+            write_output(out, |w| write_iges(&surface, w))?;
+        }
+        SmoothOutput::Mesh(f) => {
             let dense = net.dense(k);
             write_output(out, |w| write_mesh_to(&dense, f, w))?;
         }
@@ -79,6 +88,16 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
         out.display()
     ));
     Ok(Outcome::Success)
+}
+
+/// What `monge smooth` writes, by OUT's extension.
+enum SmoothOutput {
+    /// Patches and arcs.
+    Json,
+    /// The whole net as one exact rational B-spline surface (IGES entity 128).
+    Iges,
+    /// The dense mesh.
+    Mesh(MeshFormat),
 }
 
 /// The JSON contract of `monge smooth -o net.json`: `patches` (each sampled on

@@ -818,6 +818,29 @@ fn smooth_writes_the_cyclidic_net_contract() {
         .args(["-o", "x.json", "--samples", "1"])
         .assert()
         .code(2);
+    // The exact surface as IGES: read back independently, it passes through the mesh vertices.
+    let igs = dir.path().join("net.igs");
+    monge()
+        .arg("smooth")
+        .arg(&design)
+        .arg("-o")
+        .arg(&igs)
+        .assert()
+        .success();
+    let surfaces = monge_io::read_iges_surfaces(&fs::read_to_string(&igs).unwrap()).unwrap();
+    assert_eq!(surfaces.len(), 1);
+    for (i, j) in [
+        (0, 0),
+        (rows - 1, 0),
+        (0, cols - 1),
+        (rows / 2, cols / 3),
+        (rows - 1, cols - 1),
+    ] {
+        let p = surfaces[0].point(i as f64, j as f64);
+        let v = vertex(&mesh, i, j);
+        let d = (0..3).map(|c| (p[c] - v[c]).powi(2)).sum::<f64>().sqrt();
+        assert!(d < 1e-12 * size, "IGES at vertex ({i}, {j}): {d}");
+    }
     // On a mesh read from a file: from its node axes, or from one given frame.
     let mesh_path = dir.path().join("m.json");
     let frame_out = dir.path().join("f.obj");
