@@ -185,6 +185,26 @@ pub enum Command {
     )]
     Render(RenderArgs),
 
+    /// Fabrication output of a gridshell: layers, panels, beams, nodes (§6).
+    #[command(
+        long_about = "Fabrication output of a gridshell built on the design's mesh (§6, Figure 25).\n\n\
+             Generates the mesh (the conical dual for `\"mesh\": \"conical\"`), offsets it to every \
+             --layers distance (node offsets along the node axes §2.2, face offsets §2.3), and writes \
+             into DIR, each file atomically: panels.csv (every face flattened exactly in its plane: \
+             outline, edges, angles, area, circumradius, residuals), beams.csv and segments.csv \
+             (every row and column in its plane, split into circular arcs where the circle changes, \
+             §4.6: radius, sweep, centre, split nodes: the roller-bender list), nodes.csv (axis, \
+             beam angles, height across the layers, torsion, node type), schedule.json (all of \
+             it), panels.dxf and beams.dxf (R12 drawings, labelled), overview.svg (plan) and \
+             gridshell.glb (glTF of all layers, beams swept with a rectangular section). Prints a \
+             summary: counts, segments per beam, distinct radii, node types, node heights, worst \
+             residuals.",
+        after_help = "Examples:\n  \
+             monge fabricate examples/fig12-dupin-theta30.json -o out --layers 0,0.1,0.2\n  \
+             monge fabricate examples/fig25-biarc.json -o out --layers 0,-0.1,-0.2 --section 0.05,0.1"
+    )]
+    Fabricate(crate::fabricate::FabricateArgs),
+
     /// Build a multi-patch mesh (§4.7), optionally assembled by symmetry (§4.5).
     #[command(
         long_about = format!(

@@ -11,6 +11,7 @@
 mod bench;
 mod check;
 mod cli;
+mod fabricate;
 mod generate;
 mod info;
 mod output;
@@ -54,6 +55,7 @@ fn main() -> ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Fabricate(args) => fabricate::run(&args),
         Command::Patches(args) => patches::run_patches(&args),
         Command::Fit(args) => patches::run_fit(&args),
     };

@@ -103,10 +103,11 @@ pub enum FabricationError {
         /// The value given.
         value: f64,
     },
-    /// An edge of a layer has zero length, so it has no direction (a pinch, §5.2).
+    /// An edge of a layer is no longer than `tol · size`, so it has no reliable
+    /// direction: the mesh or its offset pinches there (§5.2).
     #[error(
         "layer {layer} (offset {distance}): edge from vertex ({}, {}) to ({}, {}) has zero length \
-         (the mesh pinches there, §5.2); choose other layer distances or another θ",
+         (at most tol × size; the mesh pinches there, §5.2); choose other layer distances or another θ",
         from.0, from.1, to.0, to.1
     )]
     DegenerateEdge {
@@ -421,7 +422,7 @@ pub fn fabricate(
     };
     let size = base_grid.bbox_diagonal();
     for (k, layer) in layers.iter().enumerate() {
-        check_edges(k, layer)?;
+        check_edges(k, layer, options.tol * size)?;
     }
     let mut panels = Vec::new();
     for (k, layer) in layers.iter().enumerate() {
@@ -501,14 +502,17 @@ fn build_layers(base: BaseMesh<'_>, distances: &[f64]) -> Vec<LayerMesh> {
         .collect()
 }
 
-/// Refuses zero-length edges (they have no direction).
-fn check_edges(k: usize, layer: &LayerMesh) -> Result<(), FabricationError> {
+/// Refuses edges of length at most `tol` (they have no reliable direction).
+fn check_edges(k: usize, layer: &LayerMesh, tol: f64) -> Result<(), FabricationError> {
     let g = &layer.grid;
     for i in 0..g.rows {
         for j in 0..g.cols {
             for (di, dj) in [(1, 0), (0, 1)] {
                 let (a, b) = ((i, j), (i + di, j + dj));
-                if b.0 < g.rows && b.1 < g.cols && g.vertex(a.0, a.1) == g.vertex(b.0, b.1) {
+                if b.0 < g.rows
+                    && b.1 < g.cols
+                    && (g.vertex(a.0, a.1) - g.vertex(b.0, b.1)).length() <= tol
+                {
                     return Err(FabricationError::DegenerateEdge {
                         layer: k,
                         distance: layer.distance,

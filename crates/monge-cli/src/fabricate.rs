@@ -1,0 +1,178 @@
+//! `monge fabricate`: a design → the gridshell's schedules, drawings and model (§6).
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context;
+use monge_core::conical::conical_dual;
+use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
+use monge_core::{generate, GenerateOptions, MeshKind};
+use monge_io::{read_design, write_fabrication};
+
+use crate::output::{eprint, millis, num, print};
+use crate::Outcome;
+
+/// Arguments of `monge fabricate` (§6).
+#[derive(Debug, clap::Args)]
+pub struct FabricateArgs {
+    /// The design file (`.json` or `.toml`); `"mesh": "conical"` fabricates the conical dual.
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output directory (created if missing); existing files of the same names are replaced.
+    #[arg(short, long, value_name = "DIR")]
+    pub output: PathBuf,
+    /// Comma-separated layer distances along the node axes (node offsets §2.2; face offsets
+    /// §2.3 for a conical design), in model units.
+    #[arg(
+        long,
+        value_name = "D,D,…",
+        value_delimiter = ',',
+        default_value = "0",
+        allow_negative_numbers = true,
+        value_parser = parse_finite
+    )]
+    pub layers: Vec<f64>,
+    /// Relative length tolerance (× model size) for a node to lie on a beam segment's circle.
+    #[arg(long, value_name = "TOL", default_value = "1e-9", value_parser = parse_non_negative, allow_negative_numbers = true)]
+    pub tol: f64,
+    /// Relative tolerance (× model size) within which radii count as one [default: --tol].
+    #[arg(long, value_name = "TOL", value_parser = parse_non_negative, allow_negative_numbers = true)]
+    pub radius_tol: Option<f64>,
+    /// Nodes whose beam angles agree within this many degrees are one node type.
+    #[arg(long, value_name = "DEG", default_value = "1e-4", value_parser = parse_non_negative, allow_negative_numbers = true)]
+    pub angle_tol: f64,
+    /// Beam cross-section in the glTF: WIDTH,DEPTH (model units) [default: size/200 each].
+    #[arg(long, value_name = "W,D", value_delimiter = ',', num_args = 1, value_parser = parse_non_negative, allow_negative_numbers = true)]
+    pub section: Vec<f64>,
+    /// Refuse grids of more than N vertices (rows × cols).
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
+
+/// Runs `monge fabricate`.
+pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
+    if !args.section.is_empty() && args.section.len() != 2 {
+        anyhow::bail!(
+            "--section takes WIDTH,DEPTH (two numbers), got {} number(s)",
+            args.section.len()
+        );
+    }
+    let design = read_design(&args.design)?;
+    let start = Instant::now();
+    let options = GenerateOptions {
+        max_vertices: args.max_vertices,
+    };
+    let grid = generate(&design, &options)
+        .with_context(|| args.design.display().to_string())?
+        .grid;
+    let conical = (design.mesh == MeshKind::Conical).then(|| conical_dual(&grid));
+    let base = match &conical {
+        Some(c) => BaseMesh::Conical(c),
+        None => BaseMesh::Circular(&grid),
+    };
+    let fab_options = FabricationOptions {
+        layers: args.layers.clone(),
+        tol: args.tol,
+        radius_tol: args.radius_tol.unwrap_or(args.tol),
+        angle_tol: args.angle_tol.to_radians(),
+    };
+    let f = fabricate(base, &fab_options).with_context(|| args.design.display().to_string())?;
+    let computed = start.elapsed().as_secs_f64();
+    let section = match args.section[..] {
+        [w, d] => (w, d),
+        _ => (f.summary.size / 200.0, f.summary.size / 200.0),
+    };
+    let start = Instant::now();
+    let paths = write_fabrication(&args.output, &f, section)?;
+    eprint(&format!(
+        "computed in {} ms, wrote {} files to `{}` in {} ms.\n",
+        millis(computed),
+        paths.len(),
+        args.output.display(),
+        millis(start.elapsed().as_secs_f64())
+    ));
+    print(&summary(&f.summary, design.mesh))?;
+    Ok(Outcome::Success)
+}
+
+/// The summary printed on standard output.
+fn summary(s: &Summary, kind: MeshKind) -> String {
+    let kind = match kind {
+        MeshKind::Circular => "circular mesh, node offsets (§2.2)",
+        MeshKind::Conical => "conical mesh, face offsets (§2.3)",
+    };
+    let layers: Vec<String> = s.layers.iter().map(|d| num(*d)).collect();
+    let mut out = format!(
+        "gridshell: {kind}; layers at {}; model size {}\n\
+         counts: {} panels, {} beams, {} nodes\n",
+        layers.join(", "),
+        num(s.size),
+        s.panels,
+        s.beams,
+        s.nodes
+    );
+    for fam in &s.families {
+        let name = match fam.family {
+            monge_core::fabrication::LineFamily::Row => "rows (along guide_v)",
+            monge_core::fabrication::LineFamily::Column => "columns (along guide_u)",
+        };
+        let segments = if fam.min_segments == fam.max_segments {
+            fam.min_segments.to_string()
+        } else {
+            format!("{}–{}", fam.min_segments, fam.max_segments)
+        };
+        out.push_str(&format!(
+            "{name}: {} beams, {segments} segment(s) each, at most {} radius(es) per beam, \
+             {} distinct radii, {} straight segments\n",
+            fam.beams, fam.max_radii_per_beam, fam.distinct_radii, fam.straight_segments
+        ));
+    }
+    let radii = match s.radii.as_slice() {
+        [] => "none".to_owned(),
+        [a] => num(*a),
+        [a, .., b] => format!("{} to {}", num(*a), num(*b)),
+    };
+    out.push_str(&format!(
+        "distinct radii: {} ({radii})\n\
+         node types: {}\n\
+         node height: {} to {}\n\
+         max residuals: offset {}, panel planarity {}, panel circularity {}, beam plane {}, \
+         arc {}, torsion {}\n",
+        s.radii.len(),
+        s.node_types,
+        num(s.node_height.0),
+        num(s.node_height.1),
+        sci(s.max_offset_deviation),
+        sci(s.max_panel_planarity),
+        sci(s.max_panel_circularity),
+        sci(s.max_beam_plane_residual),
+        sci(s.max_arc_residual),
+        sci(s.max_torsion)
+    ));
+    out
+}
+
+/// A residual in scientific notation, `0` for zero.
+fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_owned()
+    } else {
+        format!("{x:.1e}")
+    }
+}
+
+/// `--layers`: finite numbers.
+fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("`{s}` is not a finite number")),
+    }
+}
+
+/// Tolerances and sizes: finite, non-negative numbers.
+fn parse_non_negative(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("`{s}` is not a finite, non-negative number")),
+    }
+}

@@ -1,0 +1,121 @@
+//! `monge fabricate` end to end (§6, Figure 25): files, summary, exit statuses.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use monge_io::FABRICATION_FILES;
+use predicates::prelude::*;
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+fn monge() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_monge"))
+}
+
+/// The summary line of one family of beams.
+fn family_line<'a>(stdout: &'a str, family: &str) -> &'a str {
+    stdout
+        .lines()
+        .find(|l| l.starts_with(family))
+        .unwrap_or_else(|| panic!("no `{family}` line in:\n{stdout}"))
+}
+
+#[test]
+fn biarc_design_has_biarc_rows_circular_columns_and_one_node_height() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fab");
+    let assert = monge()
+        .args([
+            "fabricate",
+            example("fig25-biarc.json").to_str().unwrap(),
+            "-o",
+        ])
+        .arg(&out)
+        .args(["--layers", "0,-0.1,-0.2", "--section", "0.05,0.1"])
+        .assert()
+        .success();
+    let stdout = String::from_utf8(assert.get_output().stdout.clone()).unwrap();
+    assert!(
+        stdout.contains("counts: 2016 panels, 162 beams, 725 nodes"),
+        "{stdout}"
+    );
+    let rows = family_line(&stdout, "rows");
+    assert!(
+        rows.contains("2 segment(s) each, at most 2 radius(es) per beam"),
+        "{rows}"
+    );
+    let cols = family_line(&stdout, "columns");
+    assert!(
+        cols.contains("1 segment(s) each, at most 1 radius(es) per beam"),
+        "{cols}"
+    );
+    assert!(stdout.contains("node height: 0.2 to 0.2"), "{stdout}");
+    for name in FABRICATION_FILES {
+        assert!(out.join(name).is_file(), "{name} missing");
+    }
+    // The torsion residual in the summary is at most 1e-9.
+    let torsion: f64 = stdout
+        .rsplit("torsion ")
+        .next()
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    assert!(torsion <= 1e-9);
+}
+
+#[test]
+fn conical_design_uses_face_offsets() {
+    let dir = tempfile::tempdir().unwrap();
+    monge()
+        .args([
+            "fabricate",
+            example("fig13-conical.json").to_str().unwrap(),
+            "-o",
+        ])
+        .arg(dir.path())
+        .args(["--layers", "0,0.2"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "conical mesh, face offsets (§2.3)",
+        ));
+}
+
+#[test]
+fn bad_arguments_exit_with_status_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = example("fig12-dupin-theta30.json");
+    let run = |extra: &[&str]| {
+        monge()
+            .args(["fabricate", design.to_str().unwrap(), "-o"])
+            .arg(dir.path().join("x"))
+            .args(extra)
+            .assert()
+            .code(2)
+    };
+    run(&["--layers", "0,nan"]).stderr(predicate::str::contains("not a finite number"));
+    run(&["--section", "0.1"]).stderr(predicate::str::contains("WIDTH,DEPTH"));
+    run(&["--tol", "-1"]).stderr(predicate::str::contains("non-negative"));
+    // An output "directory" that is a file.
+    let file = dir.path().join("file");
+    std::fs::write(&file, "x").unwrap();
+    monge()
+        .args(["fabricate", design.to_str().unwrap(), "-o"])
+        .arg(&file)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("cannot write"));
+    // A layer distance that collapses the mesh is a fabrication error.
+    monge()
+        .args(["fabricate", design.to_str().unwrap(), "-o"])
+        .arg(dir.path().join("y"))
+        .args(["--layers", "0,-3"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("has zero length"));
+}
