@@ -209,7 +209,7 @@ fn text_report(
 ) -> String {
     let mut s = format!(
         "{name}: {} × {} vertices, {} faces, {}\n\
-         lengths relative to the bounding-box diagonal {}; torsion and normal length are dimensionless\n",
+         lengths and torsion relative to the bounding-box diagonal {}; normal length is dimensionless\n",
         grid.rows,
         grid.cols,
         grid.face_count(),

@@ -105,8 +105,8 @@ pub enum Command {
              circularity (distance of a corner from the circle through the other three), row and \
              column planarity (distance of a vertex from the best-fit plane of its curvature \
              line), all relative to the bounding-box diagonal; and, when the mesh has normals, \
-             torsion (|det(edge, n_p, n_q)| over edges) and normal length (| |n| − 1 |), which are \
-             dimensionless."
+             torsion (|det(edge, n_p, n_q)| over edges, also relative to the diagonal: 0 when the \
+             node axes at both ends of every edge are coplanar) and normal length (| |n| − 1 |)."
         ),
         after_help = format!(
             "Examples:\n  \

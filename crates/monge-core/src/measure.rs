@@ -7,8 +7,9 @@
 //! for conical meshes, vertices whose face normals are concyclic (§2.3).
 //!
 //! Lengths are divided by [`Measurements::scale`], the bounding-box diagonal of
-//! the grid, so every value is relative to the model size; angular quantities
-//! (torsion, normal length, conical error) are dimensionless already.
+//! the grid, so every value is relative to the model size (torsion too: see
+//! [`Measurements::torsion`]); normal length and conical error are dimensionless
+//! already.
 //!
 //! NaN coordinates are never hidden: a NaN measurement wins every maximum.
 
@@ -74,9 +75,13 @@ pub struct Measurements {
     /// largest distance of a vertex from the column's least-squares plane / scale;
     /// `at` = `(i, j)` of the farthest vertex.
     pub column_planarity: Worst,
-    /// Torsion-free nodes (§2.2), with normals: max over edges `pq` of `|det(ê, n̂_p, n̂_q)|` (ê the unit
-    /// edge, n̂ the normalised node axes) — 0 iff the node axes at the two ends
-    /// of the edge are coplanar (torsion-free node); dimensionless.
+    /// Torsion-free nodes (§2.2), with normals: max over edges `pq` of
+    /// `|det(e, n̂_p, n̂_q)| / scale` (e the edge, n̂ the normalised node axes) — 0
+    /// iff the node axes at the two ends of the edge are coplanar (torsion-free
+    /// node). It is the volume spanned by the edge and the two unit axes: how far
+    /// the edge leaves the plane of the axes, times the sine of their angle,
+    /// relative to the model size. (The same with the unit edge would be
+    /// ill-conditioned on edges shrunk to round-off, e.g. offsets near a focal point.)
     /// `at` = `(i, j)`, the edge's end with the smaller indices (the edge goes to
     /// `(i, j+1)` or `(i+1, j)`; the one to `(i, j+1)` is scanned first).
     /// Zero-length edges and zero normals count as 0 here (a zero normal is
@@ -165,7 +170,7 @@ pub fn measure(grid: &QuadGrid) -> Measurements {
     let (torsion, normal_length) = if grid.normals.is_empty() {
         (None, None)
     } else {
-        let (t, l) = node_axes(grid);
+        let (t, l) = node_axes(grid, scale);
         (Some(t), Some(l))
     };
 
@@ -181,7 +186,7 @@ pub fn measure(grid: &QuadGrid) -> Measurements {
 }
 
 /// Torsion and unit length of the node axes (§2.2): `(torsion, normal_length)`.
-fn node_axes(grid: &QuadGrid) -> (Worst, Worst) {
+fn node_axes(grid: &QuadGrid, scale: f64) -> (Worst, Worst) {
     let mut torsion = Worst::NONE;
     let mut length = Worst::NONE;
     for i in 0..grid.rows {
@@ -190,12 +195,12 @@ fn node_axes(grid: &QuadGrid) -> (Worst, Worst) {
             let (p, n) = (grid.vertices[k], grid.normals[k]);
             length.update((n.length() - 1.0).abs(), (i, j));
             let mut edge = |q: usize| {
-                let e = (grid.vertices[q] - p).normalize_or_zero();
+                let e = grid.vertices[q] - p;
                 let det = e.dot(
                     n.normalize_or_zero()
                         .cross(grid.normals[q].normalize_or_zero()),
                 );
-                torsion.update(det.abs(), (i, j));
+                torsion.update(det.abs() / scale, (i, j));
             };
             if j + 1 < grid.cols {
                 edge(k + 1);
@@ -327,9 +332,9 @@ fn best_triple(quad: &[DVec3; 4]) -> usize {
 /// The SVD of the points themselves (not an eigen-decomposition of their
 /// covariance, which squares the condition number) keeps the error of every
 /// distance at the rounding level of the coordinates even for nearly straight
-/// polylines, where the plane is barely determined; a straight polyline, and
-/// any polyline of fewer than 3 points, measures 0 up to rounding. A
-/// non-finite point yields NaN (at that point).
+/// polylines, where the plane is barely determined; a straight polyline measures
+/// 0 up to rounding, a polyline of at most 3 points exactly 0. A non-finite point
+/// yields NaN (at that point).
 ///
 /// ```
 /// use glam::DVec3;
@@ -342,16 +347,17 @@ fn best_triple(quad: &[DVec3; 4]) -> usize {
 /// assert!(d > 0.5 && d < 1.0);
 /// ```
 pub fn polyline_planarity(points: &[DVec3]) -> (f64, usize) {
-    if points.len() < 3 {
+    if let Some(bad) = points.iter().position(|p| !p.is_finite()) {
+        return (f64::NAN, bad); // the SVD would not converge; report, never hide
+    }
+    if points.len() < 4 {
+        // Three points always lie in a plane, however close to a line they are.
         return (0.0, 0);
     }
     // Centre on the first point, then on the centroid, to keep the rounding
     // error relative to the polyline's size rather than its distance to the origin.
     let origin = points[0];
     let centroid = points.iter().map(|p| *p - origin).sum::<DVec3>() / points.len() as f64 + origin;
-    if let Some(bad) = points.iter().position(|p| !p.is_finite()) {
-        return (f64::NAN, bad); // the SVD would not converge; report, never hide
-    }
     let m = DMatrix::from_fn(points.len(), 3, |r, c| (points[r] - centroid)[c]);
     // Golub–Kahan converges in a few sweeps per singular value; the cap only
     // guards against pathological input, which is then reported as NaN.
@@ -650,12 +656,13 @@ mod tests {
         g.normals[p] = rotated;
         let m = measure(&g);
         let t = m.torsion.unwrap();
-        let expect = e.dot(rotated.cross(g.normals[q])).abs();
-        assert!(expect > 0.9 * phi.sin());
+        let edge = (g.vertices[q] - g.vertices[p]).length() / m.scale;
+        let expect = e.dot(rotated.cross(g.normals[q])).abs() * edge;
+        assert!(expect > 0.9 * phi.sin() * edge);
         // The worst edge is the one rotated about, or the other row edge at the vertex.
         assert!([(i0, j0), (i0, j0 - 1)].contains(&t.at), "{t:?}");
         assert!(
-            t.value >= expect * (1.0 - 1e-12) && t.value <= phi.sin() * (1.0 + 1e-12),
+            t.value >= expect * (1.0 - 1e-12) && t.value <= phi.sin() * edge * (1.0 + 1e-12),
             "{t:?}"
         );
         assert!(m.normal_length.unwrap().value <= 1e-15);
