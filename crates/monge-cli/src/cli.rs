@@ -477,6 +477,10 @@ pub struct RenderArgs {
     /// Cells per row of a contact sheet [default: cells closest to 3:2].
     #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true)]
     pub columns: usize,
+    /// Draw the smooth surface instead: the cyclidic net (§4.4), K samples a patch side, with
+    /// every curvature line through the mesh vertices drawn as its chain of circular arcs.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(2..=64))]
+    pub smooth: Option<u32>,
 }
 
 /// `--size`: `WIDTHxHEIGHT`, each from 1 to 16384.

@@ -3,13 +3,15 @@
 use std::path::Path;
 
 use anyhow::{bail, Context};
+use glam::DVec3;
 use monge_core::conical::conical_dual;
+use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::developable::developable;
-use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, MeshKind};
+use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, MeshKind, QuadGrid};
 use monge_io::{read_any_design, write_atomic, AnyDesign};
 use monge_render::{
-    gauss_net, guide_highlights, render_png, render_svg, sheet_png, sheet_svg, Panel, Projection,
-    RenderOptions, Scene, View,
+    gauss_net, guide_highlights, render_png, render_svg, sheet_png, sheet_svg, Highlight, Panel,
+    Projection, RenderOptions, Rgb, Scene, View,
 };
 
 use crate::cli::RenderArgs;
@@ -81,7 +83,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
                 let caption = format!("θ = {}°", num(theta));
                 match generate(&design, &generate_options) {
                     Ok(g) => Ok(Panel {
-                        scene: Some(scene(&g, design.mesh, args.gauss, path)?),
+                        scene: Some(scene(&g, design.mesh, args.gauss, args.smooth, path)?),
                         caption,
                     }),
                     Err(e) => Ok(Panel {
@@ -99,7 +101,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
         );
         (sheet(&panels, args.columns, &options, format)?, what)
     } else if let [path] = args.designs.as_slice() {
-        let (scene, _) = load(path, args.gauss, &generate_options)?;
+        let (scene, _) = load(path, args.gauss, args.smooth, &generate_options)?;
         let bytes = match format {
             Picture::Png => render_png(&scene, &options)?,
             Picture::Svg => render_svg(&scene, &options)?.into_bytes(),
@@ -110,7 +112,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
             .designs
             .iter()
             .map(|path| {
-                let (scene, what) = load(path, args.gauss, &generate_options)?;
+                let (scene, what) = load(path, args.gauss, args.smooth, &generate_options)?;
                 let stem = path.file_stem().unwrap_or_default().to_string_lossy();
                 Ok(Panel {
                     scene: Some(scene),
@@ -135,13 +137,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
 ///
 /// A developable design (§3.3) is drawn with its helix in red and its first
 /// curvature line in a cutting plane (column 0) in blue.
-fn load(path: &Path, gauss: bool, options: &GenerateOptions) -> anyhow::Result<(Scene, String)> {
+fn load(
+    path: &Path,
+    gauss: bool,
+    smooth: Option<u32>,
+    options: &GenerateOptions,
+) -> anyhow::Result<(Scene, String)> {
     let context = || path.display().to_string();
     match read_any_design(path)? {
         AnyDesign::Surface(design) => {
             let g = generate(&design, options).with_context(context)?;
             let what = format!("θ = {}°", num(g.info.theta_deg));
-            Ok((scene(&g, design.mesh, gauss, path)?, what))
+            Ok((scene(&g, design.mesh, gauss, smooth, path)?, what))
         }
         AnyDesign::Developable(d) => {
             let mesh = developable(&d.developable).with_context(context)?;
@@ -172,10 +179,21 @@ fn sheet(
 /// What to draw of a generated design: the circular mesh with its guides (row 0
 /// and column 0), or the conical dual with the guide samples; and the Gauss map
 /// (the circular mesh's node axes) if asked.
-fn scene(g: &Generated, kind: MeshKind, gauss: bool, path: &Path) -> anyhow::Result<Scene> {
-    let mut scene = match kind {
-        MeshKind::Circular => Scene::new(g.grid.clone()),
-        MeshKind::Conical => {
+fn scene(
+    g: &Generated,
+    kind: MeshKind,
+    gauss: bool,
+    smooth: Option<u32>,
+    path: &Path,
+) -> anyhow::Result<Scene> {
+    let mut scene = match (kind, smooth) {
+        (MeshKind::Circular, Some(k)) => smooth_scene(&g.grid, k as usize, path)?,
+        (MeshKind::Circular, None) => Scene::new(g.grid.clone()),
+        (MeshKind::Conical, Some(_)) => bail!(
+            "{}: --smooth draws the cyclidic net of a circular mesh, not of a conical one",
+            path.display()
+        ),
+        (MeshKind::Conical, None) => {
             if g.grid.rows < 3 || g.grid.cols < 3 {
                 bail!(
                     "{}: a conical mesh needs at least 3 samples on each guide (the grid is {} × {})",
@@ -196,6 +214,35 @@ fn scene(g: &Generated, kind: MeshKind, gauss: bool, path: &Path) -> anyhow::Res
     }
     Ok(scene)
 }
+
+/// The cyclidic net of a circular mesh (§4.4) sampled `k` times a patch side,
+/// with its mesh lines (chains of circular arcs) drawn on top in dark grey and
+/// the guides in their colours.
+fn smooth_scene(grid: &QuadGrid, k: usize, path: &Path) -> anyhow::Result<Scene> {
+    let net = CyclidicNet::from_normals(grid, &CyclidicOptions::default())
+        .with_context(|| format!("{}: the cyclidic net", path.display()))?;
+    let dense = net.dense(k);
+    let step = k - 1;
+    let arc = |points: Vec<DVec3>| Highlight {
+        points,
+        color: ARC_COLOR,
+    };
+    let rows = (1..grid.rows).map(|i| arc(dense.row(i * step).collect()));
+    let columns = (1..grid.cols).map(|j| arc(dense.column(j * step).collect()));
+    let mut highlights: Vec<Highlight> = rows.chain(columns).collect();
+    highlights.extend(guide_highlights(
+        &dense.column(0).collect::<Vec<_>>(),
+        &dense.row(0).collect::<Vec<_>>(),
+    ));
+    Ok(Scene {
+        mesh: dense,
+        highlights,
+        gauss: None,
+    })
+}
+
+/// Colour of the curvature lines through the mesh vertices on a smooth net.
+const ARC_COLOR: Rgb = Rgb::new(70, 70, 80);
 
 /// Why a θ of a sweep failed, in a few words for a caption.
 fn short_reason(e: &GenerateError) -> &'static str {

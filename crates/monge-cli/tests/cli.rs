@@ -864,3 +864,27 @@ fn smooth_writes_the_cyclidic_net_contract() {
         .code(2)
         .stderr(predicate::str::contains("--frame takes 6 numbers"));
 }
+
+#[test]
+fn render_smooth_draws_the_net_and_refuses_conical_designs() {
+    let dir = TempDir::new().unwrap();
+    let png = dir.path().join("s.png");
+    monge()
+        .arg("render")
+        .arg(example("fig15-smooth.json"))
+        .args(["--smooth", "4", "--size", "300x200", "-o"])
+        .arg(&png)
+        .assert()
+        .success();
+    assert!(fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    monge()
+        .arg("render")
+        .arg(example("fig13-conical.json"))
+        .args(["--smooth", "4", "-o"])
+        .arg(dir.path().join("c.png"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "--smooth draws the cyclidic net of a circular mesh",
+        ));
+}
