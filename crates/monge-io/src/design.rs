@@ -91,23 +91,53 @@ pub fn parse_design(text: &str, format: DesignFormat) -> Result<Design, IoError>
 }
 
 fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
-    let design: Design = parse_as(text, format, file)?;
-    check_finite(&design, file)?;
-    Ok(design)
+    parse_as(text, format, file)
 }
 
-/// `text` deserialised as a `T`, with [`IoError::Parse`] locating what is wrong.
-fn parse_as<T: DeserializeOwned>(
+/// `text` deserialised as a `T`, with [`IoError::Parse`] locating what is wrong,
+/// or [`IoError::NonFinite`] naming the key of a TOML `nan` or `inf` (JSON has
+/// neither).
+pub(crate) fn parse_as<T: DeserializeOwned>(
     text: &str,
     format: DesignFormat,
     file: &str,
 ) -> Result<T, IoError> {
     match format {
         DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e)),
-        DesignFormat::Toml => toml::from_str(text).map_err(|e| {
-            let offset = e.span().map(|s| s.start);
-            IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
+        DesignFormat::Toml => {
+            let toml_error = |e: toml::de::Error| {
+                let offset = e.span().map(|s| s.start);
+                IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
+            };
+            let value: toml::Value = toml::from_str(text).map_err(toml_error)?;
+            if let Some(key) = non_finite(&value, String::new()) {
+                return Err(IoError::NonFinite {
+                    file: file.to_owned(),
+                    key,
+                });
+            }
+            toml::from_str(text).map_err(toml_error)
+        }
+    }
+}
+
+/// The key path of the first non-finite float in a TOML value.
+fn non_finite(value: &toml::Value, key: String) -> Option<String> {
+    match value {
+        toml::Value::Float(x) if !x.is_finite() => Some(key),
+        toml::Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(k, v)| non_finite(v, format!("{key}[{k}]"))),
+        toml::Value::Table(t) => t.iter().find_map(|(name, v)| {
+            let key = if key.is_empty() {
+                name.clone()
+            } else {
+                format!("{key}.{name}")
+            };
+            non_finite(v, key)
         }),
+        _ => None,
     }
 }
 

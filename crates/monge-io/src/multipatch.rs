@@ -7,7 +7,7 @@ use monge_core::multipatch::MultiPatchDesign;
 use monge_core::symmetry::QuadMesh;
 
 use crate::atomic::{write_atomic, write_output};
-use crate::design::{json_error, DesignFormat};
+use crate::design::{parse_as, DesignFormat};
 use crate::error::IoError;
 use crate::mesh_write::MeshFormat;
 use crate::path_name;
@@ -45,44 +45,7 @@ fn parse_multipatch_named(
     format: DesignFormat,
     file: &str,
 ) -> Result<MultiPatchDesign, IoError> {
-    let toml_error = |e: toml::de::Error| {
-        let offset = e.span().map(|s| s.start);
-        IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
-    };
-    match format {
-        // JSON has no NaN or infinity: serde_json refuses them.
-        DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e)),
-        DesignFormat::Toml => {
-            let value: toml::Value = toml::from_str(text).map_err(toml_error)?;
-            if let Some(key) = non_finite(&value, String::new()) {
-                return Err(IoError::NonFinite {
-                    file: file.to_owned(),
-                    key,
-                });
-            }
-            toml::from_str(text).map_err(toml_error)
-        }
-    }
-}
-
-/// The key path of the first non-finite float in a TOML value.
-fn non_finite(value: &toml::Value, key: String) -> Option<String> {
-    match value {
-        toml::Value::Float(x) if !x.is_finite() => Some(key),
-        toml::Value::Array(items) => items
-            .iter()
-            .enumerate()
-            .find_map(|(k, v)| non_finite(v, format!("{key}[{k}]"))),
-        toml::Value::Table(t) => t.iter().find_map(|(name, v)| {
-            let key = if key.is_empty() {
-                name.clone()
-            } else {
-                format!("{key}.{name}")
-            };
-            non_finite(v, key)
-        }),
-        _ => None,
-    }
+    parse_as(text, format, file)
 }
 
 /// Writes a multi-patch design (§4.7), pretty JSON or TOML by the path's extension, atomically.
