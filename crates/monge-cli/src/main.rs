@@ -17,6 +17,7 @@ mod info;
 mod output;
 mod patches;
 mod render;
+mod scan;
 mod smooth;
 
 use std::process::ExitCode;
@@ -58,6 +59,7 @@ fn main() -> ExitCode {
         Command::Fabricate(args) => fabricate::run(&args),
         Command::Patches(args) => patches::run_patches(&args),
         Command::Fit(args) => patches::run_fit(&args),
+        Command::Scan(args) => scan::run(&args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

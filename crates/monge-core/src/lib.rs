@@ -16,13 +16,18 @@ pub mod cyclidic;
 pub mod darboux;
 pub mod design;
 pub mod developable;
+pub mod fabrication;
 pub mod gauss_map;
 pub mod generate;
 pub mod grid;
 pub mod guide;
 pub mod measure;
+pub mod multipatch;
 pub mod offset;
+pub mod optimise;
 pub mod projective;
+pub mod scan;
+pub mod symmetry;
 
 pub use design::{Design, GuideSpec, MeshKind, Tolerances};
 pub use generate::{
@@ -30,7 +35,3 @@ pub use generate::{
     SINGULAR_WINDOW_DEG,
 };
 pub use grid::QuadGrid;
-pub mod fabrication;
-pub mod multipatch;
-pub mod optimise;
-pub mod symmetry;

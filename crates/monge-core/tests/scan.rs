@@ -1,0 +1,193 @@
+//! Design-space scans (§4.3, Figure 14; §5.2).
+
+use monge_core::scan::{
+    parse_range, plot_svg, scan, set_parameter, to_csv, values, ScanError, Status, CSV_HEADER,
+    MAX_VALUES,
+};
+use monge_core::{Design, GuideSpec};
+
+/// The two guides of Figure 14 (`examples/fig14-family.toml`, fewer samples):
+/// their θ family folds over itself between about 80° and 110°.
+fn figure14() -> Design {
+    Design {
+        mesh: Default::default(),
+        theta_deg: 20.0,
+        guide_u: GuideSpec::bspline(2, vec![[0.0; 3], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]], 21),
+        guide_v: GuideSpec::bspline(2, vec![[0.0; 3], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]], 21),
+        tolerance: None,
+    }
+}
+
+#[test]
+fn the_theta_family_of_figure_14_folds_on_one_interval() {
+    let v = parse_range("-180:180:2").unwrap();
+    assert_eq!(v.len(), 181);
+    let s = scan(&figure14(), "theta", &v, &Default::default(), &|| {}).unwrap();
+    assert_eq!(s.parameter, "theta_deg");
+    // Folded values, with the singular θ = 90° (inadmissible) inside.
+    let bad: Vec<f64> = s
+        .rows
+        .iter()
+        .filter(|r| r.folded_faces > 0 || r.status == Status::Inadmissible)
+        .map(|r| r.value)
+        .collect();
+    let (a, b) = (bad[0], *bad.last().unwrap());
+    // One interval: every value between a and b is folded (or the singular 90°).
+    let inside = s.rows.iter().filter(|r| (a..=b).contains(&r.value)).count();
+    assert_eq!(
+        inside,
+        bad.len(),
+        "folded values {bad:?} are not one interval"
+    );
+    assert!(
+        (76.0..=82.0).contains(&a) && (108.0..=114.0).contains(&b),
+        "[{a}, {b}]"
+    );
+    assert_eq!(
+        s.rows
+            .iter()
+            .filter(|r| r.status == Status::Inadmissible)
+            .map(|r| r.value)
+            .collect::<Vec<_>>(),
+        vec![90.0]
+    );
+    // Outside it the meshes are fair and exact; inside they are still exact (folded, not broken).
+    for r in &s.rows {
+        if r.status != Status::Inadmissible {
+            assert!(
+                r.max_error <= 1e-9,
+                "θ = {}: error {}",
+                r.value,
+                r.max_error
+            );
+            let p = r.panels.unwrap();
+            assert!(p.area_min > 0.0 && p.area_max >= p.area_min && p.max_edge > 0.0);
+        }
+        assert_eq!(r.folded_faces > 0, r.status == Status::Folded);
+    }
+    // The plot shades the two folded runs on either side of 90° and the singular value.
+    let svg = plot_svg(&s);
+    let folded = s.intervals(Status::Folded);
+    assert_eq!(folded, vec![(a, 88.0), (92.0, b)]);
+    for (x, y) in folded {
+        assert!(
+            svg.contains(&format!(
+                "class=\"folded\" data-from=\"{x}\" data-to=\"{y}\""
+            )),
+            "{svg}"
+        );
+    }
+    assert!(svg.contains("class=\"inadmissible\" data-from=\"90\" data-to=\"90\""));
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    // The CSV has one line per value.
+    let csv = to_csv(&s);
+    assert_eq!(csv.lines().count(), 182);
+    assert_eq!(csv.lines().next(), Some(CSV_HEADER));
+    assert!(csv
+        .lines()
+        .any(|l| l.starts_with("90,inadmissible,false,0,,")));
+}
+
+#[test]
+fn results_do_not_depend_on_the_number_of_threads() {
+    let v = parse_range("60:120:3").unwrap();
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let count = std::sync::atomic::AtomicUsize::new(0);
+        let s = pool.install(|| {
+            scan(&figure14(), "theta", &v, &Default::default(), &|| {
+                count.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            })
+            .unwrap()
+        });
+        assert_eq!(
+            count.into_inner(),
+            v.len(),
+            "progress is called once per value"
+        );
+        to_csv(&s)
+    };
+    assert_eq!(run(1), run(4));
+}
+
+#[test]
+fn any_numeric_parameter_can_be_scanned() {
+    // Raise the end of guide_v: the panels grow with it.
+    let s = scan(
+        &figure14(),
+        "guide_v.bspline.control_points[2][2]",
+        &values(1.0, 5.0, 1.0).unwrap(),
+        &Default::default(),
+        &|| {},
+    )
+    .unwrap();
+    assert!(s.rows.iter().all(|r| r.status == Status::Fair));
+    let areas: Vec<f64> = s.rows.iter().map(|r| r.panels.unwrap().area_mean).collect();
+    assert!(areas.windows(2).all(|w| w[1] > w[0]), "{areas:?}");
+    // Turning guide_v's start tangent makes the design invalid there, with the reason.
+    let s = scan(
+        &figure14(),
+        "guide_v.bspline.control_points[1][0]",
+        &[0.0, 1.0],
+        &Default::default(),
+        &|| {},
+    )
+    .unwrap();
+    assert_eq!(s.rows[0].status, Status::Fair);
+    assert_eq!(s.rows[1].status, Status::Invalid);
+    assert!(
+        s.rows[1].error.as_deref().unwrap().contains("90°"),
+        "{:?}",
+        s.rows[1].error
+    );
+}
+
+#[test]
+fn bad_ranges_and_paths_are_typed_errors() {
+    assert!(matches!(
+        parse_range("0:10"),
+        Err(ScanError::BadRange { .. })
+    ));
+    assert!(matches!(
+        parse_range("0:x:1"),
+        Err(ScanError::BadRange { .. })
+    ));
+    assert!(matches!(
+        parse_range("0:inf:1"),
+        Err(ScanError::BadRange { .. })
+    ));
+    assert!(matches!(
+        parse_range("0:10:-1"),
+        Err(ScanError::BadStep { .. })
+    ));
+    assert!(matches!(
+        parse_range("0:10:0"),
+        Err(ScanError::BadStep { .. })
+    ));
+    assert_eq!(
+        parse_range("0:360:1e-6"),
+        Err(ScanError::TooManyValues {
+            count: 360_000_001,
+            limit: MAX_VALUES
+        })
+    );
+    let d = figure14();
+    for path in [
+        "guide_w.points[0][0]",
+        "guide_u.bspline.degree[0]",
+        "guide_u.bspline",
+        "guide_u.bspline.control_points[9][0]",
+    ] {
+        let e = set_parameter(&d, path, 1.0).unwrap_err();
+        assert!(matches!(e, ScanError::BadPath { .. }), "{path}: {e}");
+        assert!(scan(&d, path, &[1.0], &Default::default(), &|| {}).is_err());
+    }
+    // A non-finite value cannot be written.
+    assert!(matches!(
+        set_parameter(&d, "guide_u.bspline.control_points[1][0]", f64::NAN),
+        Err(ScanError::BadPath { .. })
+    ));
+}
