@@ -14,6 +14,7 @@ mod cli;
 mod fabricate;
 mod generate;
 mod info;
+mod optimise_panels;
 mod output;
 mod patches;
 mod render;
@@ -60,6 +61,7 @@ fn main() -> ExitCode {
         Command::Patches(args) => patches::run_patches(&args),
         Command::Fit(args) => patches::run_fit(&args),
         Command::Scan(args) => scan::run(&args),
+        Command::OptimisePanels(args) => optimise_panels::run(&args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

@@ -96,3 +96,37 @@ fn scan_of_another_parameter_and_bad_arguments() {
         .code(2)
         .stderr(predicate::str::contains("no key `guide_w`"));
 }
+
+#[test]
+fn optimise_panels_writes_a_design_with_parameters_that_generates_exactly() {
+    let dir = TempDir::new().unwrap();
+    let (out, mesh) = (dir.path().join("even.json"), dir.path().join("even.obj"));
+    monge()
+        .arg("optimise-panels")
+        .arg(example("fig22-panels.json"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("before: area variance 1.73454e-5"))
+        .stdout(predicate::str::contains("folded faces 0"));
+    let text = fs::read_to_string(&out).unwrap();
+    assert_eq!(text.matches("\"parameters\"").count(), 2, "{text}");
+    monge()
+        .arg("generate")
+        .arg(&out)
+        .arg("-o")
+        .arg(&mesh)
+        .assert()
+        .success();
+    monge().arg("check").arg(&mesh).assert().success();
+    // A design without B-spline guides: exit 2 with the reason.
+    monge()
+        .arg("optimise-panels")
+        .arg(example("fig12-dupin-theta30.json"))
+        .arg("-o")
+        .arg(dir.path().join("x.json"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("bspline"));
+}

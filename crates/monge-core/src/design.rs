@@ -106,6 +106,12 @@ pub struct GuideSpec {
     /// Start tangent of a `points` guide.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangent: Option<Xyz>,
+    /// The parameter values at which a `bspline` guide is sampled (§4.8), instead
+    /// of `samples` uniformly spaced ones: strictly increasing, within the knot
+    /// range, one per sample (its length must equal `bspline.samples`). Chosen by
+    /// the panel-size optimisation (`monge optimise-panels`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parameters: Option<Vec<f64>>,
     /// A clamped B-spline or NURBS curve.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bspline: Option<BSplineSpec>,

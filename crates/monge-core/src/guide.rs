@@ -152,6 +152,58 @@ pub enum GuideError {
         /// The kind given (`bspline`, `arc` or `parabola`).
         kind: &'static str,
     },
+    /// `parameters` is given with a kind other than `bspline`.
+    #[error(
+        "{guide}: `parameters` (sample parameters, §4.8) is only allowed with `bspline`; this guide is a `{kind}`. Remove `parameters`."
+    )]
+    ParametersWithoutBSpline {
+        /// The guide.
+        guide: GuideName,
+        /// The kind given (`points`, `arc` or `parabola`).
+        kind: &'static str,
+    },
+    /// `parameters` does not have one value per sample.
+    #[error(
+        "{guide}: `parameters` has {count} values but `bspline.samples` is {samples}: give one parameter per sample."
+    )]
+    ParameterCount {
+        /// The guide.
+        guide: GuideName,
+        /// Number of parameters given.
+        count: usize,
+        /// `bspline.samples`.
+        samples: usize,
+    },
+    /// `parameters` is not strictly increasing.
+    #[error(
+        "{guide}: `parameters` must increase strictly, but entry {index} is {value} after {previous}."
+    )]
+    ParametersNotIncreasing {
+        /// The guide.
+        guide: GuideName,
+        /// Index of the offending entry.
+        index: usize,
+        /// The entry before it.
+        previous: f64,
+        /// The entry.
+        value: f64,
+    },
+    /// A parameter lies outside the knot range.
+    #[error(
+        "{guide}: `parameters` entry {index} is {value}, outside the curve's parameter range [{lo}, {hi}] (first and last knot)."
+    )]
+    ParameterOutOfRange {
+        /// The guide.
+        guide: GuideName,
+        /// Index of the entry.
+        index: usize,
+        /// The entry.
+        value: f64,
+        /// First knot.
+        lo: f64,
+        /// Last knot.
+        hi: f64,
+    },
     /// Fewer than 2 points or samples.
     #[error(
         "{guide} has {count} sample(s) (from `{field}`); a guide needs at least 2, and at least 3 to be curved. Give more points or raise the number of samples."
@@ -449,9 +501,15 @@ impl Guide {
                 kind: found[0],
             });
         }
+        if spec.parameters.is_some() && found[0] != "bspline" {
+            return Err(GuideError::ParametersWithoutBSpline {
+                guide: name,
+                kind: found[0],
+            });
+        }
         let (samples, tangent) = match (&spec.points, &spec.bspline, &spec.arc, &spec.parabola) {
             (Some(points), ..) => polyline(points, spec.tangent, name)?,
-            (_, Some(b), ..) => sample_bspline(b, name)?,
+            (_, Some(b), ..) => sample_bspline(b, spec.parameters.as_deref(), name)?,
             (_, _, Some(a), _) => sample_arc(a, name, tol)?,
             (.., Some(p)) => sample_parabola(p, name)?,
             _ => unreachable!("exactly one kind was found above"),
@@ -669,7 +727,7 @@ fn check_knots(
 }
 
 /// Clamped uniform knots on `[0, 1]` for `count` control points of `degree`.
-fn clamped_uniform_knots(count: usize, degree: usize) -> Vec<f64> {
+pub(crate) fn clamped_uniform_knots(count: usize, degree: usize) -> Vec<f64> {
     let spans = count - degree;
     let mut knots = vec![0.0; degree + 1];
     knots.extend((1..spans).map(|i| i as f64 / spans as f64));
@@ -714,8 +772,13 @@ impl Nurbs<'_> {
     }
 }
 
-/// The `bspline` kind: `samples` points at uniformly spaced parameters.
-fn sample_bspline(b: &BSplineSpec, name: GuideName) -> Result<Sampled, GuideError> {
+/// The `bspline` kind: `samples` points at uniformly spaced parameters, or at
+/// the given `parameters` (§4.8).
+fn sample_bspline(
+    b: &BSplineSpec,
+    parameters: Option<&[f64]>,
+    name: GuideName,
+) -> Result<Sampled, GuideError> {
     check_count(b.samples, "bspline.samples", name)?;
     let degree = b.degree;
     if degree == 0 {
@@ -775,6 +838,9 @@ fn sample_bspline(b: &BSplineSpec, name: GuideName) -> Result<Sampled, GuideErro
         knots: &knots,
     };
     let (lo, hi) = (knots[0], knots[knots.len() - 1]);
+    if let Some(t) = parameters {
+        check_parameters(t, b.samples, (lo, hi), name)?;
+    }
     let last = (b.samples - 1) as f64;
     let (mut d, mut w) = (
         Vec::with_capacity(degree + 1),
@@ -784,10 +850,53 @@ fn sample_bspline(b: &BSplineSpec, name: GuideName) -> Result<Sampled, GuideErro
         .map(|k| {
             let s = k as f64 / last;
             // Exactly `lo` at s = 0 and exactly `hi` at s = 1.
-            curve.point((1.0 - s) * lo + s * hi, &mut d, &mut w)
+            let u = parameters.map_or((1.0 - s) * lo + s * hi, |t| t[k]);
+            curve.point(u, &mut d, &mut w)
         })
         .collect();
     Ok((samples, Some((tangent, TangentSource::ControlPolygon))))
+}
+
+/// Checks `parameters` of a `bspline` guide (§4.8): one per sample, finite,
+/// strictly increasing, within `[lo, hi]`.
+fn check_parameters(
+    t: &[f64],
+    samples: usize,
+    (lo, hi): (f64, f64),
+    name: GuideName,
+) -> Result<(), GuideError> {
+    if t.len() != samples {
+        return Err(GuideError::ParameterCount {
+            guide: name,
+            count: t.len(),
+            samples,
+        });
+    }
+    if let Some(index) = t.iter().position(|x| !x.is_finite()) {
+        return Err(GuideError::NonFinite {
+            guide: name,
+            field: "parameters",
+            index: Some(index),
+        });
+    }
+    if let Some(index) = t.iter().position(|&x| !(lo..=hi).contains(&x)) {
+        return Err(GuideError::ParameterOutOfRange {
+            guide: name,
+            index,
+            value: t[index],
+            lo,
+            hi,
+        });
+    }
+    if let Some(k) = t.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(GuideError::ParametersNotIncreasing {
+            guide: name,
+            index: k + 1,
+            previous: t[k],
+            value: t[k + 1],
+        });
+    }
+    Ok(())
 }
 
 /// A least-squares plane and line through a point set.

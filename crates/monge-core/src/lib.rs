@@ -25,6 +25,7 @@ pub mod measure;
 pub mod multipatch;
 pub mod offset;
 pub mod optimise;
+pub mod panels;
 pub mod projective;
 pub mod scan;
 pub mod symmetry;

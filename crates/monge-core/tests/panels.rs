@@ -1,0 +1,171 @@
+//! Panel-size optimisation (§4.8, Figure 22) and the `parameters` of B-spline guides.
+
+use monge_core::design::GuideSpec;
+use monge_core::guide::GuideError;
+use monge_core::measure::measure;
+use monge_core::panels::{optimise_panels, PanelError, PanelOptions};
+use monge_core::scan::panel_stats;
+use monge_core::{generate, Design, GenerateError};
+
+/// Figure-22-like: cubic B-spline guides, nearly straight at first and sharply
+/// bent near their ends, so uniform parameters give elongated faces.
+fn figure22() -> Design {
+    Design {
+        mesh: Default::default(),
+        theta_deg: -30.0,
+        guide_u: GuideSpec::bspline(
+            3,
+            vec![[0.0; 3], [4.0, 0.0, 0.0], [6.0, 0.0, 0.4], [6.5, 0.0, 3.0]],
+            9,
+        ),
+        guide_v: GuideSpec::bspline(
+            3,
+            vec![[0.0; 3], [0.0, 3.0, 0.0], [0.0, 5.0, 0.3], [0.0, 5.4, 2.5]],
+            9,
+        ),
+        tolerance: None,
+    }
+}
+
+#[test]
+fn optimised_sampling_evens_out_the_panels_and_stays_exact() {
+    let d = figure22();
+    let r = optimise_panels(&d, &Default::default(), &PanelOptions::default()).unwrap();
+    println!(
+        "variance {:e} -> {:e}, spread {} -> {}, evals {}",
+        r.before.area_variance,
+        r.after.area_variance,
+        r.before.spread(),
+        r.after.spread(),
+        r.evaluations
+    );
+    assert!(r.after.area_variance < 0.5 * r.before.area_variance);
+    assert!(r.after.spread() < r.before.spread());
+    assert!(r.max_error <= 1e-9, "{}", r.max_error);
+    assert_eq!(r.folded_faces, 0);
+    // The optimised design carries the parameters; generating it gives the same panels.
+    for g in [&r.design.guide_u, &r.design.guide_v] {
+        let t = g.parameters.as_ref().unwrap();
+        assert_eq!(t.len(), 9);
+        assert_eq!((t[0], t[8]), (0.0, 1.0));
+        assert!(t.windows(2).all(|w| w[1] > w[0]));
+    }
+    let g = generate(&r.design, &Default::default()).unwrap();
+    assert!(measure(&g.grid).max_error() <= 1e-9);
+    assert_eq!(panel_stats(&g.grid), r.after);
+    // Samples lie on the same curve: the end points do not move.
+    let g0 = generate(&d, &Default::default()).unwrap();
+    assert_eq!(g.grid.vertex(8, 0), g0.grid.vertex(8, 0));
+}
+
+#[test]
+fn panel_errors() {
+    let mut d = figure22();
+    d.guide_u = GuideSpec::points(vec![[0.0; 3], [1.0, 0.0, 0.1], [2.0, 0.0, 0.5]]);
+    d.guide_u.tangent = Some([1.0, 0.0, 0.0]);
+    d.guide_v = GuideSpec::points(vec![[0.0; 3], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]);
+    let o = PanelOptions::default();
+    assert_eq!(
+        optimise_panels(&d, &Default::default(), &o).unwrap_err(),
+        PanelError::NoBSplineGuide
+    );
+    let mut d = figure22();
+    d.guide_u.bspline.as_mut().unwrap().samples = 2;
+    d.guide_v.bspline.as_mut().unwrap().samples = 2;
+    assert_eq!(
+        optimise_panels(&d, &Default::default(), &o).unwrap_err(),
+        PanelError::NothingToChoose
+    );
+    let mut d = figure22();
+    d.theta_deg = 90.0;
+    assert!(matches!(
+        optimise_panels(&d, &Default::default(), &o).unwrap_err(),
+        PanelError::Start(GenerateError::ThetaSingular { .. })
+    ));
+    let d = figure22();
+    let few = PanelOptions {
+        max_evaluations: Some(5),
+        ..o
+    };
+    assert_eq!(
+        optimise_panels(&d, &Default::default(), &few).unwrap_err(),
+        PanelError::TooFewEvaluations {
+            given: 5,
+            needed: 30
+        }
+    );
+    let bad = PanelOptions {
+        max_gap_ratio: 1.0,
+        ..o
+    };
+    assert_eq!(
+        optimise_panels(&d, &Default::default(), &bad).unwrap_err(),
+        PanelError::BadGapRatio(1.0)
+    );
+}
+
+#[test]
+fn guide_parameters_are_validated() {
+    let check = |guide_u: GuideSpec| match generate(
+        &Design {
+            guide_u,
+            ..figure22()
+        },
+        &Default::default(),
+    ) {
+        Err(GenerateError::Guide(e)) => e,
+        other => panic!("{:?}", other.map(|g| g.grid.rows)),
+    };
+    let with = |t: Vec<f64>| GuideSpec {
+        parameters: Some(t),
+        ..figure22().guide_u
+    };
+    let nine = |k: usize, v: f64| {
+        let mut t: Vec<f64> = (0..9).map(|i| i as f64 / 8.0).collect();
+        t[k] = v;
+        t
+    };
+    assert!(matches!(
+        check(with(vec![0.0, 1.0])),
+        GuideError::ParameterCount {
+            count: 2,
+            samples: 9,
+            ..
+        }
+    ));
+    assert!(matches!(
+        check(with(nine(3, 0.1))),
+        GuideError::ParametersNotIncreasing { index: 3, .. }
+    ));
+    assert!(matches!(
+        check(with(nine(8, 1.5))),
+        GuideError::ParameterOutOfRange { index: 8, .. }
+    ));
+    assert!(matches!(
+        check(with(nine(4, f64::NAN))),
+        GuideError::NonFinite {
+            field: "parameters",
+            index: Some(4),
+            ..
+        }
+    ));
+    let arc = GuideSpec {
+        parameters: Some(vec![0.0, 1.0]),
+        ..GuideSpec::arc([0.0, 0.0, -1.0], [0.0; 3], [0.0, -1.0, 0.0], 60.0, 2)
+    };
+    assert!(matches!(
+        check(arc),
+        GuideError::ParametersWithoutBSpline { kind: "arc", .. }
+    ));
+    // Uniform parameters given explicitly sample exactly like no parameters.
+    let uniform = generate(
+        &Design {
+            guide_u: with((0..9).map(|i| i as f64 / 8.0).collect()),
+            ..figure22()
+        },
+        &Default::default(),
+    )
+    .unwrap();
+    let plain = generate(&figure22(), &Default::default()).unwrap();
+    assert_eq!(uniform.grid.vertices, plain.grid.vertices);
+}
