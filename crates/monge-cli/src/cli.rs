@@ -264,6 +264,24 @@ pub enum Command {
     )]
     Fit(FitArgs),
 
+    /// Explore a design in the browser: drag θ and the guides, see the mesh live.
+    #[command(
+        long_about = "Serve the design explorer on this machine and print its address: a web page \
+             with a 3D view of the mesh (guides highlighted, Gauss map beside it), a θ slider, \
+             draggable control points of B-spline guides (kept in their planes, start tangents \
+             kept), sample counts, circular/conical switch, offset distance, live metrics and \
+             warnings where the mesh folds or θ is not admissible; designs load and save in the \
+             design-file format, meshes export as OBJ or JSON.\n\n\
+             The mesh is computed here, by the same code as `monge generate`, for each change \
+             (POST /api/generate). The server listens on 127.0.0.1 unless --host says otherwise, \
+             refuses bodies over 1 MB and grids over --max-vertices. The page's files come from \
+             --web-dir, built by `npm ci && npm run build` in web/.",
+        after_help = "Examples:\n  \
+             monge explore\n  \
+             monge explore examples/fig13-freeform.json --port 0"
+    )]
+    Explore(crate::explore::ExploreArgs),
+
     /// Scan θ (or any number of a design) over a range: CSV table and SVG plot (§4.3, Figure 14).
     #[command(
         long_about = format!(

@@ -11,6 +11,7 @@
 mod bench;
 mod check;
 mod cli;
+mod explore;
 mod fabricate;
 mod generate;
 mod info;
@@ -60,6 +61,7 @@ fn main() -> ExitCode {
         Command::Fabricate(args) => fabricate::run(&args),
         Command::Patches(args) => patches::run_patches(&args),
         Command::Fit(args) => patches::run_fit(&args),
+        Command::Explore(args) => explore::run(&args),
         Command::Scan(args) => scan::run(&args),
         Command::OptimisePanels(args) => optimise_panels::run(&args),
     };

@@ -1,0 +1,774 @@
+//! `monge explore`: the design explorer, a web page served on the local machine
+//! that regenerates the mesh while a designer drags θ and the guides' control
+//! points (§1, §5.1: real-time exploration of the design space).
+//!
+//! The computation stays here, in Rust: the page posts its design to
+//! `POST /api/generate` and draws the mesh it gets back. The server is
+//! [`tiny_http`]: small, synchronous, no async runtime — a few worker threads
+//! answer one designer's requests, each in well under a millisecond plus the
+//! generation itself. The page's files (HTML, JS, CSS and three.js, built by
+//! `npm run build` in `web/`) are served from disk, from `--web-dir`.
+//!
+//! Routes:
+//! * `GET /`, `GET /<file>`: the page, from the web directory.
+//! * `GET /api/design`: the design to start from (DESIGN, or a built-in one of
+//!   100 × 100 faces).
+//! * `POST /api/generate[?offset=D][&arrays=f32][&name=FILE][&format=toml]`:
+//!   a design (JSON, or TOML with `format=toml`) → the mesh as JSON: see
+//!   [`mesh_json`]. Errors are 4xx with `{"error": message}`, the message the
+//!   CLI prints (naming FILE when given).
+//! * `POST /api/export?format=obj|ply|json[&offset=D]`: the mesh as a file,
+//!   exactly as `monge generate` writes it.
+
+use std::fs;
+use std::io::Read;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener};
+use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{anyhow, Context};
+use glam::DVec3;
+use monge_core::conical::conical_dual;
+use monge_core::measure::{conical_error, measure};
+use monge_core::offset::{face_offset, vertex_offset};
+use monge_core::{generate, inspect, Design, GenerateError, GenerateOptions, MeshKind, QuadGrid};
+use monge_io::{parse_design, write_mesh_json, write_mesh_to, DesignFormat, MeshFormat};
+use serde_json::{json, Map, Value};
+use socket2::{Domain, Protocol, Socket, Type};
+use tiny_http::{Header, Method, Request, Response, Server};
+
+use crate::generate::{mode_name, near_singular, range_text};
+use crate::output::{num, print};
+use crate::Outcome;
+
+/// Largest request body accepted, in bytes.
+pub const MAX_BODY: usize = 1 << 20;
+
+/// Default largest grid (`rows · cols` vertices) of one request: 500 × 500.
+pub const MAX_VERTICES: usize = 250_000;
+
+/// Worker threads answering requests.
+const WORKERS: usize = 4;
+
+/// Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2).
+const LOW_CROSSING_SINE: f64 = 1e-3;
+
+/// The design shown when `monge explore` is given none: the `monge bench`
+/// design at 100 × 100 faces (two cubic B-splines, characteristic case, θ = 30°).
+const DEFAULT_DESIGN: &str = r#"{
+  "theta_deg": 30.0,
+  "guide_u": { "bspline": { "degree": 3, "samples": 101,
+    "control_points": [[0, 0, 0], [4, 0, 0], [8, 0, 2.5], [12, 0, 1.0], [16, 0, 3.5]] } },
+  "guide_v": { "bspline": { "degree": 3, "samples": 101,
+    "control_points": [[0, 0, 0], [0, 3, 0], [0, 6, -1.5], [0, 10, 1.0]] } }
+}
+"#;
+
+/// Arguments of `monge explore`.
+#[derive(Debug, clap::Args)]
+pub struct ExploreArgs {
+    /// The design to start from (`.json` or `.toml`) [default: a built-in
+    /// design of 100 × 100 faces].
+    #[arg(value_name = "DESIGN")]
+    pub design: Option<PathBuf>,
+    /// TCP port; 0 picks a free one (the address is printed).
+    #[arg(long, default_value_t = 8642)]
+    pub port: u16,
+    /// Address to listen on. Anyone who can reach it can make the server
+    /// compute: keep the default (this machine only) unless you mean it.
+    #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
+    pub host: IpAddr,
+    /// Directory of the page's files, built by `npm ci && npm run build` in `web/`.
+    #[arg(long, value_name = "DIR", default_value_os_t = default_web_dir())]
+    pub web_dir: PathBuf,
+    /// Refuse designs of more than N grid vertices (rows × cols).
+    #[arg(long, value_name = "N", default_value_t = MAX_VERTICES)]
+    pub max_vertices: usize,
+}
+
+/// `web/dist` of the source tree this binary was built from.
+fn default_web_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../web/dist")
+}
+
+/// What every request handler shares.
+struct Shared {
+    /// The start design, as JSON text.
+    design: String,
+    /// The page's files.
+    web_dir: PathBuf,
+    /// The grid limit.
+    options: GenerateOptions,
+}
+
+/// Runs `monge explore`: serves until the process is stopped.
+pub fn run(args: &ExploreArgs) -> anyhow::Result<Outcome> {
+    let design = match &args.design {
+        Some(path) => {
+            let design = monge_io::read_design(path)?;
+            serde_json::to_string_pretty(&design).context("cannot encode the design as JSON")?
+        }
+        None => DEFAULT_DESIGN.to_owned(),
+    };
+    let server = listen(SocketAddr::new(args.host, args.port))
+        .and_then(|listener| Server::from_listener(listener, None))
+        .map_err(|e| anyhow!("cannot listen on {}:{}: {e}", args.host, args.port))?;
+    let address = server
+        .server_addr()
+        .to_ip()
+        .ok_or_else(|| anyhow!("the server has no IP address"))?;
+    if !args.web_dir.join("index.html").is_file() {
+        crate::output::eprint(&format!(
+            "warning: no page in `{}`: build it with `npm ci && npm run build` in web/, or give \
+             --web-dir; the API works without it.\n",
+            args.web_dir.display()
+        ));
+    }
+    print(&format!(
+        "monge explore: open http://{address}/ (Ctrl-C to stop)\n"
+    ))?;
+    let shared = Arc::new(Shared {
+        design,
+        web_dir: args.web_dir.clone(),
+        options: GenerateOptions {
+            max_vertices: args.max_vertices,
+        },
+    });
+    let server = Arc::new(server);
+    let workers: Vec<_> = (0..WORKERS)
+        .map(|_| {
+            let (server, shared) = (Arc::clone(&server), Arc::clone(&shared));
+            std::thread::spawn(move || {
+                while let Ok(request) = server.recv() {
+                    answer(request, &shared);
+                }
+            })
+        })
+        .collect();
+    for worker in workers {
+        // A worker only ends when the server fails; its panic was already reported.
+        let _ = worker.join();
+    }
+    Ok(Outcome::Success)
+}
+
+/// A TCP listener on `address` whose connections send without delay.
+///
+/// tiny_http writes a response's headers and body in separate writes; with
+/// Nagle's algorithm the body then waits for the browser's delayed ACK of the
+/// headers (measured: 44 ms for every small POST answer in Chromium). Linux
+/// passes `TCP_NODELAY` on from the listener to the connections it accepts.
+fn listen(address: SocketAddr) -> Result<TcpListener, Box<dyn std::error::Error + Send + Sync>> {
+    let socket = Socket::new(
+        Domain::for_address(address),
+        Type::STREAM,
+        Some(Protocol::TCP),
+    )?;
+    socket.set_reuse_address(true)?;
+    socket.set_tcp_nodelay(true)?;
+    socket.bind(&address.into())?;
+    socket.listen(128)?;
+    Ok(socket.into())
+}
+
+/// An answer: status, content type, body, and an optional download name.
+#[derive(Debug)]
+struct Reply {
+    status: u16,
+    content_type: &'static str,
+    body: Vec<u8>,
+    download: Option<String>,
+}
+
+impl Reply {
+    /// A JSON reply.
+    fn json(status: u16, value: &Value) -> Reply {
+        Reply {
+            status,
+            content_type: "application/json",
+            body: value.to_string().into_bytes(),
+            download: None,
+        }
+    }
+
+    /// `{"error": message}` with `status`.
+    fn error(status: u16, message: impl Into<String>) -> Reply {
+        Reply::json(status, &json!({ "error": message.into() }))
+    }
+}
+
+/// Answers one request; a panic in a handler becomes a 500, never a dead worker.
+fn answer(mut request: Request, shared: &Shared) {
+    let reply = match read_body(&mut request) {
+        Ok(body) => {
+            let (method, url) = (request.method().clone(), request.url().to_owned());
+            std::panic::catch_unwind(|| route(&method, &url, &body, shared)).unwrap_or_else(|_| {
+                Reply::error(
+                    500,
+                    "internal error while answering the request (see the server's log)",
+                )
+            })
+        }
+        Err(reply) => reply,
+    };
+    let mut response = Response::from_data(reply.body).with_status_code(reply.status);
+    let mut headers = vec![
+        ("Content-Type", reply.content_type.to_owned()),
+        ("Cache-Control", "no-store".to_owned()),
+    ];
+    if let Some(name) = reply.download {
+        headers.push((
+            "Content-Disposition",
+            format!("attachment; filename=\"{name}\""),
+        ));
+    }
+    for (name, value) in headers {
+        if let Ok(h) = Header::from_bytes(name.as_bytes(), value.as_bytes()) {
+            response.add_header(h);
+        }
+    }
+    // The client may have gone away: nothing to do about it.
+    let _ = request.respond(response);
+}
+
+/// The request body, at most [`MAX_BODY`] bytes, or the 4xx reply.
+fn read_body(request: &mut Request) -> Result<Vec<u8>, Reply> {
+    let too_large = || {
+        Reply::error(
+            413,
+            format!(
+                "the request body is larger than {} bytes: designs are small, send one design",
+                MAX_BODY
+            ),
+        )
+    };
+    if request.body_length().is_some_and(|n| n > MAX_BODY) {
+        return Err(too_large());
+    }
+    let mut body = Vec::new();
+    request
+        .as_reader()
+        .take(MAX_BODY as u64 + 1)
+        .read_to_end(&mut body)
+        .map_err(|e| Reply::error(400, format!("cannot read the request body: {e}")))?;
+    if body.len() > MAX_BODY {
+        return Err(too_large());
+    }
+    Ok(body)
+}
+
+/// Dispatches a request by method and path.
+fn route(method: &Method, url: &str, body: &[u8], shared: &Shared) -> Reply {
+    let (path, query) = url.split_once('?').unwrap_or((url, ""));
+    let query = Query::parse(query);
+    match (method, path) {
+        (Method::Post, "/api/generate") => api_generate(body, &query, shared),
+        (Method::Post, "/api/export") => api_export(body, &query, shared),
+        (Method::Get, "/api/design") => Reply {
+            status: 200,
+            content_type: "application/json",
+            body: shared.design.clone().into_bytes(),
+            download: None,
+        },
+        (_, "/api/generate" | "/api/export" | "/api/design") => {
+            Reply::error(405, format!("{method} is not allowed on {path}"))
+        }
+        (Method::Get, _) => static_file(&shared.web_dir, path),
+        _ => Reply::error(404, format!("no route {method} {path}")),
+    }
+}
+
+/// The query parameters the API understands.
+#[derive(Debug, Default)]
+struct Query {
+    /// `offset=D`: the offset distance (node offset, or face offset of a conical mesh).
+    offset: Option<String>,
+    /// `arrays=f32`: answer in [`binary_reply`]'s format, for the page.
+    f32: bool,
+    /// `name=FILE`: the file the design came from, named in error messages.
+    name: Option<String>,
+    /// `format=…`: `toml` for a TOML design (generate), or the mesh format (export).
+    format: Option<String>,
+}
+
+impl Query {
+    /// Parses `a=b&c=d` (percent-decoding the values).
+    fn parse(query: &str) -> Query {
+        let mut q = Query::default();
+        for pair in query.split('&').filter(|p| !p.is_empty()) {
+            let (key, value) = pair.split_once('=').unwrap_or((pair, ""));
+            let value = percent_decode(value);
+            match key {
+                "offset" => q.offset = Some(value),
+                "arrays" => q.f32 = value == "f32",
+                "name" => q.name = Some(value),
+                "format" => q.format = Some(value),
+                _ => {}
+            }
+        }
+        q
+    }
+
+    /// The offset distance, 0 by default; a 400 reply if it is not a finite number.
+    fn offset(&self) -> Result<f64, Reply> {
+        match self.offset.as_deref().map(str::trim) {
+            None | Some("") => Ok(0.0),
+            Some(s) => s
+                .parse::<f64>()
+                .ok()
+                .filter(|d| d.is_finite())
+                .ok_or_else(|| Reply::error(400, format!("offset `{s}` is not a finite number"))),
+        }
+    }
+}
+
+/// `%XX` and `+` decoded; invalid escapes are kept as they are.
+fn percent_decode(s: &str) -> String {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut k = 0;
+    while k < bytes.len() {
+        let hex = bytes
+            .get(k + 1..k + 3)
+            .and_then(|h| std::str::from_utf8(h).ok())
+            .and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (bytes[k], hex) {
+            (b'%', Some(b)) => {
+                out.push(b);
+                k += 3;
+            }
+            (b'+', _) => {
+                out.push(b' ');
+                k += 1;
+            }
+            (b, _) => {
+                out.push(b);
+                k += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// A generated mesh ready to send: the design's mesh (circular, or its conical
+/// dual) at the requested offset, with what was learnt on the way.
+struct Built {
+    design: Design,
+    generated: monge_core::Generated,
+    /// The mesh to show or export.
+    mesh: QuadGrid,
+    /// The conical dual's face normals, when the design asks for it.
+    face_normals: Option<Vec<DVec3>>,
+    offset: f64,
+    generate_ms: f64,
+}
+
+/// Parses and generates a request's design, or the 4xx reply with the CLI's message.
+///
+/// `format` is the design's format; the query gives its file name and the offset.
+fn build(
+    body: &[u8],
+    format: DesignFormat,
+    query: &Query,
+    shared: &Shared,
+) -> Result<Built, Reply> {
+    let name = query.name.as_deref().unwrap_or("<input>");
+    let offset = query.offset()?;
+    let text = std::str::from_utf8(body)
+        .map_err(|_| Reply::error(400, format!("{name}: the design is not UTF-8 text")))?;
+    let design = parse_design(text, format).map_err(|e| {
+        let message = e.to_string();
+        let message = match message.strip_prefix("<input>") {
+            Some(rest) => format!("{name}{rest}"),
+            None => message,
+        };
+        Reply::error(400, message)
+    })?;
+    let start = Instant::now();
+    let generated = generate(&design, &shared.options).map_err(|e| {
+        let status = match e {
+            GenerateError::GridTooLarge { .. } => 413,
+            _ => 422,
+        };
+        let mut value = json!({ "error": format!("{name}: {e}") });
+        // The admissible θ, when the guides themselves are valid, so the page can
+        // show where θ may go.
+        if let Ok(info) = inspect(&design, &shared.options) {
+            value["mode"] = json!(mode_name(info.mode));
+            value["theta_range"] = json!({
+                "min_deg": info.theta_range.min_deg,
+                "max_deg": info.theta_range.max_deg,
+            });
+        }
+        Reply::json(status, &value)
+    })?;
+    let generate_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (mesh, face_normals) = match design.mesh {
+        MeshKind::Circular => (vertex_offset(&generated.grid, offset), None),
+        MeshKind::Conical => {
+            let g = &generated.grid;
+            if g.rows < 3 || g.cols < 3 {
+                return Err(Reply::error(
+                    422,
+                    format!(
+                        "{name}: a conical mesh needs at least 3 samples on each guide, the \
+                         circular mesh has {} × {}",
+                        g.rows, g.cols
+                    ),
+                ));
+            }
+            let conical = conical_dual(g);
+            let face_normals = conical.face_normals.clone();
+            (face_offset(&conical, offset).grid, Some(face_normals))
+        }
+    };
+    Ok(Built {
+        design,
+        generated,
+        mesh,
+        face_normals,
+        offset,
+        generate_ms,
+    })
+}
+
+/// `POST /api/generate`.
+fn api_generate(body: &[u8], query: &Query, shared: &Shared) -> Reply {
+    let format = match query.format.as_deref() {
+        Some("toml") => DesignFormat::Toml,
+        _ => DesignFormat::Json,
+    };
+    match build(body, format, query, shared) {
+        Ok(built) if query.f32 => {
+            let mut arrays = Vec::new();
+            let header = mesh_json(&built, |points| {
+                arrays.extend(points.iter().flat_map(|p| p.to_array()).map(|x| x as f32));
+                json!({ "f32": points.len() * 3 })
+            });
+            binary_reply(&header, &arrays)
+        }
+        Ok(built) => Reply::json(
+            200,
+            &mesh_json(&built, |points| {
+                json!(points
+                    .iter()
+                    .flat_map(|p| p.to_array())
+                    .collect::<Vec<f64>>())
+            }),
+        ),
+        Err(reply) => reply,
+    }
+}
+
+/// `POST /api/export`: the mesh file `monge generate` would write (the design is JSON).
+fn api_export(body: &[u8], query: &Query, shared: &Shared) -> Reply {
+    let format = match query.format.as_deref() {
+        Some("obj") => MeshFormat::Obj,
+        Some("ply") => MeshFormat::Ply,
+        Some("json") => MeshFormat::Json,
+        other => {
+            return Reply::error(
+                400,
+                format!(
+                    "format `{}` is not a mesh format: give format=obj, ply or json",
+                    other.unwrap_or("")
+                ),
+            )
+        }
+    };
+    let built = match build(body, DesignFormat::Json, query, shared) {
+        Ok(built) => built,
+        Err(reply) => return reply,
+    };
+    let mut out = Vec::new();
+    let written = match format {
+        MeshFormat::Json => write_mesh_json(&built.mesh, &export_extras(&built), &mut out),
+        other => write_mesh_to(&built.mesh, other, &mut out),
+    };
+    if let Err(e) = written {
+        return Reply::error(422, format!("cannot write the mesh: {e}"));
+    }
+    Reply {
+        status: 200,
+        content_type: match format {
+            MeshFormat::Json => "application/json",
+            _ => "text/plain; charset=utf-8",
+        },
+        body: out,
+        download: Some(format!("mesh.{}", format.extension())),
+    }
+}
+
+/// The extra keys `monge generate` writes into JSON meshes.
+fn export_extras(b: &Built) -> Map<String, Value> {
+    let mut extra = Map::new();
+    extra.insert("theta_deg".into(), json!(b.generated.info.theta_deg));
+    extra.insert("mode".into(), json!(mode_name(b.generated.info.mode)));
+    extra.insert("report".into(), report_json(&b.generated));
+    extra.insert("kind".into(), json!(kind_name(b.design.mesh)));
+    extra.insert("offset".into(), json!(b.offset));
+    if let Some(n) = &b.face_normals {
+        let n: Vec<[f64; 3]> = n.iter().map(|v| v.to_array()).collect();
+        extra.insert("face_normals".into(), json!(n));
+    }
+    extra
+}
+
+/// `"circular"` or `"conical"`.
+fn kind_name(kind: MeshKind) -> &'static str {
+    match kind {
+        MeshKind::Circular => "circular",
+        MeshKind::Conical => "conical",
+    }
+}
+
+/// The Combescure report (§5.2) as `monge generate` writes it.
+fn report_json(g: &monge_core::Generated) -> Value {
+    let r = &g.report;
+    json!({
+        "folded_faces": r.folded_faces,
+        "first_fold": r.first_fold.map(|(i, j)| [i, j]),
+        "min_crossing_sine": r.min_crossing.sine,
+        "min_crossing_face": [r.min_crossing.face.0, r.min_crossing.face.1],
+    })
+}
+
+/// The answer of `POST /api/generate`:
+///
+/// * `rows`, `cols`, `kind` (`circular`/`conical`), `offset`, `vertices`
+///   (row-major, flat `[x, y, z, x, …]`);
+/// * `gauss`: `{rows, cols, normals}`, the node axes of the circular mesh (its
+///   Gauss map, Figure 9), flat;
+/// * `guides`: for `u` and `v`, the samples (flat), unit start `tangent` and
+///   `plane_normal`;
+/// * `theta_deg`, `mode`, `theta_range` (`min_deg`, `max_deg`, `text`);
+/// * `report` (folds and pinches, §5.2) and `markers`: the centres of the first
+///   folded face and of the face with the smallest crossing sine, when worth a warning;
+/// * `warnings`: sentences for the designer;
+/// * `metrics`: [`measure`] of the mesh, plus `conical` (conical meshes),
+///   `max_error`, `faces`, `panel_area` and `edge_length` (`min`, `max`);
+/// * `timing_ms` and `design` (the parsed design, re-encoded).
+///
+/// `flat` encodes each array of points; it is called in the order above.
+fn mesh_json(b: &Built, mut flat: impl FnMut(&[DVec3]) -> Value) -> Value {
+    let start = Instant::now();
+    let g = &b.generated;
+    let circular = &g.grid;
+    let vertices = flat(&b.mesh.vertices);
+    let normals = flat(&circular.normals);
+    let mut guide = |guide: &monge_core::guide::Guide| {
+        json!({
+            "points": flat(&guide.points),
+            "tangent": guide.tangent.to_array(),
+            "plane_normal": guide.plane_normal.to_array(),
+        })
+    };
+    let guides = json!({ "u": guide(&g.info.guide_u), "v": guide(&g.info.guide_v) });
+    let face_centre = |(i, j): (usize, usize)| {
+        let f = circular.face(i, j);
+        ((f[0] + f[1] + f[2] + f[3]) / 4.0).to_array()
+    };
+    let r = &g.report;
+    let mut markers = Vec::new();
+    let mut warnings = Vec::new();
+    if near_singular(g.info.theta_deg) {
+        warnings.push(format!(
+            "θ = {}° is at or near the singular θ = +90°, where every Gauss circle passes \
+             through the corner normal: expect a degenerate mesh.",
+            num(g.info.theta_deg)
+        ));
+    }
+    if let Some(face) = r.first_fold {
+        warnings.push(format!(
+            "The mesh folds over itself / pinches (§5.2) in {} faces, first at face ({}, {}) \
+             (marked in red).",
+            r.folded_faces, face.0, face.1
+        ));
+        markers.push(json!({ "kind": "fold", "face": [face.0, face.1], "at": face_centre(face) }));
+    }
+    if r.min_crossing.sine < LOW_CROSSING_SINE {
+        let face = r.min_crossing.face;
+        warnings.push(format!(
+            "Low crossing sine {:.1e} at face ({}, {}): the mesh nearly pinches there (§5.2) \
+             (marked in orange).",
+            r.min_crossing.sine, face.0, face.1
+        ));
+        markers.push(json!({ "kind": "pinch", "face": [face.0, face.1], "at": face_centre(face) }));
+    }
+    let measured = measure(&b.mesh);
+    let mut metrics = serde_json::to_value(&measured).unwrap_or(Value::Null);
+    let m = &mut metrics;
+    m["max_error"] = json!(measured.max_error());
+    if b.design.mesh == MeshKind::Conical {
+        m["conical"] = json!(conical_error(&b.mesh));
+    }
+    m["faces"] = json!(b.mesh.face_count());
+    let (area, edge) = panel_stats(&b.mesh);
+    m["panel_area"] = json!({ "min": area.0, "max": area.1 });
+    m["edge_length"] = json!({ "min": edge.0, "max": edge.1 });
+    let measure_ms = start.elapsed().as_secs_f64() * 1e3;
+    json!({
+        "rows": b.mesh.rows,
+        "cols": b.mesh.cols,
+        "kind": kind_name(b.design.mesh),
+        "offset": b.offset,
+        "vertices": vertices,
+        "gauss": { "rows": circular.rows, "cols": circular.cols, "normals": normals },
+        "guides": guides,
+        "theta_deg": g.info.theta_deg,
+        "mode": mode_name(g.info.mode),
+        "theta_range": {
+            "min_deg": g.info.theta_range.min_deg,
+            "max_deg": g.info.theta_range.max_deg,
+            "text": range_text(g.info.mode, &g.info.theta_range),
+        },
+        "report": report_json(g),
+        "markers": markers,
+        "warnings": warnings,
+        "metrics": metrics,
+        "timing_ms": { "generate": b.generate_ms, "measure_and_encode": measure_ms },
+        "design": b.design,
+    })
+}
+
+/// Smallest and largest panel area (half the diagonals' cross product, exact
+/// for planar quads) and edge length of a grid; zeros for an empty grid.
+fn panel_stats(grid: &QuadGrid) -> ((f64, f64), (f64, f64)) {
+    let extend = |(lo, hi): (f64, f64), x: f64| (lo.min(x), hi.max(x));
+    let empty = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut area, mut edge) = (empty, empty);
+    for i in 0..grid.rows {
+        for j in 0..grid.cols {
+            let p = grid.vertex(i, j);
+            if j + 1 < grid.cols {
+                edge = extend(edge, p.distance(grid.vertex(i, j + 1)));
+            }
+            if i + 1 < grid.rows {
+                edge = extend(edge, p.distance(grid.vertex(i + 1, j)));
+            }
+            if i + 1 < grid.rows && j + 1 < grid.cols {
+                let [a, b, c, d] = grid.face(i, j);
+                area = extend(area, 0.5 * (c - a).cross(d - b).length());
+            }
+        }
+    }
+    let finite = |(lo, hi): (f64, f64)| if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
+    (finite(area), finite(edge))
+}
+
+/// The page's answer: a little-endian `u32` byte length, the JSON `header`,
+/// spaces up to a multiple of 4 bytes, then `arrays` as little-endian `f32`
+/// (the header says how many floats each array has, in order). f32 is plenty
+/// for drawing and halves what the browser receives (about 15 ms a megabyte in
+/// headless Chromium).
+fn binary_reply(header: &Value, arrays: &[f32]) -> Reply {
+    let mut text = header.to_string().into_bytes();
+    text.resize(text.len().next_multiple_of(4), b' ');
+    let length = u32::try_from(text.len()).unwrap_or(u32::MAX);
+    let mut body = Vec::with_capacity(4 + text.len() + 4 * arrays.len());
+    body.extend(length.to_le_bytes());
+    body.extend(text);
+    body.extend(arrays.iter().flat_map(|x| x.to_le_bytes()));
+    Reply {
+        status: 200,
+        content_type: "application/octet-stream",
+        body,
+        download: None,
+    }
+}
+
+/// `GET /<file>`: a file of the web directory, by a path of plain names only.
+fn static_file(web_dir: &Path, path: &str) -> Reply {
+    let relative = match path.trim_start_matches('/') {
+        "" => "index.html",
+        p => p,
+    };
+    let relative = Path::new(relative);
+    let plain = relative
+        .components()
+        .all(|c| matches!(c, Component::Normal(_)));
+    let not_found = || Reply::error(404, format!("no file {path}"));
+    if !plain {
+        return not_found();
+    }
+    let file = web_dir.join(relative);
+    match fs::read(&file) {
+        Ok(body) => Reply {
+            status: 200,
+            content_type: content_type(&file),
+            body,
+            download: None,
+        },
+        Err(_) if !web_dir.join("index.html").is_file() => Reply::error(
+            404,
+            format!(
+                "the page is not built: `{}` has no index.html (run `npm ci && npm run build` in web/, or give --web-dir)",
+                web_dir.display()
+            ),
+        ),
+        Err(_) => not_found(),
+    }
+}
+
+/// The content type of a static file, by extension.
+fn content_type(file: &Path) -> &'static str {
+    match file.extension().and_then(|e| e.to_str()) {
+        Some("html") => "text/html; charset=utf-8",
+        Some("js" | "mjs") => "text/javascript; charset=utf-8",
+        Some("css") => "text/css; charset=utf-8",
+        Some("json") => "application/json",
+        Some("png") => "image/png",
+        Some("svg") => "image/svg+xml",
+        _ => "application/octet-stream",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binary_replies_align_their_floats() {
+        let reply = binary_reply(&json!({ "a": 1 }), &[1.0, -2.0]);
+        // `{"a":1}` is 7 bytes, padded to 8.
+        assert_eq!(&reply.body[..4], &8u32.to_le_bytes());
+        assert_eq!(&reply.body[4..12], b"{\"a\":1} ");
+        assert_eq!(&reply.body[12..16], &1f32.to_le_bytes());
+        assert_eq!(&reply.body[16..], &(-2f32).to_le_bytes());
+    }
+
+    #[test]
+    fn queries_are_decoded() {
+        let q = Query::parse("offset=-0.5&arrays=f32&name=my%20design.json&format=toml");
+        assert_eq!(q.offset().ok(), Some(-0.5));
+        assert!(q.f32);
+        assert_eq!(q.name.as_deref(), Some("my design.json"));
+        assert_eq!(q.format.as_deref(), Some("toml"));
+        assert!(Query::parse("offset=nan").offset().is_err());
+        assert_eq!(Query::parse("").offset().ok(), Some(0.0));
+        assert_eq!(percent_decode("a+b%2"), "a b%2");
+    }
+
+    #[test]
+    fn static_paths_stay_in_the_web_directory() {
+        let dir = std::env::temp_dir().join("monge-explore-static-test");
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("index.html"), "<p>hi</p>").unwrap();
+        let index = static_file(&dir, "/");
+        assert_eq!(
+            (index.status, index.content_type),
+            (200, "text/html; charset=utf-8")
+        );
+        assert_eq!(static_file(&dir, "/../Cargo.toml").status, 404);
+        assert_eq!(static_file(&dir, "/missing.js").status, 404);
+    }
+
+    #[test]
+    fn panel_stats_of_a_unit_square_grid() {
+        let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
+        let (area, edge) = panel_stats(&QuadGrid::new(2, 2, v, vec![]));
+        assert_eq!(area, (1.0, 1.0));
+        assert_eq!(edge, (1.0, 1.0));
+    }
+}

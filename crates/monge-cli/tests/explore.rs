@@ -1,0 +1,283 @@
+//! Tests of `monge explore`'s HTTP API, without a browser: the server is the
+//! real binary on a free port, spoken to over plain TCP.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+
+use serde_json::Value;
+use tempfile::TempDir;
+
+/// An example design by file name.
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+/// A running `monge explore`, stopped when dropped.
+struct Server {
+    child: Child,
+    /// `127.0.0.1:PORT`.
+    address: String,
+    /// Its web directory (holds a tiny page).
+    _web: TempDir,
+}
+
+impl Server {
+    /// Starts `monge explore --port 0 ARGS…` and reads the address it prints.
+    fn start(args: &[&str]) -> Server {
+        let web = TempDir::new().unwrap();
+        std::fs::write(web.path().join("index.html"), "<p>explorer</p>").unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_monge"))
+            .args(["explore", "--port", "0", "--web-dir"])
+            .arg(web.path())
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
+        let address = line
+            .split("http://")
+            .nth(1)
+            .and_then(|rest| rest.split('/').next())
+            .unwrap_or_else(|| panic!("no address in {line:?}"))
+            .to_owned();
+        Server {
+            child,
+            address,
+            _web: web,
+        }
+    }
+
+    /// Sends one HTTP/1.0 request (so the answer is not chunked); returns the
+    /// status and the body.
+    fn request(&self, method: &str, path: &str, body: &[u8]) -> (u16, Vec<u8>) {
+        let mut stream = TcpStream::connect(&self.address).unwrap();
+        write!(
+            stream,
+            "{method} {path} HTTP/1.0\r\nHost: {}\r\nContent-Length: {}\r\n\r\n",
+            self.address,
+            body.len()
+        )
+        .unwrap();
+        // A server that refuses early may close before reading everything.
+        let _ = stream.write_all(body);
+        let mut answer = Vec::new();
+        stream.read_to_end(&mut answer).unwrap();
+        let split = answer
+            .windows(4)
+            .position(|w| w == b"\r\n\r\n")
+            .expect("an HTTP answer");
+        let head = String::from_utf8_lossy(&answer[..split]).into_owned();
+        let status = head.split(' ').nth(1).unwrap().parse().unwrap();
+        (status, answer[split + 4..].to_vec())
+    }
+
+    /// POSTs `body` to `path` and parses the JSON answer.
+    fn post_json(&self, path: &str, body: &[u8]) -> (u16, Value) {
+        let (status, body) = self.request("POST", path, body);
+        let value = serde_json::from_slice(&body)
+            .unwrap_or_else(|e| panic!("not JSON ({e}): {}", String::from_utf8_lossy(&body)));
+        (status, value)
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// `monge generate DESIGN -o -` as JSON.
+fn generate(design: &Path) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_monge"))
+        .arg("generate")
+        .arg(design)
+        .args(["-o", "-"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn generate_answers_the_mesh_of_monge_generate() {
+    let server = Server::start(&[]);
+    for name in [
+        "fig13-freeform.json",
+        "fig10-arbitrary.json",
+        "fig13-conical.json",
+    ] {
+        let design = std::fs::read(example(name)).unwrap();
+        let (status, mesh) = server.post_json("/api/generate", &design);
+        assert_eq!(status, 200, "{name}: {mesh}");
+        let cli = generate(&example(name));
+        assert_eq!(mesh["rows"], cli["rows"], "{name}");
+        assert_eq!(mesh["cols"], cli["cols"], "{name}");
+        let cli_vertices: Vec<f64> = cli["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|v| v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+            .collect();
+        let vertices: Vec<f64> = serde_json::from_value(mesh["vertices"].clone()).unwrap();
+        assert_eq!(vertices, cli_vertices, "{name}: the same mesh, bit for bit");
+        assert_eq!(mesh["report"], cli["report"], "{name}");
+        assert_eq!(mesh["kind"], cli["kind"], "{name}");
+        let metric = |key: &str| mesh["metrics"][key]["value"].as_f64().unwrap();
+        assert!(metric("face_planarity") < 1e-9, "{name}");
+        assert!(metric("row_planarity") < 1e-9, "{name}");
+        let exact = if mesh["kind"] == "conical" {
+            "conical"
+        } else {
+            "circularity"
+        };
+        assert!(metric(exact) < 1e-9, "{name}: {exact}");
+        assert!(mesh["metrics"]["panel_area"]["min"].as_f64().unwrap() > 0.0);
+        assert!(mesh["theta_range"]["text"].is_string());
+    }
+}
+
+#[test]
+fn the_page_gets_floats_after_a_json_header() {
+    let server = Server::start(&[]);
+    let (_, design) = server.request("GET", "/api/design", b"");
+    let (status, body) = server.request("POST", "/api/generate?arrays=f32", &design);
+    assert_eq!(status, 200);
+    let length = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
+    let header: Value = serde_json::from_slice(&body[4..4 + length]).unwrap();
+    assert_eq!(
+        (header["rows"].as_u64(), header["cols"].as_u64()),
+        (Some(101), Some(101))
+    );
+    let floats = [
+        "vertices",
+        "gauss.normals",
+        "guides.u.points",
+        "guides.v.points",
+    ]
+    .iter()
+    .map(|path| {
+        let v = path.split('.').fold(&header, |v, key| &v[key]);
+        v["f32"].as_u64().unwrap() as usize
+    })
+    .sum::<usize>();
+    assert_eq!(body.len(), 4 + length + 4 * floats);
+}
+
+#[test]
+fn bad_designs_get_the_cli_message() {
+    let server = Server::start(&[]);
+    let dir = TempDir::new().unwrap();
+    let cases = [
+        ("syntax.json", "{\"theta_deg\": 30,"),
+        ("unknown.json", "{\"theta_deg\": 30, \"thetadeg\": 1}"),
+    ];
+    for (name, text) in cases {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        let (status, answer) =
+            server.post_json(&format!("/api/generate?name={name}"), text.as_bytes());
+        assert_eq!(status, 400, "{name}: {answer}");
+        // The CLI names the file as given: run it where the file is.
+        let cli = Command::new(env!("CARGO_BIN_EXE_monge"))
+            .current_dir(dir.path())
+            .args(["generate", name, "-o", "out.obj"])
+            .output()
+            .unwrap();
+        assert_eq!(
+            format!("error: {}\n", answer["error"].as_str().unwrap()),
+            String::from_utf8(cli.stderr).unwrap(),
+            "{name}"
+        );
+    }
+    // An inadmissible θ: 422, the CLI's message, and the admissible range.
+    let text = std::fs::read_to_string(example("fig10-arbitrary.json")).unwrap();
+    let mut design: Value = serde_json::from_str(&text).unwrap();
+    design["theta_deg"] = 5.0.into();
+    std::fs::write(dir.path().join("theta.json"), design.to_string()).unwrap();
+    let (status, answer) = server.post_json(
+        "/api/generate?name=theta.json",
+        design.to_string().as_bytes(),
+    );
+    assert_eq!(status, 422, "{answer}");
+    let error = answer["error"].as_str().unwrap();
+    assert!(
+        error.starts_with("theta.json: theta_deg = 5° is not admissible"),
+        "{error}"
+    );
+    assert!(answer["theta_range"]["min_deg"].as_f64().unwrap() > 5.0);
+    // The server is still there.
+    assert_eq!(server.request("GET", "/api/design", b"").0, 200);
+}
+
+#[test]
+fn limits_are_enforced() {
+    let server = Server::start(&["--max-vertices", "1000"]);
+    let design = std::fs::read(example("fig13-freeform.json")).unwrap();
+    let (status, answer) = server.post_json("/api/generate", &design);
+    assert_eq!(status, 413, "61 × 41 vertices is over 1000: {answer}");
+    assert!(answer["error"]
+        .as_str()
+        .unwrap()
+        .contains("more than the limit of 1000"));
+    let huge = vec![b' '; (1 << 20) + 1];
+    let (status, answer) = server.post_json("/api/generate", &huge);
+    assert_eq!(status, 413, "{answer}");
+    let (status, _) = server.post_json("/api/generate?offset=abc", &design);
+    assert_eq!(status, 400);
+}
+
+#[test]
+fn routes_and_files() {
+    let server = Server::start(&[]);
+    assert!(
+        server.address.starts_with("127.0.0.1:"),
+        "binds 127.0.0.1 by default: {}",
+        server.address
+    );
+    assert_eq!(
+        server.request("GET", "/", b""),
+        (200, b"<p>explorer</p>".to_vec())
+    );
+    assert_eq!(server.request("GET", "/nothing.js", b"").0, 404);
+    assert_eq!(server.request("GET", "/../Cargo.toml", b"").0, 404);
+    assert_eq!(server.post_json("/api/unknown", b"{}").0, 404);
+    assert_eq!(server.request("GET", "/api/generate", b"").0, 405);
+    let design = std::fs::read(example("fig2-enneper.json")).unwrap();
+    let (status, obj) = server.request("POST", "/api/export?format=obj", &design);
+    assert_eq!(status, 200);
+    let cli = Command::new(env!("CARGO_BIN_EXE_monge"))
+        .arg("generate")
+        .arg(example("fig2-enneper.json"))
+        .args(["-o", "-", "--format", "obj"])
+        .output()
+        .unwrap();
+    assert!(obj == cli.stdout, "the exported OBJ is monge generate's");
+    assert_eq!(
+        server.request("POST", "/api/export?format=stl", &design).0,
+        400
+    );
+}
+
+#[test]
+fn a_design_file_is_the_start_design() {
+    let server = Server::start(&[example("fig10-arbitrary.json").to_str().unwrap()]);
+    let (status, body) = server.request("GET", "/api/design", b"");
+    assert_eq!(status, 200);
+    let design: Value = serde_json::from_slice(&body).unwrap();
+    let file: Value =
+        serde_json::from_str(&std::fs::read_to_string(example("fig10-arbitrary.json")).unwrap())
+            .unwrap();
+    assert_eq!(design["theta_deg"].as_f64(), file["theta_deg"].as_f64());
+}

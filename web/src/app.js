@@ -1,0 +1,486 @@
+// The page of `monge explore`: holds a design, posts it to the local server on
+// every change and draws the mesh that comes back (three.js).
+import * as THREE from 'three';
+import { OrbitControls } from './vendor/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** Everything the page knows; `window.explorer` exposes it to the e2e test. */
+const state = {
+  design: null,      // the design, in the monge design-file format
+  mesh: null,        // the last good answer of /api/generate, arrays decoded
+  offset: 0,
+  inflight: false,   // a request is on its way
+  queued: null,      // the latest change waiting for it: { t0 }
+  latencies: [],     // ms from input event to the frame that shows its mesh
+  generations: 0,    // answers drawn so far
+  stale: false,      // the design changed and the server refused it
+};
+
+// ---------------------------------------------------------------- the scene
+const view = $('view');
+const renderer = new THREE.WebGLRenderer({ antialias: false });
+renderer.setPixelRatio(window.devicePixelRatio);
+view.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xffffff);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1e5);
+camera.up.set(0, 0, 1); // designs are z-up
+const controls = new OrbitControls(camera, renderer.domElement);
+controls.addEventListener('change', () => redraw());
+scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+camera.add(sun);
+sun.position.set(1, 2, 3);
+scene.add(camera);
+
+const surfaceMaterial = new THREE.MeshLambertMaterial({
+  color: 0xb0c4de, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+});
+const surface = new THREE.Mesh(new THREE.BufferGeometry(), surfaceMaterial);
+const wire = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x3a4a5a, transparent: true, opacity: 0.35 }));
+const guideLines = {
+  u: new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xd02020, depthTest: false })),
+  v: new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x2040d0, depthTest: false })),
+};
+const handles = new THREE.Group();   // draggable control points and their polygons
+const markers = new THREE.Group();   // folds and pinches
+const gauss = new THREE.Group();     // the Gauss map beside the mesh
+const gaussSurface = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({ color: 0xe8c9a0, side: THREE.DoubleSide }));
+const gaussWire = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x705030, transparent: true, opacity: 0.4 }));
+gauss.add(
+  new THREE.Mesh(new THREE.SphereGeometry(0.995, 48, 24), new THREE.MeshBasicMaterial({ color: 0xdddddd, wireframe: true, transparent: true, opacity: 0.35 })),
+  gaussSurface, gaussWire,
+);
+for (const line of Object.values(guideLines)) line.renderOrder = 1;
+scene.add(surface, wire, guideLines.u, guideLines.v, handles, markers, gauss);
+
+let frameRequested = false;
+let pendingLatency = null; // input time of the mesh uploaded but not yet drawn
+
+/** Draws one frame soon (at most one per animation frame). */
+function redraw() {
+  if (frameRequested) return;
+  frameRequested = true;
+  requestAnimationFrame(() => {
+    frameRequested = false;
+    renderer.render(scene, camera);
+    if (pendingLatency !== null) {
+      recordLatency(performance.now() - pendingLatency);
+      pendingLatency = null;
+    }
+  });
+}
+
+function resize() {
+  const { clientWidth: w, clientHeight: h } = view;
+  renderer.setSize(w, h);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+  redraw();
+}
+window.addEventListener('resize', resize);
+
+// ------------------------------------------------------------- geometry
+/** Index buffers of a rows × cols grid: two triangles a face, and its edges. */
+function gridIndices(rows, cols) {
+  const tri = [];
+  const edges = [];
+  const at = (i, j) => i * cols + j;
+  for (let i = 0; i < rows; i++) {
+    for (let j = 0; j < cols; j++) {
+      if (j + 1 < cols) edges.push(at(i, j), at(i, j + 1));
+      if (i + 1 < rows) edges.push(at(i, j), at(i + 1, j));
+      if (i + 1 < rows && j + 1 < cols) tri.push(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  return { tri, edges };
+}
+
+/** Puts a grid into a surface and its wireframe, reusing buffers of the same size. */
+function setGrid(mesh, lines, rows, cols, positions, normals) {
+  let geometry = mesh.geometry;
+  const position = geometry.getAttribute('position');
+  if (!position || geometry.userData.rows !== rows || geometry.userData.cols !== cols) {
+    geometry.dispose();
+    lines.geometry.dispose();
+    geometry = new THREE.BufferGeometry();
+    const { tri, edges } = gridIndices(rows, cols);
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
+    geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
+    geometry.setIndex(tri);
+    geometry.userData = { rows, cols };
+    mesh.geometry = geometry;
+    lines.geometry = new THREE.BufferGeometry();
+    lines.geometry.setAttribute('position', geometry.getAttribute('position'));
+    lines.geometry.setIndex(edges);
+  }
+  geometry.getAttribute('position').array.set(positions);
+  geometry.getAttribute('position').needsUpdate = true;
+  if (normals) {
+    geometry.getAttribute('normal').array.set(normals);
+    geometry.getAttribute('normal').needsUpdate = true;
+  } else {
+    geometry.computeVertexNormals();
+  }
+  geometry.computeBoundingSphere();
+  lines.geometry.computeBoundingSphere();
+}
+
+function setPolyline(line, flat) {
+  line.geometry.dispose();
+  line.geometry = new THREE.BufferGeometry();
+  line.geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(flat), 3));
+}
+
+/** Draws an answer of /api/generate; `t0` is the time of the input that caused it. */
+function showMesh(answer, t0) {
+  const first = state.mesh === null;
+  state.mesh = answer;
+  state.stale = false;
+  const circular = answer.kind === 'circular';
+  // A circular mesh's normals are its node axes (the Gauss map); a conical
+  // mesh's vertex normals are left to three.js.
+  setGrid(surface, wire, answer.rows, answer.cols, answer.vertices, circular ? answer.gauss.normals : null);
+  surfaceMaterial.color.set(0xb0c4de);
+  setGrid(gaussSurface, gaussWire, answer.gauss.rows, answer.gauss.cols, answer.gauss.normals, answer.gauss.normals);
+  setPolyline(guideLines.u, answer.guides.u.points);
+  setPolyline(guideLines.v, answer.guides.v.points);
+  showMarkers(answer);
+  if (first) fitView();
+  showHandles();
+  showMetrics(answer);
+  showThetaRange(answer);
+  $('error').hidden = true;
+  state.generations += 1;
+  pendingLatency = t0;
+  redraw();
+}
+
+/** Red and orange marks where the mesh folds or nearly pinches (§5.2). */
+function showMarkers(answer) {
+  markers.clear();
+  const size = meshSize();
+  for (const m of answer.markers) {
+    const color = m.kind === 'fold' ? 0xff0000 : 0xff8800;
+    const dot = new THREE.Mesh(new THREE.SphereGeometry(0.02 * size, 16, 8), new THREE.MeshBasicMaterial({ color, depthTest: false }));
+    dot.position.fromArray(m.at);
+    dot.renderOrder = 2;
+    markers.add(dot);
+    if (m.kind === 'fold' && answer.kind === 'circular') markers.add(faceHighlight(answer, m.face, color));
+  }
+  const warnings = $('warnings');
+  warnings.replaceChildren(...answer.warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
+}
+
+/** Face (i, j) of the drawn grid, filled with `color` on top of the surface. */
+function faceHighlight(answer, [i, j], color) {
+  const v = (a, b) => Array.from(answer.vertices.subarray(3 * (a * answer.cols + b), 3 * (a * answer.cols + b) + 3));
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array([...v(i, j), ...v(i + 1, j), ...v(i + 1, j + 1), ...v(i, j + 1)]), 3));
+  geometry.setIndex([0, 1, 2, 0, 2, 3]);
+  return new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color, side: THREE.DoubleSide, depthTest: false }));
+}
+
+function meshSize() {
+  return surface.geometry.boundingSphere ? surface.geometry.boundingSphere.radius : 1;
+}
+
+/** Looks at the whole mesh, with the Gauss map beside it. */
+function fitView() {
+  const { center, radius } = surface.geometry.boundingSphere;
+  gauss.scale.setScalar(0.4 * radius);
+  gauss.position.copy(center).add(new THREE.Vector3(1.5 * radius, 0, 0));
+  const target = center.clone().add(new THREE.Vector3(0.6 * radius, 0, 0));
+  controls.target.copy(target);
+  camera.position.copy(target).add(new THREE.Vector3(-0.7, -3.6, 2.2).multiplyScalar(radius));
+  camera.near = radius / 100;
+  camera.far = radius * 100;
+  camera.updateProjectionMatrix();
+  controls.update();
+}
+
+// ----------------------------------------------------- control points
+/** Control points of a guide that can be dragged (B-splines only), or null. */
+function controlPoints(name) {
+  const spec = state.design[`guide_${name}`];
+  return spec.bspline ? spec.bspline.control_points : null;
+}
+
+function showHandles() {
+  handles.clear();
+  const radius = 0.018 * meshSize();
+  for (const [name, color] of [['u', 0xd02020], ['v', 0x2040d0]]) {
+    const points = controlPoints(name);
+    if (!points) continue;
+    const polygon = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineDashedMaterial({ color, dashSize: radius, gapSize: radius, depthTest: false }));
+    setPolyline(polygon, points.flat());
+    polygon.computeLineDistances();
+    handles.add(polygon);
+    points.forEach((p, index) => {
+      const dot = new THREE.Mesh(new THREE.SphereGeometry(radius, 16, 8), new THREE.MeshBasicMaterial({ color: index === 0 ? 0x777777 : color, depthTest: false }));
+      dot.position.fromArray(p);
+      dot.renderOrder = 3;
+      dot.userData = { guide: name, index };
+      handles.add(dot);
+    });
+  }
+}
+
+const raycaster = new THREE.Raycaster();
+let drag = null; // { guide, index, plane, origin, tangent }
+
+function pointerRay(event) {
+  const rect = renderer.domElement.getBoundingClientRect();
+  const ndc = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+  raycaster.setFromCamera(ndc, camera);
+  return raycaster.ray;
+}
+
+renderer.domElement.addEventListener('pointerdown', (event) => {
+  if (!state.mesh) return;
+  pointerRay(event);
+  const hit = raycaster.intersectObjects(handles.children.filter((c) => c.isMesh))[0];
+  // The first point is shared by both guides: it stays.
+  if (!hit || hit.object.userData.index === 0) return;
+  const { guide, index } = hit.object.userData;
+  const points = controlPoints(guide);
+  const origin = new THREE.Vector3().fromArray(points[0]);
+  const normal = new THREE.Vector3().fromArray(state.mesh.guides[guide].plane_normal);
+  drag = {
+    guide, index, origin,
+    plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, origin),
+    tangent: new THREE.Vector3().fromArray(points[1]).sub(origin).normalize(),
+  };
+  controls.enabled = false;
+  renderer.domElement.setPointerCapture(event.pointerId);
+  event.stopImmediatePropagation();
+}, { capture: true });
+
+renderer.domElement.addEventListener('pointermove', (event) => {
+  if (!drag) return;
+  const t0 = performance.now();
+  const p = pointerRay(event).intersectPlane(drag.plane, new THREE.Vector3());
+  if (!p) return;
+  if (drag.index === 1) {
+    // P1 − P0 is the start tangent: slide along it so the guides still meet at 90°.
+    const s = Math.max(p.clone().sub(drag.origin).dot(drag.tangent), 1e-3 * meshSize());
+    p.copy(drag.origin).addScaledVector(drag.tangent, s);
+  }
+  controlPoints(drag.guide)[drag.index] = p.toArray();
+  showHandles();
+  change(t0);
+});
+
+for (const type of ['pointerup', 'pointercancel']) {
+  renderer.domElement.addEventListener(type, () => {
+    drag = null;
+    controls.enabled = true;
+  });
+}
+
+// ------------------------------------------------------------ requests
+/** The design changed at time `t0`: regenerate (the latest change wins). */
+function change(t0) {
+  state.queued = { t0 };
+  if (!state.inflight) pump();
+}
+
+async function pump() {
+  const job = state.queued;
+  state.queued = null;
+  state.inflight = true;
+  try {
+    const answer = await generateMesh('', JSON.stringify(state.design));
+    showMesh(answer, job.t0);
+  } catch (error) {
+    showError(error);
+  } finally {
+    state.inflight = false;
+    if (state.queued) pump();
+  }
+}
+
+/** Throws an Error with the message of a refusal (`{"error": …}`). */
+async function refusal(response) {
+  const answer = await response.json().catch(() => ({ error: `the server answered ${response.status} without JSON` }));
+  throw Object.assign(new Error(answer.error), { answer });
+}
+
+/**
+ * POSTs a design (text) to /api/generate with `query` added; the answer with
+ * its arrays as Float32Arrays, or throws with the server's message. The body
+ * is a u32 header length, the JSON header, then the f32 arrays it counts.
+ */
+async function generateMesh(query, body) {
+  const response = await fetch(`/api/generate?arrays=f32&offset=${state.offset}${query}`, { method: 'POST', body });
+  if (!response.ok) await refusal(response);
+  const buffer = await response.arrayBuffer();
+  const length = new DataView(buffer).getUint32(0, true);
+  const answer = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
+  let at = 4 + length;
+  const take = ({ f32 }) => {
+    const array = new Float32Array(buffer, at, f32);
+    at += 4 * f32;
+    return array;
+  };
+  answer.vertices = take(answer.vertices);
+  answer.gauss.normals = take(answer.gauss.normals);
+  for (const g of ['u', 'v']) answer.guides[g].points = take(answer.guides[g].points);
+  return answer;
+}
+
+/** Shows a refusal: the server's message, the mesh greyed as no longer current. */
+function showError(error) {
+  const box = $('error');
+  box.textContent = error.message;
+  box.hidden = false;
+  if (error.answer && error.answer.theta_range) showThetaRange(error.answer);
+  state.stale = true;
+  surfaceMaterial.color.set(0xcccccc);
+  redraw();
+}
+
+// ------------------------------------------------------------ controls
+const fmt = (x, digits = 3) => (x === null || x === undefined ? '—' : Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
+
+function showMetrics(answer) {
+  const m = answer.metrics;
+  const worst = (w) => (w ? `${fmt(w.value)} at (${w.at.join(', ')})` : '—');
+  const rows = [
+    ['grid', `${answer.rows} × ${answer.cols} vertices, ${m.faces} faces`],
+    ['mesh', `${answer.kind}, ${answer.mode}${answer.offset ? `, offset ${answer.offset}` : ''}`],
+    ['face planarity', worst(m.face_planarity)],
+    answer.kind === 'circular' ? ['circularity', worst(m.circularity)] : ['conical error', worst(m.conical)],
+    ['row / column planarity', `${fmt(m.row_planarity.value)} / ${fmt(m.column_planarity.value)}`],
+    ['torsion', worst(m.torsion)],
+    ['max error (relative)', fmt(m.max_error)],
+    ['panel area', `${fmt(m.panel_area.min)} … ${fmt(m.panel_area.max)}`],
+    ['edge length', `${fmt(m.edge_length.min)} … ${fmt(m.edge_length.max)}`],
+    ['server', `${fmt(answer.timing_ms.generate, 2)} + ${fmt(answer.timing_ms.measure_and_encode, 2)} ms`],
+  ];
+  $('metrics').replaceChildren(...rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    tr.append(Object.assign(document.createElement('td'), { textContent: k }), Object.assign(document.createElement('td'), { textContent: v }));
+    return tr;
+  }));
+}
+
+/** The admissible θ in words and as green on the slider. */
+function showThetaRange({ theta_range: r, mode }) {
+  const slider = $('theta');
+  if (mode === 'characteristic') {
+    $('theta-range').textContent = 'admissible: every θ in (−180°, 180°] (singular at +90°)';
+    slider.style.background = '';
+    return;
+  }
+  $('theta-range').textContent = `admissible: |θ| in [${r.min_deg.toFixed(2)}°, ${r.max_deg.toFixed(2)}°]`;
+  const pct = (deg) => `${((deg + 180) / 360) * 100}%`;
+  const ok = '#b5e3b5';
+  const no = '#f3c0c0';
+  slider.style.background = `linear-gradient(to right, ${no} ${pct(-r.max_deg)}, ${ok} ${pct(-r.max_deg)} ${pct(-r.min_deg)}, ${no} ${pct(-r.min_deg)} ${pct(r.min_deg)}, ${ok} ${pct(r.min_deg)} ${pct(r.max_deg)}, ${no} ${pct(r.max_deg)})`;
+}
+
+function recordLatency(ms) {
+  state.latencies.push(ms);
+  const recent = state.latencies.slice(-50).sort((a, b) => a - b);
+  const median = recent[Math.floor(recent.length / 2)];
+  $('latency').textContent = `input → drawn frame: ${ms.toFixed(1)} ms (median of the last ${recent.length}: ${median.toFixed(1)} ms)`;
+}
+
+/** Puts the design's values into the controls. */
+function syncControls() {
+  const d = state.design;
+  $('theta').value = d.theta_deg;
+  $('theta-value').textContent = Number(d.theta_deg).toFixed(1);
+  $('kind').value = d.mesh === 'conical' ? 'conical' : 'circular';
+  for (const g of ['u', 'v']) {
+    const spec = d[`guide_${g}`];
+    const sampled = spec.bspline || spec.arc || spec.parabola;
+    $(`samples-${g}`).value = sampled ? sampled.samples : spec.points.length;
+    $(`samples-${g}`).disabled = !sampled;
+  }
+}
+
+$('theta').addEventListener('input', (event) => {
+  const t0 = performance.now();
+  state.design.theta_deg = Number(event.target.value);
+  $('theta-value').textContent = state.design.theta_deg.toFixed(1);
+  change(t0);
+});
+for (const g of ['u', 'v']) {
+  $(`samples-${g}`).addEventListener('change', (event) => {
+    const spec = state.design[`guide_${g}`];
+    (spec.bspline || spec.arc || spec.parabola).samples = Math.round(Number(event.target.value));
+    change(performance.now());
+  });
+}
+$('kind').addEventListener('change', (event) => {
+  if (event.target.value === 'conical') state.design.mesh = 'conical';
+  else delete state.design.mesh;
+  change(performance.now());
+});
+$('offset').addEventListener('change', (event) => {
+  state.offset = Number(event.target.value) || 0;
+  change(performance.now());
+});
+$('show-gauss').addEventListener('change', (event) => {
+  gauss.visible = event.target.checked;
+  redraw();
+});
+
+/** Saves `blob` as a download named `name`. */
+function download(blob, name) {
+  const a = Object.assign(document.createElement('a'), { href: URL.createObjectURL(blob), download: name });
+  a.click();
+  setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
+$('save').addEventListener('click', () => {
+  download(new Blob([`${JSON.stringify(state.design, null, 2)}\n`], { type: 'application/json' }), 'design.json');
+});
+for (const format of ['obj', 'json']) {
+  $(`export-${format}`).addEventListener('click', async () => {
+    const response = await fetch(`/api/export?format=${format}&offset=${state.offset}`, { method: 'POST', body: JSON.stringify(state.design) });
+    if (response.ok) download(await response.blob(), `mesh.${format}`);
+    else await refusal(response).catch(showError);
+  });
+}
+$('load-button').addEventListener('click', () => $('load').click());
+$('load').addEventListener('change', async (event) => {
+  const file = event.target.files[0];
+  event.target.value = '';
+  if (!file) return;
+  const format = file.name.toLowerCase().endsWith('.toml') ? '&format=toml' : '';
+  try {
+    const t0 = performance.now();
+    const answer = await generateMesh(`&name=${encodeURIComponent(file.name)}${format}`, await file.text());
+    state.design = answer.design;
+    syncControls();
+    state.mesh = null; // fit the view to the new design
+    showMesh(answer, t0);
+  } catch (error) {
+    showError(error); // the current design stays
+  }
+});
+
+// ---------------------------------------------------------------- start
+async function start() {
+  resize();
+  state.design = await (await fetch('/api/design')).json();
+  syncControls();
+  change(performance.now());
+}
+
+/** For the e2e test: state, and where a control point is on the screen. */
+window.explorer = {
+  state,
+  handleOnScreen(guide, index) {
+    const p = new THREE.Vector3().fromArray(controlPoints(guide)[index]).project(camera);
+    const rect = renderer.domElement.getBoundingClientRect();
+    return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
+  },
+  vertices: () => Array.from(state.mesh.vertices),
+  idle: () => !state.inflight && state.queued === null && pendingLatency === null,
+};
+start();
