@@ -8,6 +8,7 @@
 //! Exit statuses: 0 success, 1 `check` found a metric above its tolerance,
 //! 2 any error (printed as `error: <message>` on stderr).
 
+mod align;
 mod bench;
 mod check;
 mod cli;
@@ -64,6 +65,7 @@ fn main() -> ExitCode {
         Command::Explore(args) => explore::run(&args),
         Command::Scan(args) => scan::run(&args),
         Command::OptimisePanels(args) => optimise_panels::run(&args),
+        Command::Align(args) => align::run(&args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

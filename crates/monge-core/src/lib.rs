@@ -10,6 +10,7 @@
 //! [`combescure`] (the discrete Combescure transform, §2.2.3) → a [`QuadGrid`].
 //! [`measure`] measures any quad mesh independently of how it was made.
 
+pub mod boundary;
 pub mod combescure;
 pub mod conical;
 pub mod cyclidic;
