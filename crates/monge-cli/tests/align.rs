@@ -4,19 +4,11 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-}
-
-fn monge() -> Command {
-    Command::cargo_bin("monge").unwrap()
-}
+mod common;
+use common::{example, monge};
 
 /// Largest distance of each boundary line of the JSON mesh `mesh` from the planes
 /// of the planes file, relative to the bounding-box diagonal.

@@ -4,26 +4,13 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
 use monge_core::{inspect, GenerateOptions};
 use predicates::prelude::*;
 use serde_json::Value;
 use tempfile::TempDir;
 
-/// The bundled example designs.
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
-}
-
-/// An example design by file name.
-fn example(name: &str) -> PathBuf {
-    examples().join(name)
-}
-
-/// The `monge` binary.
-fn monge() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_monge"))
-}
+mod common;
+use common::{example, examples, monge};
 
 /// Examples that must generate and pass `check`.
 const REQUIRED: [&str; 5] = [

@@ -2,21 +2,12 @@
 //! `monge optimise-panels` (outputs, summaries, exit statuses).
 
 use std::fs;
-use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-}
-
-fn monge() -> Command {
-    Command::cargo_bin("monge").unwrap()
-}
+mod common;
+use common::{example, monge};
 
 #[test]
 fn scan_writes_csv_and_plot_with_the_folded_interval() {

@@ -1,20 +1,10 @@
 //! `monge fabricate` end to end (§6, Figure 25): files, summary, exit statuses.
 
-use std::path::{Path, PathBuf};
-
-use assert_cmd::Command;
 use monge_io::FABRICATION_FILES;
 use predicates::prelude::*;
 
-fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-}
-
-fn monge() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_monge"))
-}
+mod common;
+use common::{example, monge};
 
 /// The summary line of one family of beams.
 fn family_line<'a>(stdout: &'a str, family: &str) -> &'a str {

@@ -1,22 +1,13 @@
 //! `monge patches` and `monge fit` (§4.7, §4.5): outputs, summaries and exit statuses.
 
 use std::fs;
-use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
 use predicates::prelude::*;
 use serde_json::Value;
 use tempfile::TempDir;
 
-fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-}
-
-fn monge() -> Command {
-    Command::cargo_bin("monge").unwrap()
-}
+mod common;
+use common::{example, monge};
 
 #[test]
 fn patches_writes_one_grid_with_patches_and_line_planes() {
