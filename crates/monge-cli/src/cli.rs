@@ -397,6 +397,8 @@ pub enum FormatArg {
     Ply,
     /// JSON (`rows`, `cols`, `vertices`, `normals`).
     Json,
+    /// Binary glTF, for viewers (f32 coordinates; not read back by `check`).
+    Glb,
 }
 
 impl From<FormatArg> for MeshFormat {
@@ -405,6 +407,7 @@ impl From<FormatArg> for MeshFormat {
             FormatArg::Obj => MeshFormat::Obj,
             FormatArg::Ply => MeshFormat::Ply,
             FormatArg::Json => MeshFormat::Json,
+            FormatArg::Glb => MeshFormat::Glb,
         }
     }
 }

@@ -875,3 +875,23 @@ fn render_smooth_draws_the_net_and_refuses_conical_designs() {
             "--smooth draws the cyclidic net of a circular mesh",
         ));
 }
+
+#[test]
+fn meshes_also_go_to_gltf_for_viewers_but_are_not_measured_from_it() {
+    let dir = TempDir::new().unwrap();
+    let glb = dir.path().join("m.glb");
+    monge()
+        .arg("generate")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(&glb)
+        .assert()
+        .success();
+    assert!(fs::read(&glb).unwrap().starts_with(b"glTF"));
+    monge()
+        .arg("check")
+        .arg(&glb)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("glTF"));
+}

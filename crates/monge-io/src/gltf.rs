@@ -12,6 +12,7 @@ use glam::DVec3;
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 use monge_core::fabrication::{Beam, Fabrication};
+use monge_core::QuadGrid;
 
 /// Binary data and the glTF objects that describe it, being built.
 struct Builder {
@@ -20,6 +21,57 @@ struct Builder {
 }
 
 impl Builder {
+    /// An empty document made by `generator`, with one scene called `scene`.
+    fn new(generator: &str, scene: &str) -> Builder {
+        let mut b = Builder {
+            root: json::Root {
+                asset: json::Asset {
+                    generator: Some(generator.into()),
+                    ..Default::default()
+                },
+                ..Default::default()
+            },
+            bin: Vec::new(),
+        };
+        let scene = b.root.push(json::Scene {
+            extensions: None,
+            extras: Default::default(),
+            name: Some(scene.into()),
+            nodes: Vec::new(),
+        });
+        b.root.scene = Some(scene);
+        b
+    }
+
+    /// Writes the document as binary glTF (`.glb`).
+    fn finish(mut self, w: &mut (impl Write + ?Sized)) -> io::Result<()> {
+        while self.bin.len() % 4 != 0 {
+            self.bin.push(0);
+        }
+        self.root.push(json::Buffer {
+            byte_length: USize64::from(self.bin.len()),
+            name: None,
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let mut text = self.root.to_vec().map_err(io::Error::other)?;
+        while text.len() % 4 != 0 {
+            text.push(b' ');
+        }
+        let total = 12 + 8 + text.len() + 8 + self.bin.len();
+        let total = u32::try_from(total).map_err(|_| io::Error::other("glTF larger than 4 GiB"))?;
+        w.write_all(b"glTF")?;
+        w.write_all(&2u32.to_le_bytes())?;
+        w.write_all(&total.to_le_bytes())?;
+        w.write_all(&(text.len() as u32).to_le_bytes())?;
+        w.write_all(b"JSON")?;
+        w.write_all(&text)?;
+        w.write_all(&(self.bin.len() as u32).to_le_bytes())?;
+        w.write_all(b"BIN\0")?;
+        w.write_all(&self.bin)
+    }
+
     /// Appends `bytes` as a buffer view (4-byte aligned) and returns its index.
     fn view(
         &mut self,
@@ -181,65 +233,79 @@ fn sweep(
 /// `layer k beams` (every row and column swept with a `width × depth`
 /// rectangular section: `width` along the beam plane's normal, `depth` in the plane).
 pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> io::Result<()> {
-    let mut b = Builder {
-        root: json::Root {
-            asset: json::Asset {
-                generator: Some("monge fabricate".into()),
-                ..Default::default()
-            },
-            ..Default::default()
-        },
-        bin: Vec::new(),
-    };
+    let mut b = Builder::new("monge fabricate", "gridshell");
     b.root.push(material("glass", [0.55, 0.75, 0.95, 0.4]));
     b.root.push(material("steel", [0.45, 0.45, 0.5, 1.0]));
-    let scene = b.root.push(json::Scene {
-        extensions: None,
-        extras: Default::default(),
-        name: Some("gridshell".into()),
-        nodes: Vec::new(),
-    });
-    b.root.scene = Some(scene);
     for (k, layer) in f.layers.iter().enumerate() {
         let g = &layer.grid;
-        let mut triangles = Vec::new();
-        for i in 0..g.rows - 1 {
-            for j in 0..g.cols - 1 {
-                let [a, bb, c, d] = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
-                    .map(|(i, j)| g.index(i, j) as u32);
-                triangles.extend([a, bb, c, a, c, d]);
-            }
-        }
-        b.mesh(format!("layer {k} panels"), &g.vertices, &triangles, 0);
+        b.mesh(
+            format!("layer {k} panels"),
+            &g.vertices,
+            &grid_triangles(g),
+            0,
+        );
         let (mut positions, mut triangles) = (Vec::new(), Vec::new());
         for beam in f.beams.iter().filter(|beam| beam.layer == k) {
             sweep(beam, width, depth, &mut positions, &mut triangles);
         }
         b.mesh(format!("layer {k} beams"), &positions, &triangles, 1);
     }
-    while b.bin.len() % 4 != 0 {
-        b.bin.push(0);
-    }
-    b.root.push(json::Buffer {
-        byte_length: USize64::from(b.bin.len()),
-        name: None,
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
+    b.finish(w)
+}
+
+/// Two triangles per face of a quad grid.
+fn grid_triangles(g: &QuadGrid) -> Vec<u32> {
+    let quads = (0..g.face_count()).map(|k| {
+        let (i, j) = (k / (g.cols - 1), k % (g.cols - 1));
+        [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(i, j)| g.index(i, j))
     });
-    let mut text = b.root.to_vec().map_err(io::Error::other)?;
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + b.bin.len();
-    let total = u32::try_from(total).map_err(|_| io::Error::other("glTF larger than 4 GiB"))?;
-    w.write_all(b"glTF")?;
-    w.write_all(&2u32.to_le_bytes())?;
-    w.write_all(&total.to_le_bytes())?;
-    w.write_all(&(text.len() as u32).to_le_bytes())?;
-    w.write_all(b"JSON")?;
-    w.write_all(&text)?;
-    w.write_all(&(b.bin.len() as u32).to_le_bytes())?;
-    w.write_all(b"BIN\0")?;
-    w.write_all(&b.bin)
+    quad_triangles(quads)
+}
+
+/// Two triangles per quad of vertex indices.
+fn quad_triangles(quads: impl IntoIterator<Item = [usize; 4]>) -> Vec<u32> {
+    quads
+        .into_iter()
+        .flat_map(|q| {
+            let [a, b, c, d] = q.map(|v| v as u32);
+            [a, b, c, a, c, d]
+        })
+        .collect()
+}
+
+/// A quad mesh as binary glTF (`.glb`): one double-sided mesh, two triangles a
+/// quad, positions in `f32` as glTF requires — for looking at a mesh in any
+/// glTF viewer, not for its 1e-9 geometry (keep OBJ, PLY or JSON for that).
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::QuadGrid;
+/// let g = QuadGrid::new(2, 2, vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y], vec![]);
+/// let mut glb = Vec::new();
+/// monge_io::write_quads_glb(&g.vertices, [[0, 2, 3, 1]], &mut glb).unwrap();
+/// assert_eq!(&glb[..4], b"glTF");
+/// ```
+pub fn write_quads_glb<W: Write + ?Sized>(
+    vertices: &[DVec3],
+    quads: impl IntoIterator<Item = [usize; 4]>,
+    w: &mut W,
+) -> io::Result<()> {
+    surface_glb(vertices, &quad_triangles(quads), w)
+}
+
+/// A quad grid as binary glTF (see [`write_quads_glb`]).
+pub fn write_grid_glb<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
+    surface_glb(&grid.vertices, &grid_triangles(grid), w)
+}
+
+/// One surface of triangles as binary glTF.
+fn surface_glb<W: Write + ?Sized>(
+    vertices: &[DVec3],
+    triangles: &[u32],
+    w: &mut W,
+) -> io::Result<()> {
+    let mut b = Builder::new("monge", "mesh");
+    b.root.push(material("surface", [0.62, 0.72, 0.85, 1.0]));
+    b.mesh("surface".to_owned(), vertices, triangles, 0);
+    b.finish(w)
 }

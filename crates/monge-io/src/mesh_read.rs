@@ -28,6 +28,9 @@ use crate::path_name;
 /// `-` is refused with [`IoError::NeedFormat`]: use [`read_mesh_from`].
 pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
     let format = MeshFormat::from_path(path)?;
+    if format == MeshFormat::Glb {
+        return Err(not_readable(&path_name(path)));
+    }
     let text = crate::read_to_string(path)?;
     parse_mesh(&text, format, &path_name(path))
 }
@@ -59,6 +62,18 @@ fn parse_mesh(text: &str, format: MeshFormat, file: &str) -> Result<QuadGrid, Io
         MeshFormat::Json => parse_json(text, file),
         MeshFormat::Obj => parse_obj(text, file)?.into_grid(file),
         MeshFormat::Ply => parse_ply(text, file)?.into_grid(file),
+        MeshFormat::Glb => Err(not_readable(file)),
+    }
+}
+
+/// glTF is written for viewers (`f32`), never read back as a mesh to measure.
+fn not_readable(file: &str) -> IoError {
+    IoError::UnknownExtension {
+        path: PathBuf::from(file),
+        found:
+            "glTF (`.glb`: monge writes it for viewers, with f32 coordinates, and does not read it)"
+                .to_owned(),
+        accepted: "`.obj`, `.ply` or `.json` (as written by monge)",
     }
 }
 

@@ -16,7 +16,7 @@ use crate::atomic::{is_stdio, write_output};
 use crate::design::{extension, unknown_extension};
 use crate::error::IoError;
 
-const ACCEPTED: &str = "`.obj`, `.ply` or `.json`";
+const ACCEPTED: &str = "`.obj`, `.ply`, `.json` or `.glb` (glTF, written only)";
 
 /// Keys of the mesh JSON format that extra keys may not use.
 pub const MESH_JSON_KEYS: [&str; 4] = ["rows", "cols", "vertices", "normals"];
@@ -30,6 +30,9 @@ pub enum MeshFormat {
     Ply,
     /// `{"rows", "cols", "vertices", "normals"}` JSON (`.json`).
     Json,
+    /// Binary glTF (`.glb`), for viewers: `f32` positions, so written but never
+    /// read back (see [`crate::write_grid_glb`]).
+    Glb,
 }
 
 impl MeshFormat {
@@ -63,17 +66,23 @@ impl MeshFormat {
     /// ```
     pub fn from_extension(ext: &str) -> Option<MeshFormat> {
         let ext = ext.strip_prefix('.').unwrap_or(ext);
-        [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Json]
-            .into_iter()
-            .find(|f| f.extension().eq_ignore_ascii_case(ext))
+        [
+            MeshFormat::Obj,
+            MeshFormat::Ply,
+            MeshFormat::Json,
+            MeshFormat::Glb,
+        ]
+        .into_iter()
+        .find(|f| f.extension().eq_ignore_ascii_case(ext))
     }
 
-    /// The usual extension, without the dot: `obj`, `ply` or `json`.
+    /// The usual extension, without the dot: `obj`, `ply`, `json` or `glb`.
     pub fn extension(self) -> &'static str {
         match self {
             MeshFormat::Obj => "obj",
             MeshFormat::Ply => "ply",
             MeshFormat::Json => "json",
+            MeshFormat::Glb => "glb",
         }
     }
 }
@@ -110,6 +119,7 @@ pub fn write_mesh_to<W: Write + ?Sized>(
         MeshFormat::Obj => write_obj(grid, w),
         MeshFormat::Ply => write_ply(grid, w),
         MeshFormat::Json => write_mesh_json(grid, &Map::new(), w),
+        MeshFormat::Glb => crate::write_grid_glb(grid, w),
     }
 }
 

@@ -171,5 +171,6 @@ pub fn write_quad_mesh_to<W: Write + ?Sized>(
             serde_json::to_writer(&mut *w, &value)?;
             w.write_all(b"\n")
         }
+        MeshFormat::Glb => crate::write_quads_glb(&mesh.vertices, mesh.quads.iter().copied(), w),
     }
 }

@@ -195,7 +195,7 @@ fn files_by_extension_and_explicit_format() {
     assert_eq!(
         err.to_string(),
         format!(
-            "`{}`: unsupported extension `.txt`; expected `.obj`, `.ply` or `.json`",
+            "`{}`: unsupported extension `.txt`; expected `.obj`, `.ply`, `.json` or `.glb` (glTF, written only)",
             path.display()
         )
     );
@@ -354,4 +354,39 @@ fn writes_a_1001_by_1001_grid_in_well_under_a_second() {
         .unwrap();
         assert!(elapsed.as_secs_f64() < 1.0, "{format:?} took {elapsed:?}");
     }
+}
+
+#[test]
+fn glb_reads_back_in_a_gltf_reader_and_is_never_read_as_a_mesh() {
+    let vertices = (0..35)
+        .map(|k| DVec3::new((k / 5) as f64, (k % 5) as f64 * 0.7, (k as f64 * 0.3).sin()))
+        .collect();
+    let grid = QuadGrid::new(7, 5, vertices, Vec::new());
+    let mut bytes = Vec::new();
+    monge_io::write_mesh_to(&grid, MeshFormat::Glb, &mut bytes).unwrap();
+    let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = gltf.blob.as_deref().unwrap();
+    let mesh = gltf.meshes().next().unwrap();
+    let prim = mesh.primitives().next().unwrap();
+    let reader = prim.reader(|_| Some(blob));
+    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    assert_eq!(positions.len(), grid.vertices.len());
+    for (p, v) in positions.iter().zip(&grid.vertices) {
+        assert_eq!(*p, v.as_vec3().to_array());
+    }
+    let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+    assert_eq!(indices.len(), 6 * grid.face_count());
+    // Face (0, 0) is (0,0) (1,0) (1,1) (0,1): two triangles over it.
+    let c = grid.cols as u32;
+    assert_eq!(&indices[..6], &[0, c, c + 1, 0, c + 1, 1]);
+    // glTF is written for viewers, never read back to be measured.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.glb");
+    std::fs::write(&path, &bytes).unwrap();
+    let e = monge_io::read_mesh(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("glTF") && e.contains("`.obj`, `.ply` or `.json`"),
+        "{e}"
+    );
+    assert!(monge_io::read_mesh_from(&bytes[..], MeshFormat::Glb).is_err());
 }
