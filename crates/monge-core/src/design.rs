@@ -1,7 +1,7 @@
 //! Design (§3): two planar guide curves that meet at 90° and the angle θ.
 //!
 //! A [`Design`] is plain data (it deserialises from the design-file format,
-//! JSON or TOML, in `monge-io`). Nothing is validated here: [`crate::generate`]
+//! JSON or TOML, in `monge-io`). Nothing is validated here: [`crate::generate()`]
 //! validates everything and says what is wrong, where, and by how much.
 
 use serde::{Deserialize, Serialize};

@@ -1,7 +1,7 @@
 //! # monge-render
 //!
 //! Pictures of the quad meshes of monge: a shaded 3D view of a
-//! [`QuadGrid`](monge_core::QuadGrid) with its guide curves highlighted,
+//! [`QuadGrid`] with its guide curves highlighted,
 //! optionally beside its Gauss map (the node axes drawn as a quad net on the
 //! unit sphere, Figure 9 of the paper), and contact sheets of several meshes
 //! with captions (the θ family of Figure 14).
