@@ -68,6 +68,9 @@ async function main() {
       metrics: document.getElementById('metrics').textContent,
       error: document.getElementById('error').hidden ? null : document.getElementById('error').textContent,
       generations: explorer.state.generations,
+      // Once idle, a drag's answer (drawn in drag quality, without metrics) has
+      // been followed by the full one.
+      full: !explorer.state.fast && !document.getElementById('metrics').classList.contains('pending'),
     }));
     await idle();
     const first = await snapshot();
@@ -84,6 +87,7 @@ async function main() {
     assert.notEqual(turned.design.theta_deg, first.design.theta_deg, 'θ moved');
     assert.notDeepEqual(turned.vertices.slice(-3), first.vertices.slice(-3), 'the mesh changed with θ');
     assert.notEqual(turned.metrics, first.metrics, 'the metrics changed with θ');
+    assert.ok(turned.full, 'full quality and metrics once θ rests');
     log(`θ ${first.design.theta_deg}° → ${turned.design.theta_deg}°`);
 
     // Drag guide_u's third control point.
@@ -100,6 +104,7 @@ async function main() {
     assert.ok(Math.abs(after[3][1]) < 1e-9, `the point stays in guide_u's plane y = 0: ${after[3]}`);
     assert.notDeepEqual(dragged.vertices, turned.vertices, 'the mesh changed with the control point');
     assert.notEqual(dragged.metrics, turned.metrics, 'the metrics changed with the control point');
+    assert.ok(dragged.full, 'full quality and metrics once the point rests');
     log(`dragged guide_u P3 ${before[3]} → ${after[3].map((x) => x.toFixed(3))}`);
 
     // The page's mesh is `monge generate`'s on the page's design: exactly as the
@@ -176,6 +181,7 @@ async function main() {
     assert.ok(latencies.length >= 40, 'every step drew a frame');
 
     assert.deepEqual(pageErrors, [], 'no errors in the page');
+    assert.ok((await snapshot()).full, 'the screenshot is in full quality');
     mkdirSync(dirname(screenshot), { recursive: true });
     await page.screenshot({ path: screenshot });
     log(`screenshot: ${screenshot}`);

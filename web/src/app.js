@@ -10,11 +10,12 @@ const state = {
   design: null,      // the design, in the monge design-file format
   mesh: null,        // the last good answer of /api/generate, arrays decoded
   offset: 0,
-  inflight: false,   // a request is on its way
-  queued: null,      // the latest change waiting for it: { t0 }
+  inflight: 0,       // requests on their way
+  queued: null,      // the latest change waiting for it: { t0, dragging }
   latencies: [],     // ms from input event to the frame that shows its mesh
   generations: 0,    // answers drawn so far
   stale: false,      // the design changed and the server refused it
+  fast: false,       // drawn in drag quality (see `quality`)
 };
 
 // ---------------------------------------------------------------- the scene
@@ -48,15 +49,35 @@ const markers = new THREE.Group();   // folds and pinches
 const gauss = new THREE.Group();     // the Gauss map beside the mesh
 const gaussSurface = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({ color: 0xe8c9a0, side: THREE.DoubleSide }));
 const gaussWire = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x705030, transparent: true, opacity: 0.4 }));
-gauss.add(
-  new THREE.Mesh(new THREE.SphereGeometry(0.995, 48, 24), new THREE.MeshBasicMaterial({ color: 0xdddddd, wireframe: true, transparent: true, opacity: 0.35 })),
-  gaussSurface, gaussWire,
-);
+const sphereWire = new THREE.Mesh(new THREE.SphereGeometry(0.995, 48, 24), new THREE.MeshBasicMaterial({ color: 0xdddddd, wireframe: true, transparent: true, opacity: 0.35 }));
+gauss.add(sphereWire, gaussSurface, gaussWire);
 for (const line of Object.values(guideLines)) line.renderOrder = 1;
 scene.add(surface, wire, guideLines.u, guideLines.v, handles, markers, gauss);
 
 let frameRequested = false;
 let pendingLatency = null; // input time of the mesh uploaded but not yet drawn
+
+/**
+ * Drag quality: while θ or a control point is being dragged the page draws
+ * at half the pixel ratio and without the wireframes (the mesh's, the Gauss
+ * map's and its sphere's), and asks for the mesh without its metrics; once
+ * the drag has rested for SETTLE_MS it asks again, with the metrics, and
+ * draws at full quality. WebGL drawn in software (no GPU) costs about the
+ * pixels and lines it draws.
+ */
+const SETTLE_MS = 150;
+const DRAG_PIXEL_RATIO = 0.5;
+let settleTimer = null;
+
+/** Switches between drag quality (`fast`) and full quality. */
+function quality(fast) {
+  if (fast === state.fast) return;
+  state.fast = fast;
+  renderer.setPixelRatio(window.devicePixelRatio * (fast ? DRAG_PIXEL_RATIO : 1));
+  wire.visible = !fast;
+  gaussWire.visible = !fast;
+  sphereWire.visible = !fast;
+}
 
 /** Draws one frame soon (at most one per animation frame). */
 function redraw() {
@@ -124,7 +145,7 @@ function setGrid(mesh, lines, rows, cols, positions, normals) {
     geometry.computeVertexNormals();
   }
   geometry.computeBoundingSphere();
-  lines.geometry.computeBoundingSphere();
+  lines.geometry.boundingSphere = geometry.boundingSphere; // the same positions
 }
 
 function setPolyline(line, flat) {
@@ -133,8 +154,11 @@ function setPolyline(line, flat) {
   line.geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(flat), 3));
 }
 
-/** Draws an answer of /api/generate; `t0` is the time of the input that caused it. */
-function showMesh(answer, t0) {
+/**
+ * Draws an answer of /api/generate; `t0` is the time of the input that caused
+ * it (null for the full-quality answer after a drag), `fast` the drag quality.
+ */
+function showMesh(answer, t0, fast = false) {
   const first = state.mesh === null;
   state.mesh = answer;
   state.stale = false;
@@ -148,12 +172,14 @@ function showMesh(answer, t0) {
   setPolyline(guideLines.v, answer.guides.v.points);
   showMarkers(answer);
   if (first) fitView();
-  showHandles();
-  showMetrics(answer);
+  if (!fast) showHandles(); // a drag moves the handles itself
+  if (answer.metrics) showMetrics(answer);
+  $('metrics').classList.toggle('pending', !answer.metrics);
   showThetaRange(answer);
   $('error').hidden = true;
   state.generations += 1;
-  pendingLatency = t0;
+  if (t0 !== null) pendingLatency = t0;
+  quality(fast);
   redraw();
 }
 
@@ -269,7 +295,7 @@ renderer.domElement.addEventListener('pointermove', (event) => {
   }
   controlPoints(drag.guide)[drag.index] = p.toArray();
   showHandles();
-  change(t0);
+  change(t0, true);
 });
 
 for (const type of ['pointerup', 'pointercancel']) {
@@ -280,24 +306,67 @@ for (const type of ['pointerup', 'pointercancel']) {
 }
 
 // ------------------------------------------------------------ requests
-/** The design changed at time `t0`: regenerate (the latest change wins). */
-function change(t0) {
-  state.queued = { t0 };
-  if (!state.inflight) pump();
+/** Requests on their way at once: a new input need not wait for the last answer. */
+const MAX_INFLIGHT = 2;
+/**
+ * During a drag the page asks synchronously, in the input's own task, so the
+ * answer is drawn in the frame right after the input: an answer that comes
+ * back asynchronously misses that frame and waits for the next one, 16.7 ms
+ * later (measured in headless Chromium at 100 × 100 faces: median 26 ms from
+ * input to drawn frame asynchronously, 14 ms synchronously). The page is
+ * blocked while it waits, so once an answer takes longer than SYNC_LIMIT_MS
+ * (large grids, a slow machine) the next ones are asked asynchronously.
+ */
+const SYNC_LIMIT_MS = 25;
+let syncMs = 0;   // how long the last request of a drag took
+let sentSeq = 0;  // requests sent so far
+let shownSeq = 0; // the request whose answer is shown (older answers are dropped)
+let lastSentDragging = false;
+
+/**
+ * The design changed at time `t0` (null: no input to time): regenerate, the
+ * latest change wins. `dragging`: θ or a control point is being dragged, so
+ * the answer comes without metrics and is drawn in drag quality, then again in
+ * full once the drag has rested for SETTLE_MS.
+ */
+function change(t0, dragging = false) {
+  state.queued = { t0, dragging };
+  clearTimeout(settleTimer);
+  settleTimer = null;
+  if (state.inflight < MAX_INFLIGHT) pump();
 }
 
 async function pump() {
   const job = state.queued;
   state.queued = null;
-  state.inflight = true;
+  const seq = ++sentSeq;
+  lastSentDragging = job.dragging;
+  state.inflight += 1;
   try {
-    const answer = await generateMesh('', JSON.stringify(state.design));
-    showMesh(answer, job.t0);
+    const body = JSON.stringify(state.design);
+    const start = performance.now();
+    const answer = job.dragging && syncMs < SYNC_LIMIT_MS
+      ? generateMeshSync('&metrics=later', body)
+      : await generateMesh(job.dragging ? '&metrics=later' : '', body);
+    if (job.dragging) syncMs = performance.now() - start;
+    if (seq > shownSeq) {
+      shownSeq = seq;
+      showMesh(answer, job.t0, job.dragging);
+    }
   } catch (error) {
-    showError(error);
+    if (seq > shownSeq) {
+      shownSeq = seq;
+      showError(error, job.dragging);
+    }
   } finally {
-    state.inflight = false;
+    state.inflight -= 1;
     if (state.queued) pump();
+    else if (state.inflight === 0 && lastSentDragging) {
+      settleTimer = setTimeout(() => {
+        settleTimer = null;
+        change(null);
+      }, SETTLE_MS);
+    }
   }
 }
 
@@ -315,7 +384,35 @@ async function refusal(response) {
 async function generateMesh(query, body) {
   const response = await fetch(`/api/generate?arrays=f32&offset=${state.offset}${query}`, { method: 'POST', body });
   if (!response.ok) await refusal(response);
-  const buffer = await response.arrayBuffer();
+  return decodeAnswer(await response.arrayBuffer());
+}
+
+/**
+ * `generateMesh`, synchronously (XMLHttpRequest), for drags: the answer is
+ * drawn in the frame that follows the input instead of one or two frames later.
+ */
+function generateMeshSync(query, body) {
+  const xhr = new XMLHttpRequest();
+  xhr.open('POST', `/api/generate?arrays=f32&offset=${state.offset}${query}`, false);
+  xhr.overrideMimeType('text/plain; charset=x-user-defined'); // bytes as they come
+  xhr.send(body);
+  const text = xhr.responseText;
+  const bytes = new Uint8Array(text.length);
+  for (let k = 0; k < text.length; k++) bytes[k] = text.charCodeAt(k);
+  if (xhr.status !== 200) {
+    let answer;
+    try {
+      answer = JSON.parse(new TextDecoder().decode(bytes));
+    } catch {
+      answer = { error: `the server answered ${xhr.status} without JSON` };
+    }
+    throw Object.assign(new Error(answer.error), { answer });
+  }
+  return decodeAnswer(bytes.buffer);
+}
+
+/** The answer in `buffer`: a u32 header length, the JSON header, then the f32 arrays it counts. */
+function decodeAnswer(buffer) {
   const length = new DataView(buffer).getUint32(0, true);
   const answer = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
   let at = 4 + length;
@@ -331,13 +428,14 @@ async function generateMesh(query, body) {
 }
 
 /** Shows a refusal: the server's message, the mesh greyed as no longer current. */
-function showError(error) {
+function showError(error, fast = false) {
   const box = $('error');
   box.textContent = error.message;
   box.hidden = false;
   if (error.answer && error.answer.theta_range) showThetaRange(error.answer);
   state.stale = true;
   surfaceMaterial.color.set(0xcccccc);
+  quality(fast);
   redraw();
 }
 
@@ -406,7 +504,7 @@ $('theta').addEventListener('input', (event) => {
   const t0 = performance.now();
   state.design.theta_deg = Number(event.target.value);
   $('theta-value').textContent = state.design.theta_deg.toFixed(1);
-  change(t0);
+  change(t0, true);
 });
 for (const g of ['u', 'v']) {
   $(`samples-${g}`).addEventListener('change', (event) => {
@@ -458,6 +556,7 @@ $('load').addEventListener('change', async (event) => {
     state.design = answer.design;
     syncControls();
     state.mesh = null; // fit the view to the new design
+    shownSeq = ++sentSeq; // answers to earlier requests are out of date
     showMesh(answer, t0);
   } catch (error) {
     showError(error); // the current design stays
@@ -481,6 +580,6 @@ window.explorer = {
     return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
   },
   vertices: () => Array.from(state.mesh.vertices),
-  idle: () => !state.inflight && state.queued === null && pendingLatency === null,
+  idle: () => state.inflight === 0 && state.queued === null && pendingLatency === null && settleTimer === null,
 };
 start();

@@ -170,6 +170,25 @@ fn the_page_gets_floats_after_a_json_header() {
     })
     .sum::<usize>();
     assert_eq!(body.len(), 4 + length + 4 * floats);
+    assert!(header["metrics"]["face_planarity"].is_object());
+}
+
+#[test]
+fn metrics_can_wait_for_the_end_of_a_drag() {
+    let server = Server::start(&[]);
+    let (_, design) = server.request("GET", "/api/design", b"");
+    let (status, later) = server.post_json("/api/generate?metrics=later", &design);
+    assert_eq!(status, 200, "{later}");
+    assert!(
+        later["metrics"].is_null(),
+        "no metrics: {}",
+        later["metrics"]
+    );
+    let (_, full) = server.post_json("/api/generate", &design);
+    assert!(full["metrics"]["circularity"].is_object());
+    assert_eq!(later["vertices"], full["vertices"], "the same mesh");
+    assert_eq!(later["gauss"], full["gauss"]);
+    assert_eq!(later["report"], full["report"]);
 }
 
 #[test]
