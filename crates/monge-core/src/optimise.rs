@@ -299,18 +299,11 @@ pub fn fit(design: &MultiPatchDesign, options: &GenerateOptions) -> Result<FitRe
             Err(_) => f64::NAN,
         }
     };
-    let mut config = bobyqa::Config::new(n);
-    config.rho_begin = 0.1;
-    config.rho_end = 1e-12;
-    config.max_fun = spec.max_evaluations.unwrap_or(1000 * n + 200);
-    if config.max_fun <= config.npt {
-        return Err(FitError::TooFewEvaluations {
-            given: config.max_fun,
-            needed: config.npt + 1,
-        });
-    }
-    // Valid by construction: n ≥ 1, npt = 2n + 1, 0 < rho_end ≤ rho_begin, max_fun > npt.
-    let mut solver = bobyqa::Bobyqa::new(n, config).expect("a valid BOBYQA configuration");
+    let max_fun = spec.max_evaluations.unwrap_or(1000 * n + 200);
+    let mut solver = solver(n, 1e-12, max_fun).map_err(|needed| FitError::TooFewEvaluations {
+        given: max_fun,
+        needed,
+    })?;
     let mut x: Vec<f64> = start
         .iter()
         .zip(&bounds)
@@ -599,4 +592,19 @@ fn with_values(
         }
     }
     d
+}
+
+/// A BOBYQA solver over `n ≥ 1` variables scaled to [0, 1] (trust region from
+/// 0.1 down to `rho_end`), allowed `max_fun` evaluations; `Err(needed)` when
+/// `max_fun` is below the `2n + 2` BOBYQA needs to start.
+pub(crate) fn solver(n: usize, rho_end: f64, max_fun: usize) -> Result<bobyqa::Bobyqa, usize> {
+    let mut config = bobyqa::Config::new(n);
+    config.rho_begin = 0.1;
+    config.rho_end = rho_end;
+    config.max_fun = max_fun;
+    if config.max_fun <= config.npt {
+        return Err(config.npt + 1);
+    }
+    // Valid by construction: n ≥ 1, npt = 2n + 1, 0 < rho_end ≤ rho_begin, max_fun > npt.
+    Ok(bobyqa::Bobyqa::new(n, config).expect("a valid BOBYQA configuration"))
 }

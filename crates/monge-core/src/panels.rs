@@ -184,18 +184,13 @@ pub fn optimise_panels(
         }
         d
     };
-    let mut config = bobyqa::Config::new(n);
-    config.rho_begin = 0.1;
-    config.rho_end = 1e-8;
-    config.max_fun = options.max_evaluations.unwrap_or(200 * n + 100);
-    if config.max_fun <= config.npt {
-        return Err(PanelError::TooFewEvaluations {
-            given: config.max_fun,
-            needed: config.npt + 1,
-        });
-    }
-    // Valid by construction: n ≥ 1, npt = 2n + 1, 0 < rho_end ≤ rho_begin, max_fun > npt.
-    let mut solver = bobyqa::Bobyqa::new(n, config).expect("a valid BOBYQA configuration");
+    let max_fun = options.max_evaluations.unwrap_or(200 * n + 100);
+    let mut solver = crate::optimise::solver(n, 1e-8, max_fun).map_err(|needed| {
+        PanelError::TooFewEvaluations {
+            given: max_fun,
+            needed,
+        }
+    })?;
     // Start from the uniform parameters the design has without `parameters`.
     let mut x = vec![0.5; n];
     let start_value = objective(&with(&x), generate_options);
