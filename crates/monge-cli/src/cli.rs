@@ -232,8 +232,8 @@ pub enum Command {
         ),
         after_help = format!(
             "Examples:\n  \
-             monge patches examples/fig20-piecewise.json -o dome.obj\n  \
-             monge patches examples/fig21-hippohaus.json -o - > hippo.json\n\n{EXIT}"
+             monge patches examples/fig20-piecewise.patches.json -o dome.obj\n  \
+             monge patches examples/fig21-hippohaus.patches.json -o - > hippo.json\n\n{EXIT}"
         )
     )]
     Patches(PatchesArgs),
@@ -258,7 +258,7 @@ pub enum Command {
         ),
         after_help = format!(
             "Examples:\n  \
-             monge fit examples/fig21-hippohaus-fit.json -o fitted.json\n  \
+             monge fit examples/fig21-hippohaus-fit.patches.json -o fitted.json\n  \
              monge patches fitted.json -o hippo.obj\n\n{EXIT}"
         )
     )]
@@ -350,8 +350,8 @@ pub enum Command {
         ),
         after_help = format!(
             "Examples:\n  \
-             monge align examples/fig17-planes.json -o fig17.json && monge generate fig17.json -o fig17.obj\n  \
-             monge align examples/fig16-facade.json --facade --samples 31 -o fig16.json\n\n{EXIT}"
+             monge align examples/fig17.planes.json -o fig17.json && monge generate fig17.json -o fig17.obj\n  \
+             monge align examples/fig16-facade.planes.json --facade --samples 31 -o fig16.json\n\n{EXIT}"
         )
     )]
     Align(crate::align::AlignArgs),

@@ -77,7 +77,7 @@ fn align_and_generate(planes: &Path, extra: &[&str], dir: &Path) -> (PathBuf, [f
 #[test]
 fn fig17_design_generates_a_mesh_in_the_planes() {
     let dir = TempDir::new().unwrap();
-    let planes = example("fig17-planes.json");
+    let planes = example("fig17.planes.json");
     let (_, d) = align_and_generate(&planes, &["--samples", "15"], dir.path());
     assert!(d.iter().all(|&x| x <= 1e-9), "{d:?}");
     let (_, d) = align_and_generate(&planes, &["--theta", "-45"], dir.path());
@@ -87,7 +87,7 @@ fn fig17_design_generates_a_mesh_in_the_planes() {
 #[test]
 fn fig16_facade_design_generates_a_mesh_in_the_walls() {
     let dir = TempDir::new().unwrap();
-    let planes = example("fig16-facade.json");
+    let planes = example("fig16-facade.planes.json");
     let (mesh, d) = align_and_generate(&planes, &["--facade", "--samples", "31"], dir.path());
     assert!(d.iter().all(|&x| x <= 1e-9), "{d:?}");
     let m: serde_json::Value = serde_json::from_str(&fs::read_to_string(mesh).unwrap()).unwrap();
@@ -120,7 +120,7 @@ fn errors_exit_2_and_say_why() {
     // θ = +90° is singular.
     monge()
         .arg("align")
-        .arg(example("fig16-facade.json"))
+        .arg(example("fig16-facade.planes.json"))
         .arg("-o")
         .arg(&out)
         .args(["--theta", "90"])
@@ -129,7 +129,7 @@ fn errors_exit_2_and_say_why() {
         .stderr(predicate::str::contains("no admissible θ"));
     // The façade's walls without --facade: parallel planes, with a hint.
     let walls = dir.path().join("walls.json");
-    let text = fs::read_to_string(example("fig16-facade.json")).unwrap();
+    let text = fs::read_to_string(example("fig16-facade.planes.json")).unwrap();
     fs::write(
         &walls,
         text.replace("\"facade\": true", "\"facade\": false"),

@@ -690,7 +690,7 @@ fn developable_designs_generate_check_and_report() {
     let out = dir.path().join("d.json");
     monge()
         .arg("generate")
-        .arg(example("fig11-developable.json"))
+        .arg(example("fig11-helix.developable.json"))
         .arg("-o")
         .arg(&out)
         .args(["--offset", "0.5"])
@@ -705,7 +705,7 @@ fn developable_designs_generate_check_and_report() {
     }
     monge()
         .arg("info")
-        .arg(example("fig11-developable.json"))
+        .arg(example("fig11-helix.developable.json"))
         .assert()
         .success()
         .stdout(predicate::str::contains("slope α = 25°"));

@@ -118,7 +118,7 @@ fn render_writes_svg_and_refuses_bad_requests_with_status_2() {
         ),
         (
             vec![
-                "examples/fig11-developable.json",
+                "examples/fig11-helix.developable.json",
                 "--theta-sweep=0",
                 "-o",
                 svg.to_str().unwrap(),

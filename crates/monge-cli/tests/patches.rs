@@ -15,7 +15,7 @@ fn patches_writes_one_grid_with_patches_and_line_planes() {
     let out = dir.path().join("h.json");
     monge()
         .arg("patches")
-        .arg(example("fig21-hippohaus.json"))
+        .arg(example("fig21-hippohaus.patches.json"))
         .arg("-o")
         .arg(&out)
         .assert()
@@ -47,7 +47,7 @@ fn patches_with_a_mirror_merges_the_seam() {
     let out = dir.path().join("dome.obj");
     monge()
         .arg("patches")
-        .arg(example("fig20-piecewise.json"))
+        .arg(example("fig20-piecewise.patches.json"))
         .arg("-o")
         .arg(&out)
         .assert()
@@ -66,7 +66,7 @@ fn fit_recovers_the_hippohaus_thetas() {
     let out = dir.path().join("fitted.json");
     let assert = monge()
         .arg("fit")
-        .arg(example("fig21-hippohaus-fit.json"))
+        .arg(example("fig21-hippohaus-fit.patches.json"))
         .arg("-o")
         .arg(&out)
         .assert()
@@ -84,7 +84,7 @@ fn fit_recovers_the_hippohaus_thetas() {
 fn fit_error(edit: impl FnOnce(&mut Value)) -> String {
     let dir = TempDir::new().unwrap();
     let mut d: Value =
-        serde_json::from_str(&fs::read_to_string(example("fig21-hippohaus-fit.json")).unwrap())
+        serde_json::from_str(&fs::read_to_string(example("fig21-hippohaus-fit.patches.json")).unwrap())
             .unwrap();
     edit(&mut d);
     let path = dir.path().join("d.json");
@@ -125,7 +125,7 @@ fn fit_empty_bounds_exits_2() {
 fn patches_incompatible_boundaries_exit_2() {
     let dir = TempDir::new().unwrap();
     let mut d: Value =
-        serde_json::from_str(&fs::read_to_string(example("fig21-hippohaus.json")).unwrap())
+        serde_json::from_str(&fs::read_to_string(example("fig21-hippohaus.patches.json")).unwrap())
             .unwrap();
     d["patches"][4]["attach"]["side"] = serde_json::json!("last_column");
     let path = dir.path().join("d.json");
