@@ -24,8 +24,8 @@ arguments), reported on stderr as `error: <message>`.";
     version,
     about = "Exact circular quad meshes with planar curvature lines, from two planar guide curves and an angle θ",
     long_about = format!(
-        "Exact circular quad meshes with planar curvature lines (Mesnil et al., \"Surfaces with \
-         planar curvature lines\"), generated from two planar guide curves that start at the same \
+        "Exact circular quad meshes with planar curvature lines (Tellier et al. 2019, \"Surfaces \
+         with planar curvature lines\", Automation in Construction 106, 102880), generated from two planar guide curves that start at the same \
          point and meet at 90°, and one angle θ.\n\n\
          A design file (JSON or TOML) gives `theta_deg`, `guide_u` and `guide_v`; each guide is one \
          of `points`, `bspline`, `arc` or `parabola`. Vertex (i, j) of the mesh lies on row i \
@@ -243,7 +243,7 @@ pub enum Command {
         long_about = format!(
             "Choose free parameters of a multi-patch design so that a patch boundary comes as \
              close as possible to a target (§4.7, the HippoHaus of Figure 21), with BOBYQA \
-             (Powell 2007), and write the design with the fitted values to FITTED_DESIGN (the \
+             (Powell 2009), and write the design with the fitted values to FITTED_DESIGN (the \
              `fit` section is kept, so the file can be fitted again or built with `monge \
              patches`). Prints the largest and rms distances before and after, and each value.\n\n\
              The design's `fit` key: `free`: a list of {{\"theta\": {{\"patch\": K, \"bounds\": \

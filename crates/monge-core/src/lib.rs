@@ -1,8 +1,14 @@
 //! # monge-core
 //!
-//! Pure geometry of *Surfaces with planar curvature lines* (Mesnil et al.):
-//! circular quad meshes whose curvature lines are planar, generated exactly from
-//! two planar guide curves and one angle θ. No I/O, no printing.
+//! Pure geometry of circular and conical quad meshes whose curvature lines are
+//! planar, generated exactly from two planar guide curves and one angle θ. No
+//! I/O, no printing.
+//!
+//! The method, and the § numbers cited throughout these docs, are those of
+//! X. Tellier, C. Douthe, L. Hauswirth, O. Baverel, *Surfaces with planar
+//! curvature lines: discretization, generation and application to the
+//! rationalization of curved architectural envelopes*, Automation in
+//! Construction 106 (2019) 102880, doi:10.1016/j.autcon.2019.102880.
 //!
 //! The pipeline, one module per concept of the paper:
 //! [`guide`] (sampled, validated guide curves, §3) →

@@ -1,7 +1,10 @@
 //! Fitting a multi-patch design to a target (§4.7, the HippoHaus of Figure 21):
 //! choose free parameters — θ of chosen patches, optionally guide coordinates — so
 //! that a patch boundary comes as close as possible to a target polyline (or plane),
-//! with BOBYQA (Powell 2007, the paper's optimiser; the `bobyqa` crate, a port of PRIMA).
+//! with the paper's optimiser,
+//! BOBYQA (M. J. D. Powell, *The BOBYQA algorithm for bound constrained
+//! optimization without using derivatives*, DAMTP 2009/NA06, Cambridge, 2009;
+//! the paper cites it as Powell 2007), the `bobyqa` crate (a port of PRIMA).
 //!
 //! Bounds: each free θ stays in the admissible range of its patch at the start
 //! values (§3.2: `|θ| ∈ [min, max]`, on the side of 0 of the start value when the

@@ -1,6 +1,7 @@
 //! Panel-size optimisation (§4.8, Figure 22): choose where B-spline guides are
 //! sampled so that the panels (faces) of the mesh vary as little as possible in
-//! area, with BOBYQA (Powell 2007, the paper's optimiser; the `bobyqa` crate).
+//! area, with BOBYQA (Powell 2009, the paper's optimiser; reference and set-up
+//! in [`crate::optimise`]).
 //!
 //! The free parameters are the sample parameters of every `bspline` guide,
 //! through a monotone reparametrisation: the gaps between consecutive parameters
