@@ -274,8 +274,9 @@ pub enum Command {
              design-file format, meshes export as OBJ or JSON.\n\n\
              The mesh is computed here, by the same code as `monge generate`, for each change \
              (POST /api/generate). The server listens on 127.0.0.1 unless --host says otherwise, \
-             refuses bodies over 1 MB and grids over --max-vertices. The page's files come from \
-             --web-dir, built by `npm ci && npm run build` in web/.",
+             refuses bodies over 1 MB and grids over --max-vertices. The page is built into this \
+             binary; --web-dir serves one from disk instead (`npm ci && npm run build` in web/ \
+             writes it to web/dist).",
         after_help = "Examples:\n  \
              monge explore\n  \
              monge explore examples/fig13-freeform.json --port 0"
