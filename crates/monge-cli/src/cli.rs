@@ -1,10 +1,10 @@
 //! The command line: every command, flag and help text of `monge`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand, ValueEnum};
 use monge_core::GenerateOptions;
-use monge_io::MeshFormat;
+use monge_io::{is_stdio, MeshFormat};
 
 /// The θ convention, in one line, shared by the help texts.
 const THETA: &str = "θ (`theta_deg`, degrees, taken modulo 360 into (−180°, 180°]) places the \
@@ -400,6 +400,26 @@ pub enum FormatArg {
     Json,
     /// Binary glTF, for viewers (f32 coordinates; not read back by `check`).
     Glb,
+}
+
+/// The format of a mesh output OUT: `--format`, else OUT's extension (JSON for
+/// `-`); a `--format` that contradicts OUT's extension is refused.
+pub fn output_format(format: Option<FormatArg>, out: &Path) -> anyhow::Result<MeshFormat> {
+    if is_stdio(out) {
+        return Ok(format.map_or(MeshFormat::Json, MeshFormat::from));
+    }
+    let Some(format) = format.map(MeshFormat::from) else {
+        return Ok(MeshFormat::from_path(out)?);
+    };
+    match MeshFormat::from_path(out) {
+        Ok(by_extension) if by_extension != format => anyhow::bail!(
+            "--format {f} but OUT `{}` ends in `.{}`: name it `.{f}`, or leave --format out",
+            out.display(),
+            by_extension.extension(),
+            f = format.extension()
+        ),
+        _ => Ok(format),
+    }
 }
 
 impl From<FormatArg> for MeshFormat {

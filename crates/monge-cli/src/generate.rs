@@ -12,11 +12,12 @@ use monge_core::gauss_map::ThetaRange;
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode, QuadGrid};
 use monge_io::{
-    is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output, AnyDesign, MeshFormat,
+    check_output, is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output,
+    AnyDesign, MeshFormat,
 };
 use serde_json::{json, Map, Value};
 
-use crate::cli::GenerateArgs;
+use crate::cli::{output_format, GenerateArgs};
 use crate::output::{eprint, millis, num};
 use crate::Outcome;
 
@@ -27,14 +28,9 @@ const LOW_CROSSING_SINE: f64 = 1e-3;
 pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     let out = args.output.as_path();
     // Everything about the output is checked before the (possibly long) generation.
-    let format = match (args.format, is_stdio(out)) {
-        (Some(f), _) => MeshFormat::from(f),
-        (None, true) => MeshFormat::Json,
-        (None, false) => MeshFormat::from_path(out)?,
-    };
-    if !is_stdio(out) {
-        check_directory(out)?;
-    } else if !args.offsets.is_empty() {
+    let format = output_format(args.format, out)?;
+    check_output(out, &[&args.design])?;
+    if is_stdio(out) && !args.offsets.is_empty() {
         bail!("--offset writes one file per offset next to OUT: give a file for -o, not `-`");
     }
 
@@ -195,22 +191,6 @@ fn offset_path(out: &Path, d: f64) -> PathBuf {
         None => format!("{stem}.offset{d:+}"),
     };
     out.with_file_name(name)
-}
-
-/// Fails early, with a plain message, if `out`'s directory does not exist.
-fn check_directory(out: &Path) -> anyhow::Result<()> {
-    let dir = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        bail!(
-            "cannot write `{}`: the directory `{}` does not exist (create it first, or choose another -o)",
-            out.display(),
-            dir.display()
-        );
-    }
-    Ok(())
 }
 
 /// `"characteristic"` or `"arbitrary"`.

@@ -8,7 +8,9 @@ use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family, Frame};
 use monge_core::{generate, GenerateOptions};
-use monge_io::{read_design, read_mesh, write_iges, write_mesh_to, write_output, MeshFormat};
+use monge_io::{
+    check_output, read_design, read_mesh, write_iges, write_mesh_to, write_output, MeshFormat,
+};
 use serde_json::{json, Value};
 
 use crate::cli::SmoothArgs;
@@ -29,6 +31,7 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
              or `.obj`/`.ply` (a dense mesh)",
         )?)
     };
+    check_output(out, &[&args.design])?;
     let start = Instant::now();
     let grid = if args.mesh {
         read_mesh(&args.design)?
