@@ -246,10 +246,15 @@ fn report_json(r: &Pinching) -> Value {
     })
 }
 
-/// The admissible θ in words, both signs (§3.2).
+/// The admissible θ in words, both signs (§3.2); a range from 0 is one
+/// interval (no `−0°`).
 pub fn range_text(mode: Mode, r: &ThetaRange) -> String {
     match mode {
         Mode::Characteristic => "every θ in (−180°, 180°]".to_owned(),
+        Mode::Arbitrary if num(r.min_deg) == "0" => format!(
+            "|θ| ≤ {max}°, i.e. θ in [−{max}°, {max}°]",
+            max = num(r.max_deg)
+        ),
         Mode::Arbitrary => format!(
             "|θ| in [{min}°, {max}°], i.e. θ in [−{max}°, −{min}°] ∪ [{min}°, {max}°]",
             min = num(r.min_deg),
@@ -390,5 +395,13 @@ mod tests {
             range_text(Mode::Arbitrary, &r),
             "|θ| in [61.9°, 170°], i.e. θ in [−170°, −61.9°] ∪ [61.9°, 170°]"
         );
+        for min_deg in [0.0, -0.0, 1e-12] {
+            let r = ThetaRange {
+                min_deg,
+                max_deg: 170.0,
+            };
+            let text = range_text(Mode::Arbitrary, &r);
+            assert_eq!(text, "|θ| ≤ 170°, i.e. θ in [−170°, 170°]");
+        }
     }
 }

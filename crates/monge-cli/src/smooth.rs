@@ -25,11 +25,14 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
         SmoothOutput::Json
     } else if ext.eq_ignore_ascii_case("igs") || ext.eq_ignore_ascii_case("iges") {
         SmoothOutput::Iges
+    } else if let Some(format) = MeshFormat::from_extension(ext) {
+        SmoothOutput::Mesh(format)
     } else {
-        SmoothOutput::Mesh(MeshFormat::from_path(out).context(
-            "monge smooth writes `.json` (patches and arcs), `.igs` (the exact NURBS surface), \
-             or `.obj`/`.ply` (a dense mesh)",
-        )?)
+        bail!(
+            "cannot tell what to write to `{}`: monge smooth writes `.json` (patches and arcs), \
+             `.igs` or `.iges` (the exact NURBS surface), or `.obj`, `.ply` or `.glb` (a dense mesh)",
+            out.display()
+        );
     };
     check_output(out, &[&args.design])?;
     let start = Instant::now();

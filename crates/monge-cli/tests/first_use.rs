@@ -219,3 +219,181 @@ fn a_file_of_the_wrong_kind_names_the_command_that_takes_it() {
     );
     assert!(!Path::new(&out).exists());
 }
+
+/// The exit-status footer of every help text.
+const EXIT: &str = "Exit status: 0 success; 1 `monge check` found a metric above --tol; 2 any \
+error (unreadable, malformed or invalid design or mesh, unwritable output, bad arguments), \
+reported on stderr as `error: <message>`.";
+
+#[test]
+fn every_help_ends_with_the_exit_status_footer_once() {
+    let top = monge().arg("--help").output().unwrap();
+    let top = String::from_utf8(top.stdout).unwrap();
+    let commands: Vec<&str> = top
+        .split("Commands:\n")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert_eq!(commands.len(), 13, "{commands:?}");
+    let helps = std::iter::once(top.clone()).chain(commands.iter().flat_map(|c| {
+        ["--help", "-h"].map(|flag| {
+            let out = monge().args([c, &flag]).output().unwrap();
+            assert!(out.status.success(), "{c} {flag}");
+            String::from_utf8(out.stdout).unwrap()
+        })
+    }));
+    for (k, help) in helps.enumerate() {
+        // clap wraps long lines: compare with the whitespace normalised.
+        let flat = help.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert_eq!(flat.matches(EXIT).count(), 1, "help {k}:\n{help}");
+        assert!(
+            flat.ends_with(EXIT),
+            "help {k} does not end with the footer:\n{help}"
+        );
+    }
+}
+
+#[test]
+fn the_readme_smooth_usage_on_a_mesh_runs() {
+    let readme =
+        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md")).unwrap();
+    let usage = readme
+        .split('`')
+        .find(|s| s.starts_with("monge smooth MESH"))
+        .expect("README documents `monge smooth MESH …`");
+    assert_eq!(
+        usage,
+        "monge smooth MESH --mesh -o OUT [--frame t1x,t1y,t1z,t2x,t2y,t2z]"
+    );
+    let dir = TempDir::new().unwrap();
+    let mesh = dir.path().join("m.json");
+    monge()
+        .arg("generate")
+        .arg(example("fig12-dupin-theta30.json"))
+        .arg("-o")
+        .arg(&mesh)
+        .assert()
+        .success();
+    let out = dir.path().join("net.obj");
+    for frame in [None, Some("1,0,0,0,1,0")] {
+        let args: Vec<String> = usage
+            .split_whitespace()
+            .skip(1)
+            .filter_map(|word| match word {
+                "MESH" => Some(mesh.display().to_string()),
+                "OUT" => Some(out.display().to_string()),
+                "[--frame" => frame.map(|_| "--frame".to_owned()),
+                "t1x,t1y,t1z,t2x,t2y,t2z]" => frame.map(str::to_owned),
+                w => Some(w.to_owned()),
+            })
+            .collect();
+        monge().args(&args).assert().success();
+        monge().arg("check").arg(&out).assert().success();
+    }
+}
+
+#[test]
+fn check_offers_only_the_formats_it_reads() {
+    let help = monge().args(["check", "-h"]).output().unwrap();
+    let help = String::from_utf8(help.stdout).unwrap();
+    assert!(help.contains("[possible values: obj, ply, json]"), "{help}");
+    let help = monge().args(["check", "--help"]).output().unwrap();
+    let help = String::from_utf8(help.stdout).unwrap();
+    assert!(!help.contains("glb") && help.contains("- json:"), "{help}");
+    monge()
+        .args(["check", "-", "--format", "glb"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "[possible values: obj, ply, json]",
+        ));
+}
+
+#[test]
+fn a_format_that_contradicts_the_extension_is_refused() {
+    let dir = TempDir::new().unwrap();
+    for (command, design) in [
+        ("generate", "fig13-freeform.json"),
+        ("patches", "fig20-piecewise.patches.json"),
+    ] {
+        monge()
+            .current_dir(dir.path())
+            .arg(command)
+            .arg(example(design))
+            .args(["--format", "ply", "-o", "x.obj"])
+            .assert()
+            .code(2)
+            .stderr(predicate::eq(
+                "error: --format ply but OUT `x.obj` ends in `.obj`: name it `.ply`, or leave \
+                 --format out\n",
+            ));
+        assert!(!dir.path().join("x.obj").exists());
+        // Agreeing, or an extension that names no format: written in --format.
+        for out in ["x.ply", "x.mesh"] {
+            monge()
+                .current_dir(dir.path())
+                .arg(command)
+                .arg(example(design))
+                .args(["--format", "ply", "-o", out])
+                .assert()
+                .success();
+            let text = fs::read_to_string(dir.path().join(out)).unwrap();
+            assert!(text.starts_with("ply\n"), "{command} {out}");
+        }
+    }
+}
+
+#[test]
+fn small_messages_say_the_limit_and_one_list() {
+    let dir = TempDir::new().unwrap();
+    monge()
+        .current_dir(dir.path())
+        .arg("render")
+        .arg(example("fig13-freeform.json"))
+        .args(["--size", "20000x20000", "-o", "x.png"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "a side of 20000 pixels is outside 1 to 16384",
+        ));
+    monge()
+        .current_dir(dir.path())
+        .arg("smooth")
+        .arg(example("fig13-freeform.json"))
+        .args(["-o", "s.stl"])
+        .assert()
+        .code(2)
+        .stderr(predicate::eq(
+            "error: cannot tell what to write to `s.stl`: monge smooth writes `.json` (patches \
+             and arcs), `.igs` or `.iges` (the exact NURBS surface), or `.obj`, `.ply` or `.glb` \
+             (a dense mesh)\n",
+        ));
+    let toml = dir.path().join("d.toml");
+    let text = fs::read_to_string(example("fig14-family.toml")).unwrap();
+    let (line, _) = text
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.starts_with("theta_deg"))
+        .unwrap();
+    let lines: Vec<&str> = text
+        .lines()
+        .enumerate()
+        .map(|(k, l)| if k == line { "theta_deg = \"20\"" } else { l })
+        .collect();
+    fs::write(&toml, lines.join("\n")).unwrap();
+    monge()
+        .arg("info")
+        .arg(&toml)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(format!(
+            "{}:{}:13: theta_deg must be a number, got the string \"20\"\n",
+            toml.display(),
+            line + 1
+        )));
+    assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1, "only d.toml");
+}
