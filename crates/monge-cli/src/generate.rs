@@ -246,12 +246,16 @@ fn report_json(r: &Pinching) -> Value {
     })
 }
 
-/// The admissible θ in words, both signs (§3.2); a range from 0 is one
-/// interval (no `−0°`).
+/// Below this |θ| in degrees, the lower end of an admissible range is 0 up to
+/// round-off (c_v = 0 in §3.2 computes as about 1e-15°).
+const ZERO_DEG: f64 = 1e-9;
+
+/// The admissible θ in words, both signs (§3.2); a range from 0 (up to
+/// round-off) is one interval, without `−0°`.
 pub fn range_text(mode: Mode, r: &ThetaRange) -> String {
     match mode {
         Mode::Characteristic => "every θ in (−180°, 180°]".to_owned(),
-        Mode::Arbitrary if num(r.min_deg) == "0" => format!(
+        Mode::Arbitrary if r.min_deg.abs() < ZERO_DEG => format!(
             "|θ| ≤ {max}°, i.e. θ in [−{max}°, {max}°]",
             max = num(r.max_deg)
         ),
@@ -395,7 +399,7 @@ mod tests {
             range_text(Mode::Arbitrary, &r),
             "|θ| in [61.9°, 170°], i.e. θ in [−170°, −61.9°] ∪ [61.9°, 170°]"
         );
-        for min_deg in [0.0, -0.0, 1e-12] {
+        for min_deg in [0.0, -0.0, 1.3e-15] {
             let r = ThetaRange {
                 min_deg,
                 max_deg: 170.0,

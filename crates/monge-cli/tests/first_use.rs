@@ -397,3 +397,40 @@ fn small_messages_say_the_limit_and_one_list() {
         )));
     assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1, "only d.toml");
 }
+
+#[test]
+fn an_admissible_range_from_zero_is_one_interval() {
+    // Arbitrary case (§3.2) with guide_v's plane orthogonal to t_u (c_v = 0) and
+    // guide_u's plane tilted by 30° (c_u = sin 30°): |θ| ≤ 180° − 2·atan(1/2).
+    let (s, c) = (0.5_f64, 3f64.sqrt() / 2.0);
+    let u: Vec<[f64; 3]> = (0..9)
+        .map(|k| {
+            let t = f64::from(k) / 4.0;
+            [t, -s * 0.3 * t * t, c * 0.3 * t * t]
+        })
+        .collect();
+    let v: Vec<[f64; 3]> = (0..9)
+        .map(|k| {
+            let t = f64::from(k) / 4.0;
+            [0.0, t, 0.2 * t * t]
+        })
+        .collect();
+    let design = serde_json::json!({
+        "theta_deg": 100,
+        "guide_u": {"points": u, "tangent": [1, 0, 0]},
+        "guide_v": {"points": v, "tangent": [0, 1, 0]},
+    });
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("zero.json");
+    fs::write(&path, design.to_string()).unwrap();
+    let max = 180.0 - 2.0 * 0.5f64.atan().to_degrees();
+    assert_eq!(format!("{max:.2}"), "126.87");
+    monge()
+        .arg("info")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "admissible θ: |θ| ≤ 126.87°, i.e. θ in [−126.87°, 126.87°]\n",
+        ));
+}
