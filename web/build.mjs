@@ -1,17 +1,28 @@
-// Builds web/dist: the page's own files from src/ plus three.js from
-// node_modules (no bundler: the page loads ES modules through an import map).
+// Builds web/dist: index.html and style.css from src/, and app.js bundled with
+// the parts of three.js it uses (from node_modules) and minified by esbuild
+// (deterministic: the same sources give the same bytes, which .ci/run checks
+// against the copy embedded in the `monge` binary, crates/monge-cli/web-dist).
+import { buildSync } from 'esbuild';
 import { cpSync, mkdirSync, rmSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, 'dist');
-const three = join(here, 'node_modules', 'three');
 
 rmSync(dist, { recursive: true, force: true });
-mkdirSync(join(dist, 'vendor'), { recursive: true });
-cpSync(join(here, 'src'), dist, { recursive: true });
-for (const file of ['build/three.module.js', 'build/three.core.js', 'examples/jsm/controls/OrbitControls.js']) {
-  cpSync(join(three, file), join(dist, 'vendor', file.split('/').pop()));
+mkdirSync(dist, { recursive: true });
+for (const file of ['index.html', 'style.css']) {
+  cpSync(join(here, 'src', file), join(dist, file));
 }
+buildSync({
+  entryPoints: [join(here, 'src', 'app.js')],
+  outfile: join(dist, 'app.js'),
+  bundle: true,
+  minify: true,
+  format: 'esm',
+  target: 'es2022',
+  legalComments: 'eof',
+  logLevel: 'warning',
+});
 console.log(`built ${dist}`);

@@ -22,7 +22,7 @@ const screenshot = join(repo, 'target/explorer-screenshot.png');
 
 /** Starts `monge explore` on a free port; resolves to { server, url }. */
 function startServer() {
-  const server = spawn(monge, ['explore', '--port', '0', '--web-dir', join(repo, 'web/dist')], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const server = spawn(monge, ['explore', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
   return new Promise((ok, fail) => {
     let out = '';
     server.stdout.on('data', (chunk) => {

@@ -1,7 +1,7 @@
 // The page of `monge explore`: holds a design, posts it to the local server on
 // every change and draws the mesh that comes back (three.js).
 import * as THREE from 'three';
-import { OrbitControls } from './vendor/OrbitControls.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 const $ = (id) => document.getElementById(id);
 

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use monge_core::boundary::{align, AlignOptions, BoundarySpec};
-use monge_io::write_design;
+use monge_core::boundary::{align, AlignOptions};
+use monge_io::{check_output, read_planes, write_design};
 
 use crate::output::{num, print};
 use crate::Outcome;
@@ -12,7 +12,7 @@ use crate::Outcome;
 /// Arguments of `monge align`.
 #[derive(Debug, clap::Args)]
 pub struct AlignArgs {
-    /// The planes file (JSON): `first_row`, `last_row`, `first_column`, `last_column`, each
+    /// The planes file (JSON or TOML): `first_row`, `last_row`, `first_column`, `last_column`, each
     /// `{"point": [x, y, z], "normal": [x, y, z]}`; optional `theta_deg`, `corner`,
     /// `samples`, `rise`, `facade`.
     #[arg(value_name = "PLANES")]
@@ -35,9 +35,8 @@ pub struct AlignArgs {
 /// Runs `monge align`.
 pub fn run(args: &AlignArgs) -> anyhow::Result<Outcome> {
     let file = args.planes.display().to_string();
-    let text = std::fs::read_to_string(&args.planes).with_context(|| format!("reading {file}"))?;
-    let mut spec: BoundarySpec =
-        serde_json::from_str(&text).with_context(|| format!("{file}: not a planes file"))?;
+    check_output(&args.output, &[&args.planes])?;
+    let mut spec = read_planes(&args.planes)?;
     if args.samples.is_some() {
         spec.samples = args.samples;
     }

@@ -1,10 +1,11 @@
 //! The command line: every command, flag and help text of `monge`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand, ValueEnum};
 use monge_core::GenerateOptions;
-use monge_io::MeshFormat;
+use monge_io::{is_stdio, MeshFormat};
+use monge_render::MAX_SIDE;
 
 /// The θ convention, in one line, shared by the help texts.
 const THETA: &str = "θ (`theta_deg`, degrees, taken modulo 360 into (−180°, 180°]) places the \
@@ -199,9 +200,11 @@ pub enum Command {
              gridshell.glb (glTF of all layers, beams swept with a rectangular section). Prints a \
              summary: counts, segments per beam, distinct radii, node types, node heights, worst \
              residuals.",
-        after_help = "Examples:\n  \
+        after_help = format!(
+            "Examples:\n  \
              monge fabricate examples/fig12-dupin-theta30.json -o out --layers 0,0.1,0.2\n  \
-             monge fabricate examples/fig25-biarc.json -o out --layers 0,-0.1,-0.2 --section 0.05,0.1"
+             monge fabricate examples/fig25-biarc.json -o out --layers 0,-0.1,-0.2 --section 0.05,0.1\n\n{EXIT}"
+        )
     )]
     Fabricate(crate::fabricate::FabricateArgs),
 
@@ -254,7 +257,7 @@ pub enum Command {
              or {{\"plane\": {{\"point\", \"normal\"}}}} (e.g. the plane a patch must end in for a \
              mirror, Figure 20); optional `max_distance` (fail above it) and `max_evaluations`. \
              θ stays in its patch's admissible range at the start values (on the start's side of \
-             0 when the range excludes 0) and 1° away from the singular +90°.\n\n{EXIT}"
+             0 when the range excludes 0) and 1° away from the singular +90°."
         ),
         after_help = format!(
             "Examples:\n  \
@@ -274,11 +277,14 @@ pub enum Command {
              design-file format, meshes export as OBJ or JSON.\n\n\
              The mesh is computed here, by the same code as `monge generate`, for each change \
              (POST /api/generate). The server listens on 127.0.0.1 unless --host says otherwise, \
-             refuses bodies over 1 MB and grids over --max-vertices. The page's files come from \
-             --web-dir, built by `npm ci && npm run build` in web/.",
-        after_help = "Examples:\n  \
+             refuses bodies over 1 MB and grids over --max-vertices. The page is built into this \
+             binary; --web-dir serves one from disk instead (`npm ci && npm run build` in web/ \
+             writes it to web/dist).",
+        after_help = format!(
+            "Examples:\n  \
              monge explore\n  \
-             monge explore examples/fig13-freeform.json --port 0"
+             monge explore examples/fig13-freeform.json --port 0\n\n{EXIT}"
+        )
     )]
     Explore(crate::explore::ExploreArgs),
 
@@ -313,7 +319,7 @@ pub enum Command {
              areas (divided by the squared mean), with BOBYQA, refusing samplings that fold the mesh \
              (§5.2), and write the design with each B-spline's `parameters` to OPTIMISED_DESIGN. \
              The samples stay on the same curves, so every exactness property still holds. Prints \
-             the area variance, min and max before and after, and the measured max error.\n\n{EXIT}"
+             the area variance, min and max before and after, and the measured max error."
         ),
         after_help = format!(
             "Examples:\n  \
@@ -346,7 +352,7 @@ pub enum Command {
              ({{\"guide_u\": h, \"guide_v\": h}}, default a quarter of each run); every θ but +90° \
              works.\n\n\
              Prints θ, the c_k, each boundary's distance from its plane (relative to the mesh size) \
-             and the measured max error.\n\n{THETA}\n\n{EXIT}"
+             and the measured max error.\n\n{THETA}"
         ),
         after_help = format!(
             "Examples:\n  \
@@ -366,7 +372,8 @@ pub struct PatchesArgs {
     /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
-    /// Output format; overrides OUT's extension. With `-o -` it defaults to json.
+    /// Output format, for `-o -` (default json) or an OUT whose extension names none; it must
+    /// agree with OUT's extension.
     #[arg(long, value_enum)]
     pub format: Option<FormatArg>,
     /// Refuse patches of more than N grid vertices each.
@@ -401,6 +408,47 @@ pub enum FormatArg {
     Glb,
 }
 
+/// The format of a mesh output OUT: `--format`, else OUT's extension (JSON for
+/// `-`); a `--format` that contradicts OUT's extension is refused.
+pub fn output_format(format: Option<FormatArg>, out: &Path) -> anyhow::Result<MeshFormat> {
+    if is_stdio(out) {
+        return Ok(format.map_or(MeshFormat::Json, MeshFormat::from));
+    }
+    let Some(format) = format.map(MeshFormat::from) else {
+        return Ok(MeshFormat::from_path(out)?);
+    };
+    match MeshFormat::from_path(out) {
+        Ok(by_extension) if by_extension != format => anyhow::bail!(
+            "--format {f} but OUT `{}` ends in `.{}`: name it `.{f}`, or leave --format out",
+            out.display(),
+            by_extension.extension(),
+            f = format.extension()
+        ),
+        _ => Ok(format),
+    }
+}
+
+/// Mesh formats that are read back (glTF is written for viewers only, in f32).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ReadFormatArg {
+    /// Wavefront OBJ.
+    Obj,
+    /// ASCII PLY.
+    Ply,
+    /// JSON (`rows`, `cols`, `vertices`, `normals`).
+    Json,
+}
+
+impl From<ReadFormatArg> for MeshFormat {
+    fn from(f: ReadFormatArg) -> MeshFormat {
+        match f {
+            ReadFormatArg::Obj => MeshFormat::Obj,
+            ReadFormatArg::Ply => MeshFormat::Ply,
+            ReadFormatArg::Json => MeshFormat::Json,
+        }
+    }
+}
+
 impl From<FormatArg> for MeshFormat {
     fn from(f: FormatArg) -> MeshFormat {
         match f {
@@ -421,7 +469,8 @@ pub struct GenerateArgs {
     /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
-    /// Output format; overrides OUT's extension. With `-o -` it defaults to json.
+    /// Output format, for `-o -` (default json) or an OUT whose extension names none; it must
+    /// agree with OUT's extension.
     #[arg(long, value_enum)]
     pub format: Option<FormatArg>,
     /// Refuse grids of more than N vertices (rows × cols), before allocating anything.
@@ -460,7 +509,7 @@ pub struct CheckArgs {
     pub tol: f64,
     /// Format of standard input when MESH is `-` (files are read by their extension).
     #[arg(long, value_enum)]
-    pub format: Option<FormatArg>,
+    pub format: Option<ReadFormatArg>,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -493,7 +542,8 @@ pub struct SmoothArgs {
     /// The design file (`.json` or `.toml`).
     #[arg(value_name = "DESIGN")]
     pub design: PathBuf,
-    /// Output: `.json` (patches and arcs), `.igs` (exact NURBS), `.obj` or `.ply` (dense mesh).
+    /// Output: `.json` (patches and arcs), `.igs` (exact NURBS), `.obj`, `.ply` or `.glb` (dense
+    /// mesh).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
     /// Samples per patch side, K ≥ 2 (K × K points a patch).
@@ -550,7 +600,7 @@ pub struct RenderArgs {
     /// Also draw the Gauss map (the node axes on the unit sphere) beside each mesh.
     #[arg(long)]
     pub gauss: bool,
-    /// Size of the picture in pixels, WIDTHxHEIGHT (each 1 to 16384).
+    /// Size of the picture in pixels, WIDTHxHEIGHT (each from 1 to 16384).
     #[arg(long, value_name = "WxH", default_value = "1200x800", value_parser = parse_size)]
     pub size: (u32, u32),
     /// Where the eye is, in degrees: azimuth around z from +x towards +y, and elevation
@@ -578,17 +628,26 @@ pub struct RenderArgs {
     pub smooth: Option<u32>,
 }
 
-/// `--size`: `WIDTHxHEIGHT`, each from 1 to 16384.
+/// `--size`: `WIDTHxHEIGHT`, each from 1 to [`MAX_SIDE`].
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("`{s}` is not a size: give WIDTHxHEIGHT in pixels, e.g. 1200x800");
+    let bad = || {
+        format!(
+            "`{s}` is not a size: give WIDTHxHEIGHT in pixels, each from 1 to {MAX_SIDE}, e.g. \
+             1200x800"
+        )
+    };
     let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
     let side = |t: &str| {
-        t.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|v| (1..=16384).contains(v))
+        let v = t.trim().parse::<u64>().map_err(|_| bad())?;
+        match u32::try_from(v) {
+            Ok(v @ 1..=MAX_SIDE) => Ok(v),
+            _ => Err(format!(
+                "`{s}`: a side of {v} pixels is outside 1 to {MAX_SIDE} (the largest picture monge \
+                 draws is {MAX_SIDE} × {MAX_SIDE})"
+            )),
+        }
     };
-    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
+    Ok((side(w)?, side(h)?))
 }
 
 /// `--view`: `AZ,EL` in degrees, the elevation from −89 to 89.
@@ -641,7 +700,14 @@ mod tests {
     #[test]
     fn sizes_and_views_parse() {
         assert_eq!(parse_size("900x600"), Ok((900, 600)));
-        assert!(parse_size("0x600").is_err());
+        assert_eq!(parse_size("16384x1"), Ok((16384, 1)));
+        for (size, side) in [("0x600", 0), ("20000x20000", 20000), ("900x16385", 16385)] {
+            let err = parse_size(size).unwrap_err();
+            assert!(
+                err.contains(&format!("a side of {side} pixels is outside 1 to 16384")),
+                "{err}"
+            );
+        }
         assert!(parse_size("900").is_err());
         assert_eq!(parse_view("-55,30"), Ok((-55.0, 30.0)));
         assert!(parse_view("0,90").is_err());

@@ -6,11 +6,13 @@
 //! `POST /api/generate` and draws the mesh it gets back. The server is
 //! [`tiny_http`]: small, synchronous, no async runtime — a few worker threads
 //! answer one designer's requests, each in well under a millisecond plus the
-//! generation itself. The page's files (HTML, JS, CSS and three.js, built by
-//! `npm run build` in `web/`) are served from disk, from `--web-dir`.
+//! generation itself. The page's files (HTML, CSS, and the JS bundled with
+//! three.js by `npm run build` in `web/`) are embedded in the binary from
+//! `crates/monge-cli/web-dist/` (a committed copy of `web/dist`), so a copied or
+//! installed `monge` serves its page; `--web-dir` serves another directory instead.
 //!
 //! Routes:
-//! * `GET /`, `GET /<file>`: the page, from the web directory.
+//! * `GET /`, `GET /<file>`: the page, embedded or from `--web-dir`.
 //! * `GET /api/design`: the design to start from (DESIGN, or a built-in one of
 //!   100 × 100 faces).
 //! * `POST /api/generate[?offset=D][&arrays=f32][&metrics=later][&name=FILE][&format=toml]`:
@@ -29,8 +31,9 @@ use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{anyhow, Context};
+use anyhow::{anyhow, bail, Context};
 use glam::DVec3;
+use include_dir::{include_dir, Dir};
 use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
 use monge_core::offset::{face_offset, vertex_offset};
@@ -81,17 +84,24 @@ pub struct ExploreArgs {
     /// compute: keep the default (this machine only) unless you mean it.
     #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
     pub host: IpAddr,
-    /// Directory of the page's files, built by `npm ci && npm run build` in `web/`.
-    #[arg(long, value_name = "DIR", default_value_os_t = default_web_dir())]
-    pub web_dir: PathBuf,
+    /// Serve the page's files from DIR (e.g. `web/dist`, built by `npm ci && npm run build`
+    /// in `web/`) instead of the copy embedded in this binary.
+    #[arg(long, value_name = "DIR")]
+    pub web_dir: Option<PathBuf>,
     /// Refuse designs of more than N grid vertices (rows × cols).
     #[arg(long, value_name = "N", default_value_t = MAX_VERTICES)]
     pub max_vertices: usize,
 }
 
-/// `web/dist` of the source tree this binary was built from.
-fn default_web_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../web/dist")
+/// The page built by `npm run build` in `web/`, as committed in `web-dist/`.
+static EMBEDDED_PAGE: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/web-dist");
+
+/// Where the page's files come from.
+enum Page {
+    /// The copy embedded in the binary.
+    Embedded,
+    /// A directory given with `--web-dir`.
+    Directory(PathBuf),
 }
 
 /// What every request handler shares.
@@ -99,7 +109,7 @@ struct Shared {
     /// The start design, as JSON text.
     design: String,
     /// The page's files.
-    web_dir: PathBuf,
+    page: Page,
     /// The grid limit.
     options: GenerateOptions,
 }
@@ -120,19 +130,22 @@ pub fn run(args: &ExploreArgs) -> anyhow::Result<Outcome> {
         .server_addr()
         .to_ip()
         .ok_or_else(|| anyhow!("the server has no IP address"))?;
-    if !args.web_dir.join("index.html").is_file() {
-        crate::output::eprint(&format!(
-            "warning: no page in `{}`: build it with `npm ci && npm run build` in web/, or give \
-             --web-dir; the API works without it.\n",
-            args.web_dir.display()
-        ));
-    }
+    let page = match &args.web_dir {
+        Some(dir) if !dir.join("index.html").is_file() => bail!(
+            "--web-dir `{}` has no index.html: build the page with `npm ci && npm run build` in \
+             web/ and give `--web-dir web/dist`, or leave --web-dir out to serve the page built \
+             into monge",
+            dir.display()
+        ),
+        Some(dir) => Page::Directory(dir.clone()),
+        None => Page::Embedded,
+    };
     print(&format!(
         "monge explore: open http://{address}/ (Ctrl-C to stop)\n"
     ))?;
     let shared = Arc::new(Shared {
         design,
-        web_dir: args.web_dir.clone(),
+        page,
         options: GenerateOptions {
             max_vertices: args.max_vertices,
         },
@@ -276,7 +289,7 @@ fn route(method: &Method, url: &str, body: &[u8], shared: &Shared) -> Reply {
         (_, "/api/generate" | "/api/export" | "/api/design") => {
             Reply::error(405, format!("{method} is not allowed on {path}"))
         }
-        (Method::Get, _) => static_file(&shared.web_dir, path),
+        (Method::Get, _) => static_file(&shared.page, path),
         _ => Reply::error(404, format!("no route {method} {path}")),
     }
 }
@@ -695,8 +708,8 @@ fn binary_reply(header: &Value, arrays: &[f32]) -> Reply {
     }
 }
 
-/// `GET /<file>`: a file of the web directory, by a path of plain names only.
-fn static_file(web_dir: &Path, path: &str) -> Reply {
+/// `GET /<file>`: a file of the page, by a path of plain names only.
+fn static_file(page: &Page, path: &str) -> Reply {
     let relative = match path.trim_start_matches('/') {
         "" => "index.html",
         p => p,
@@ -705,26 +718,21 @@ fn static_file(web_dir: &Path, path: &str) -> Reply {
     let plain = relative
         .components()
         .all(|c| matches!(c, Component::Normal(_)));
-    let not_found = || Reply::error(404, format!("no file {path}"));
-    if !plain {
-        return not_found();
-    }
-    let file = web_dir.join(relative);
-    match fs::read(&file) {
-        Ok(body) => Reply {
+    let body = match page {
+        _ if !plain => None,
+        Page::Embedded => EMBEDDED_PAGE
+            .get_file(relative)
+            .map(|f| f.contents().to_vec()),
+        Page::Directory(dir) => fs::read(dir.join(relative)).ok(),
+    };
+    match body {
+        Some(body) => Reply {
             status: 200,
-            content_type: content_type(&file),
+            content_type: content_type(relative),
             body,
             download: None,
         },
-        Err(_) if !web_dir.join("index.html").is_file() => Reply::error(
-            404,
-            format!(
-                "the page is not built: `{}` has no index.html (run `npm ci && npm run build` in web/, or give --web-dir)",
-                web_dir.display()
-            ),
-        ),
-        Err(_) => not_found(),
+        None => Reply::error(404, format!("no file {path}")),
     }
 }
 
@@ -774,13 +782,15 @@ mod tests {
         let dir = std::env::temp_dir().join("monge-explore-static-test");
         fs::create_dir_all(&dir).unwrap();
         fs::write(dir.join("index.html"), "<p>hi</p>").unwrap();
-        let index = static_file(&dir, "/");
-        assert_eq!(
-            (index.status, index.content_type),
-            (200, "text/html; charset=utf-8")
-        );
-        assert_eq!(static_file(&dir, "/../Cargo.toml").status, 404);
-        assert_eq!(static_file(&dir, "/missing.js").status, 404);
+        for page in [Page::Directory(dir), Page::Embedded] {
+            let index = static_file(&page, "/");
+            assert_eq!(
+                (index.status, index.content_type),
+                (200, "text/html; charset=utf-8")
+            );
+            assert_eq!(static_file(&page, "/../Cargo.toml").status, 404);
+            assert_eq!(static_file(&page, "/missing.js").status, 404);
+        }
     }
 
     #[test]

@@ -12,11 +12,12 @@ use monge_core::gauss_map::ThetaRange;
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode, QuadGrid};
 use monge_io::{
-    is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output, AnyDesign, MeshFormat,
+    check_output, is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output,
+    AnyDesign, MeshFormat,
 };
 use serde_json::{json, Map, Value};
 
-use crate::cli::GenerateArgs;
+use crate::cli::{output_format, GenerateArgs};
 use crate::output::{eprint, millis, num};
 use crate::Outcome;
 
@@ -27,14 +28,9 @@ const LOW_CROSSING_SINE: f64 = 1e-3;
 pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     let out = args.output.as_path();
     // Everything about the output is checked before the (possibly long) generation.
-    let format = match (args.format, is_stdio(out)) {
-        (Some(f), _) => MeshFormat::from(f),
-        (None, true) => MeshFormat::Json,
-        (None, false) => MeshFormat::from_path(out)?,
-    };
-    if !is_stdio(out) {
-        check_directory(out)?;
-    } else if !args.offsets.is_empty() {
+    let format = output_format(args.format, out)?;
+    check_output(out, &[&args.design])?;
+    if is_stdio(out) && !args.offsets.is_empty() {
         bail!("--offset writes one file per offset next to OUT: give a file for -o, not `-`");
     }
 
@@ -197,22 +193,6 @@ fn offset_path(out: &Path, d: f64) -> PathBuf {
     out.with_file_name(name)
 }
 
-/// Fails early, with a plain message, if `out`'s directory does not exist.
-fn check_directory(out: &Path) -> anyhow::Result<()> {
-    let dir = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        bail!(
-            "cannot write `{}`: the directory `{}` does not exist (create it first, or choose another -o)",
-            out.display(),
-            dir.display()
-        );
-    }
-    Ok(())
-}
-
 /// `"characteristic"` or `"arbitrary"`.
 pub fn mode_name(mode: Mode) -> &'static str {
     match mode {
@@ -266,10 +246,19 @@ fn report_json(r: &Pinching) -> Value {
     })
 }
 
-/// The admissible θ in words, both signs (§3.2).
+/// Below this |θ| in degrees, the lower end of an admissible range is 0 up to
+/// round-off (c_v = 0 in §3.2 computes as about 1e-15°).
+const ZERO_DEG: f64 = 1e-9;
+
+/// The admissible θ in words, both signs (§3.2); a range from 0 (up to
+/// round-off) is one interval, without `−0°`.
 pub fn range_text(mode: Mode, r: &ThetaRange) -> String {
     match mode {
         Mode::Characteristic => "every θ in (−180°, 180°]".to_owned(),
+        Mode::Arbitrary if r.min_deg.abs() < ZERO_DEG => format!(
+            "|θ| ≤ {max}°, i.e. θ in [−{max}°, {max}°]",
+            max = num(r.max_deg)
+        ),
         Mode::Arbitrary => format!(
             "|θ| in [{min}°, {max}°], i.e. θ in [−{max}°, −{min}°] ∪ [{min}°, {max}°]",
             min = num(r.min_deg),
@@ -410,5 +399,13 @@ mod tests {
             range_text(Mode::Arbitrary, &r),
             "|θ| in [61.9°, 170°], i.e. θ in [−170°, −61.9°] ∪ [61.9°, 170°]"
         );
+        for min_deg in [0.0, -0.0, 1.3e-15] {
+            let r = ThetaRange {
+                min_deg,
+                max_deg: 170.0,
+            };
+            let text = range_text(Mode::Arbitrary, &r);
+            assert_eq!(text, "|θ| ≤ 170°, i.e. θ in [−170°, 170°]");
+        }
     }
 }

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use monge_core::panels::{optimise_panels, PanelOptions};
 use monge_core::GenerateOptions;
-use monge_io::{read_design, write_design};
+use monge_io::{check_output, read_design, write_design};
 
 use crate::output::{num, print};
 use crate::Outcome;
@@ -33,6 +33,7 @@ pub struct OptimisePanelsArgs {
 /// Runs `monge optimise-panels`.
 pub fn run(args: &OptimisePanelsArgs) -> anyhow::Result<Outcome> {
     let file = args.design.display().to_string();
+    check_output(&args.output, &[&args.design])?;
     let design = read_design(&args.design)?;
     let options = GenerateOptions {
         max_vertices: args.max_vertices,

@@ -8,27 +8,25 @@ use monge_core::optimise::fit;
 use monge_core::symmetry::{assemble, isometries};
 use monge_core::GenerateOptions;
 use monge_io::{
-    read_multipatch, write_mesh, write_multipatch, write_output, write_quad_mesh, MeshFormat,
+    check_output, read_multipatch, write_mesh, write_multipatch, write_output, write_quad_mesh,
+    MeshFormat,
 };
 use serde_json::{json, Map, Value};
 
-use crate::cli::{FitArgs, PatchesArgs};
+use crate::cli::{output_format, FitArgs, PatchesArgs};
 use crate::output::{eprint, num, print};
 use crate::Outcome;
 
 /// Runs `monge patches`.
 pub fn run_patches(args: &PatchesArgs) -> anyhow::Result<Outcome> {
     let file = args.design.display().to_string();
+    let format = output_format(args.format, &args.output)?;
+    check_output(&args.output, &[&args.design])?;
     let design = read_multipatch(&args.design)?;
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
     let mp = build(&design, &options).with_context(|| file.clone())?;
-    let format = match args.format {
-        Some(f) => MeshFormat::from(f),
-        None if monge_io::is_stdio(&args.output) => MeshFormat::Json,
-        None => MeshFormat::from_path(&args.output)?,
-    };
     let mut summary = patch_summary(&mp);
     if design.symmetry.is_empty() {
         if format == MeshFormat::Json {
@@ -132,6 +130,7 @@ fn patch_json(mp: &MultiPatch) -> Value {
 /// Runs `monge fit`.
 pub fn run_fit(args: &FitArgs) -> anyhow::Result<Outcome> {
     let file = args.design.display().to_string();
+    check_output(&args.output, &[&args.design])?;
     let design = read_multipatch(&args.design)?;
     let options = GenerateOptions {
         max_vertices: args.max_vertices,

@@ -1,6 +1,6 @@
 //! `monge render`: designs → a picture (PNG or SVG).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use glam::DVec3;
@@ -8,7 +8,7 @@ use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::developable::developable;
 use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, MeshKind, QuadGrid};
-use monge_io::{read_any_design, write_atomic, AnyDesign};
+use monge_io::{check_output, read_any_design, write_atomic, AnyDesign};
 use monge_render::{
     gauss_net, guide_highlights, render_png, render_svg, sheet_png, sheet_svg, Highlight, Panel,
     Projection, RenderOptions, Rgb, Scene, View,
@@ -45,6 +45,8 @@ impl Picture {
 /// Runs `monge render`.
 pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
     let out = args.output.as_path();
+    let inputs: Vec<&Path> = args.designs.iter().map(PathBuf::as_path).collect();
+    check_output(out, &inputs)?;
     let format = Picture::of(out)?;
     let (width, height) = args.size;
     let options = RenderOptions {

@@ -6,7 +6,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::scan::{parse_range, plot_svg, scan, to_csv, Scan, Status};
 use monge_core::GenerateOptions;
-use monge_io::{read_design, write_atomic};
+use monge_io::{check_output, read_design, write_atomic};
 
 use crate::output::{eprint, num};
 use crate::Outcome;
@@ -46,6 +46,9 @@ pub struct ScanArgs {
 /// Runs `monge scan`.
 pub fn run(args: &ScanArgs) -> anyhow::Result<Outcome> {
     let file = args.design.display().to_string();
+    for out in std::iter::once(&args.output).chain(&args.plot) {
+        check_output(out, &[&args.design])?;
+    }
     let design = read_design(&args.design)?;
     let (path, range) = match (&args.theta, &args.param, &args.range) {
         (Some(r), None, None) => ("theta", r.as_str()),

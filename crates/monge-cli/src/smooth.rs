@@ -8,7 +8,9 @@ use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family, Frame};
 use monge_core::{generate, GenerateOptions};
-use monge_io::{read_design, read_mesh, write_iges, write_mesh_to, write_output, MeshFormat};
+use monge_io::{
+    check_output, read_design, read_mesh, write_iges, write_mesh_to, write_output, MeshFormat,
+};
 use serde_json::{json, Value};
 
 use crate::cli::SmoothArgs;
@@ -23,12 +25,16 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
         SmoothOutput::Json
     } else if ext.eq_ignore_ascii_case("igs") || ext.eq_ignore_ascii_case("iges") {
         SmoothOutput::Iges
+    } else if let Some(format) = MeshFormat::from_extension(ext) {
+        SmoothOutput::Mesh(format)
     } else {
-        SmoothOutput::Mesh(MeshFormat::from_path(out).context(
-            "monge smooth writes `.json` (patches and arcs), `.igs` (the exact NURBS surface), \
-             or `.obj`/`.ply` (a dense mesh)",
-        )?)
+        bail!(
+            "cannot tell what to write to `{}`: monge smooth writes `.json` (patches and arcs), \
+             `.igs` or `.iges` (the exact NURBS surface), or `.obj`, `.ply` or `.glb` (a dense mesh)",
+            out.display()
+        );
     };
+    check_output(out, &[&args.design])?;
     let start = Instant::now();
     let grid = if args.mesh {
         read_mesh(&args.design)?

@@ -419,23 +419,6 @@ fn max_vertices_10_refuses_an_example() {
 }
 
 #[test]
-fn output_into_a_missing_directory_is_refused() {
-    let dir = TempDir::new().unwrap();
-    let out = dir.path().join("missing").join("out.obj");
-    monge()
-        .arg("generate")
-        .arg(example("contract.json"))
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(2)
-        .stderr(
-            predicate::str::starts_with("error: ").and(predicate::str::contains("does not exist")),
-        );
-    assert!(!dir.path().join("missing").exists());
-}
-
-#[test]
 fn an_unknown_output_extension_and_a_missing_design_are_errors() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("out.stl");

@@ -17,18 +17,26 @@ struct Server {
     child: Child,
     /// `127.0.0.1:PORT`.
     address: String,
-    /// Its web directory (holds a tiny page).
-    _web: TempDir,
+    /// Its web directory (holds a tiny page), or the binary's copy.
+    _dir: TempDir,
 }
 
 impl Server {
-    /// Starts `monge explore --port 0 ARGS…` and reads the address it prints.
+    /// Starts `monge explore --port 0 --web-dir DIR ARGS…` (DIR holding a tiny
+    /// page) and reads the address it prints.
     fn start(args: &[&str]) -> Server {
         let web = TempDir::new().unwrap();
         std::fs::write(web.path().join("index.html"), "<p>explorer</p>").unwrap();
-        let mut child = Command::new(env!("CARGO_BIN_EXE_monge"))
-            .args(["explore", "--port", "0", "--web-dir"])
-            .arg(web.path())
+        let dir = web.path().to_str().unwrap().to_owned();
+        let mut all = vec!["--web-dir", dir.as_str()];
+        all.extend_from_slice(args);
+        Server::spawn(Path::new(env!("CARGO_BIN_EXE_monge")), &all, web)
+    }
+
+    /// Starts `BINARY explore --port 0 ARGS…`, keeping `dir` until dropped.
+    fn spawn(binary: &Path, args: &[&str], dir: TempDir) -> Server {
+        let mut child = Command::new(binary)
+            .args(["explore", "--port", "0"])
             .args(args)
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -47,7 +55,7 @@ impl Server {
         Server {
             child,
             address,
-            _web: web,
+            _dir: dir,
         }
     }
 
@@ -295,4 +303,42 @@ fn a_design_file_is_the_start_design() {
         serde_json::from_str(&std::fs::read_to_string(example("fig10-arbitrary.json")).unwrap())
             .unwrap();
     assert_eq!(design["theta_deg"].as_f64(), file["theta_deg"].as_f64());
+}
+
+#[test]
+fn a_copied_binary_serves_its_embedded_page() {
+    // A copy of the binary far from the source tree, as `cargo install` leaves it.
+    let dir = TempDir::new().unwrap();
+    let binary = dir.path().join("monge");
+    std::fs::copy(env!("CARGO_BIN_EXE_monge"), &binary).unwrap();
+    let server = Server::spawn(&binary, &[], dir);
+    let page = Path::new(env!("CARGO_MANIFEST_DIR")).join("web-dist");
+    let (status, index) = server.request("GET", "/", b"");
+    assert_eq!(status, 200);
+    assert_eq!(index, std::fs::read(page.join("index.html")).unwrap());
+    // Every file the page links to, as committed.
+    let html = String::from_utf8(index).unwrap();
+    let linked: Vec<&str> = ["src=\"", "href=\""]
+        .iter()
+        .flat_map(|attr| html.split(attr).skip(1))
+        .filter_map(|rest| rest.split('"').next())
+        .collect();
+    assert_eq!(linked.len(), 2, "app.js and style.css: {linked:?}");
+    for file in linked {
+        let (status, body) = server.request("GET", &format!("/{file}"), b"");
+        assert_eq!(status, 200, "{file}");
+        assert_eq!(body, std::fs::read(page.join(file)).unwrap(), "{file}");
+    }
+    assert_eq!(server.request("GET", "/missing.js", b"").0, 404);
+}
+
+#[test]
+fn a_web_dir_without_a_page_is_refused() {
+    let empty = TempDir::new().unwrap();
+    common::monge()
+        .args(["explore", "--port", "0", "--web-dir"])
+        .arg(empty.path())
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("has no index.html"));
 }

@@ -31,10 +31,7 @@ pub fn write_atomic(
         path: path.to_owned(),
         source,
     };
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+    let dir = existing_directory(path)?;
     let prefix = match path.file_name() {
         Some(name) => format!(".{}.", name.to_string_lossy()),
         None => {
@@ -59,6 +56,57 @@ pub fn write_atomic(
     }
     tmp.as_file().sync_all().map_err(err)?;
     tmp.persist(path).map_err(|e| err(e.error))?;
+    Ok(())
+}
+
+/// The directory of `path` (`.` for a bare file name), or
+/// [`IoError::NoDirectory`] if it does not exist.
+fn existing_directory(path: &Path) -> Result<&Path, IoError> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if dir.is_dir() {
+        Ok(dir)
+    } else {
+        Err(IoError::NoDirectory {
+            path: path.to_owned(),
+            dir: dir.to_owned(),
+        })
+    }
+}
+
+/// Checks an output path before a command does its work: its directory exists
+/// ([`IoError::NoDirectory`]) and it is none of `inputs`
+/// ([`IoError::OutputIsInput`], comparing canonical paths: the output's
+/// directory canonicalised, plus its file name). `-` (standard output) passes.
+///
+/// ```
+/// # let dir = tempfile::tempdir().unwrap();
+/// let design = dir.path().join("d.json");
+/// std::fs::write(&design, "{}").unwrap();
+/// let same = dir.path().join(".").join("d.json");
+/// assert!(monge_io::check_output(&same, &[&design]).is_err());
+/// assert!(monge_io::check_output(&dir.path().join("d.obj"), &[&design]).is_ok());
+/// ```
+pub fn check_output(path: &Path, inputs: &[&Path]) -> Result<(), IoError> {
+    if is_stdio(path) {
+        return Ok(());
+    }
+    let dir = existing_directory(path)?;
+    let canonical = dir
+        .canonicalize()
+        .ok()
+        .zip(path.file_name())
+        .map(|(dir, name)| dir.join(name));
+    let same = |input: &&Path| {
+        !is_stdio(input) && canonical.is_some() && input.canonicalize().ok() == canonical
+    };
+    if inputs.iter().any(same) {
+        return Err(IoError::OutputIsInput {
+            path: path.to_owned(),
+        });
+    }
     Ok(())
 }
 

@@ -9,6 +9,7 @@ use serde::de::DeserializeOwned;
 
 use crate::atomic::write_atomic;
 use crate::error::IoError;
+use crate::kind::{expect_kind, FileKind};
 use crate::path_name;
 
 /// File name used in error messages for text that did not come from a file.
@@ -91,6 +92,7 @@ pub fn parse_design(text: &str, format: DesignFormat) -> Result<Design, IoError>
 }
 
 fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
+    expect_kind(text, format, file, &[FileKind::Design])?;
     parse_as(text, format, file)
 }
 
@@ -103,22 +105,77 @@ pub(crate) fn parse_as<T: DeserializeOwned>(
     file: &str,
 ) -> Result<T, IoError> {
     match format {
-        DesignFormat::Json => serde_json::from_str(text).map_err(|e| json_error(file, text, &e)),
+        DesignFormat::Json => {
+            let mut de = serde_json::Deserializer::from_str(text);
+            let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+                let (inner, path) = (e.inner(), e.path().to_string());
+                let message = plain_message(&json_message(inner), &path);
+                IoError::parse_at_line(file, text, inner.line(), inner.column(), message)
+            })?;
+            de.end().map_err(|e| json_error(file, text, &e))?;
+            Ok(value)
+        }
         DesignFormat::Toml => {
-            let toml_error = |e: toml::de::Error| {
+            let toml_error = |e: &toml::de::Error, message: String| {
                 let offset = e.span().map(|s| s.start);
-                IoError::parse_at(file, text, offset, e.message().trim_end().to_owned())
+                IoError::parse_at(file, text, offset, message)
             };
-            let value: toml::Value = toml::from_str(text).map_err(toml_error)?;
+            let plain = |e: toml::de::Error| {
+                let message = e.message().trim_end().to_owned();
+                toml_error(&e, message)
+            };
+            let value: toml::Value = toml::from_str(text).map_err(plain)?;
             if let Some(key) = non_finite(&value, String::new()) {
                 return Err(IoError::NonFinite {
                     file: file.to_owned(),
                     key,
                 });
             }
-            toml::from_str(text).map_err(toml_error)
+            let de = toml::Deserializer::parse(text).map_err(plain)?;
+            serde_path_to_error::deserialize(de).map_err(|e| {
+                let message = e.inner().message().trim_end();
+                toml_error(e.inner(), plain_message(message, &e.path().to_string()))
+            })
         }
     }
+}
+
+/// serde's `invalid type: string "20", expected f64` at `theta_deg` in words:
+/// `theta_deg must be a number, got the string "20"`; other messages as they are.
+fn plain_message(message: &str, path: &str) -> String {
+    let wrong = message
+        .strip_prefix("invalid type: ")
+        .or_else(|| message.strip_prefix("invalid value: "))
+        .and_then(|rest| rest.split_once(", expected "));
+    let Some((found, expected)) = wrong.filter(|_| !path.is_empty() && path != ".") else {
+        return message.to_owned();
+    };
+    let expected = match expected {
+        "f64" | "f32" => "a number",
+        "usize" | "u64" | "u32" | "u16" | "u8" => "a whole number ≥ 0",
+        "isize" | "i64" | "i32" | "i16" | "i8" => "a whole number",
+        "a sequence" => "a list",
+        "a boolean" => "true or false",
+        e if e.starts_with("struct ") || e == "a map" => "a table ({…})",
+        e => e,
+    };
+    let unquote = |s: &str| s.trim_matches('`').to_owned();
+    let found = if let Some(s) = found.strip_prefix("string ") {
+        format!("the string {s}")
+    } else if let Some(n) = found.strip_prefix("integer ") {
+        format!("the whole number {}", unquote(n))
+    } else if let Some(x) = found.strip_prefix("floating point ") {
+        format!("the number {}", unquote(x))
+    } else if let Some(b) = found.strip_prefix("boolean ") {
+        unquote(b)
+    } else {
+        match found {
+            "sequence" => "a list".to_owned(),
+            "map" => "a table".to_owned(),
+            f => f.to_owned(),
+        }
+    };
+    format!("{path} must be {expected}, got {found}")
 }
 
 /// The key path of the first non-finite float in a TOML value.
@@ -168,16 +225,13 @@ pub fn read_any_design(path: &Path) -> Result<AnyDesign, IoError> {
     let format = DesignFormat::from_path(path)?;
     let text = crate::read_to_string(path)?;
     let file = path_name(path);
-    let developable = match format {
-        DesignFormat::Json => {
-            serde_json::from_str::<serde_json::Map<String, serde_json::Value>>(&text)
-                .is_ok_and(|m| m.contains_key("developable"))
-        }
-        DesignFormat::Toml => {
-            toml::from_str::<toml::Table>(&text).is_ok_and(|t| t.contains_key("developable"))
-        }
-    };
-    if developable {
+    expect_kind(
+        &text,
+        format,
+        &file,
+        &[FileKind::Design, FileKind::Developable],
+    )?;
+    if FileKind::of_text(&text, format) == Some(FileKind::Developable) {
         parse_as(&text, format, &file).map(AnyDesign::Developable)
     } else {
         parse_design_named(&text, format, &file).map(|d| AnyDesign::Surface(Box::new(d)))
@@ -186,11 +240,14 @@ pub fn read_any_design(path: &Path) -> Result<AnyDesign, IoError> {
 
 /// An [`IoError::Parse`] from a serde_json error on `text`.
 pub(crate) fn json_error(file: &str, text: &str, e: &serde_json::Error) -> IoError {
-    // serde_json's Display appends " at line L column C"; keep the message only.
+    IoError::parse_at_line(file, text, e.line(), e.column(), json_message(e))
+}
+
+/// The message of a serde_json error without the " at line L column C" it appends.
+fn json_message(e: &serde_json::Error) -> String {
     let full = e.to_string();
     let suffix = format!(" at line {} column {}", e.line(), e.column());
-    let message = full.strip_suffix(&suffix).unwrap_or(&full).to_owned();
-    IoError::parse_at_line(file, text, e.line(), e.column(), message)
+    full.strip_suffix(&suffix).unwrap_or(&full).to_owned()
 }
 
 /// Writes a design file, pretty JSON or TOML by the path's extension, atomically.

@@ -3,6 +3,8 @@
 use std::io;
 use std::path::PathBuf;
 
+use crate::kind::FileKind;
+
 /// Everything that can go wrong reading or writing design and mesh files.
 ///
 /// Messages are written for the person who wrote the file: they name the file,
@@ -33,6 +35,42 @@ pub enum IoError {
         path: PathBuf,
         /// The underlying error.
         source: io::Error,
+    },
+
+    /// The directory of an output file does not exist.
+    #[error(
+        "cannot write `{}`: the directory `{}` does not exist (create it first, or choose another -o)",
+        path.display(),
+        dir.display()
+    )]
+    NoDirectory {
+        /// The file to write.
+        path: PathBuf,
+        /// Its directory.
+        dir: PathBuf,
+    },
+
+    /// An output path is one of the command's input files.
+    #[error(
+        "`{}` is an input of this command and cannot also be its output: choose another -o \
+         (monge never writes over its input)",
+        path.display()
+    )]
+    OutputIsInput {
+        /// The output path, as given.
+        path: PathBuf,
+    },
+
+    /// A file is of another kind than the command reads (a multi-patch design
+    /// given to `monge generate`, a design given to `monge check`, …).
+    #[error("{file} is {found}, not {expected}: use {}", found.commands())]
+    WrongKind {
+        /// The file name.
+        file: String,
+        /// What the file is, by its top-level keys.
+        found: FileKind,
+        /// What the command reads.
+        expected: FileKind,
     },
 
     /// The file format cannot be told from the path's extension.

@@ -32,6 +32,7 @@ mod error;
 mod fabrication;
 mod gltf;
 mod iges;
+mod kind;
 mod mesh_read;
 mod mesh_write;
 mod multipatch;
@@ -41,7 +42,7 @@ mod svg;
 use std::io;
 use std::path::Path;
 
-pub use atomic::{is_stdio, write_atomic, write_output};
+pub use atomic::{check_output, is_stdio, write_atomic, write_output};
 pub use design::{
     parse_design, read_any_design, read_design, write_design, write_design_to, AnyDesign,
     DesignFormat,
@@ -51,12 +52,14 @@ pub use error::IoError;
 pub use fabrication::{write_fabrication, FABRICATION_FILES};
 pub use gltf::{write_glb, write_grid_glb, write_quads_glb};
 pub use iges::{read_iges_surfaces, write_iges, IgesSurface};
+pub use kind::FileKind;
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
     write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, MeshFormat, MESH_JSON_KEYS,
 };
 pub use multipatch::{
-    parse_multipatch, read_multipatch, write_multipatch, write_quad_mesh, write_quad_mesh_to,
+    parse_multipatch, read_multipatch, read_planes, write_multipatch, write_quad_mesh,
+    write_quad_mesh_to,
 };
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,

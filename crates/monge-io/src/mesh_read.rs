@@ -8,8 +8,9 @@ use glam::DVec3;
 use monge_core::QuadGrid;
 use serde::Deserialize;
 
-use crate::design::json_error;
+use crate::design::{parse_as, DesignFormat};
 use crate::error::IoError;
+use crate::kind::{expect_kind, FileKind};
 use crate::mesh_write::MeshFormat;
 use crate::path_name;
 
@@ -87,7 +88,8 @@ struct MeshJson {
 }
 
 fn parse_json(text: &str, file: &str) -> Result<QuadGrid, IoError> {
-    let m: MeshJson = serde_json::from_str(text).map_err(|e| json_error(file, text, &e))?;
+    expect_kind(text, DesignFormat::Json, file, &[FileKind::Mesh])?;
+    let m: MeshJson = parse_as(text, DesignFormat::Json, file)?;
     let vertices = m.vertices.into_iter().map(DVec3::from_array).collect();
     let normals = m.normals.into_iter().map(DVec3::from_array).collect();
     grid(file, m.rows, m.cols, vertices, normals)

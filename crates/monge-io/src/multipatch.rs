@@ -1,14 +1,16 @@
-//! Multi-patch design files (§4.7) and assembled quad meshes (§4.5).
+//! Multi-patch design files (§4.7), planes files and assembled quad meshes (§4.5).
 
 use std::io::{self, Write};
 use std::path::Path;
 
+use monge_core::boundary::BoundarySpec;
 use monge_core::multipatch::MultiPatchDesign;
 use monge_core::symmetry::QuadMesh;
 
 use crate::atomic::{write_atomic, write_output};
 use crate::design::{parse_as, DesignFormat};
 use crate::error::IoError;
+use crate::kind::{expect_kind, FileKind};
 use crate::mesh_write::MeshFormat;
 use crate::path_name;
 
@@ -45,7 +47,18 @@ fn parse_multipatch_named(
     format: DesignFormat,
     file: &str,
 ) -> Result<MultiPatchDesign, IoError> {
+    expect_kind(text, format, file, &[FileKind::MultiPatch])?;
     parse_as(text, format, file)
+}
+
+/// Reads a planes file (§4.5): the four boundary planes of `monge align`, JSON or
+/// TOML by its extension, with the errors of [`read_multipatch`].
+pub fn read_planes(path: &Path) -> Result<BoundarySpec, IoError> {
+    let format = DesignFormat::from_path(path)?;
+    let text = crate::read_to_string(path)?;
+    let file = path_name(path);
+    expect_kind(&text, format, &file, &[FileKind::Planes])?;
+    parse_as(&text, format, &file)
 }
 
 /// Writes a multi-patch design (§4.7), pretty JSON or TOML by the path's extension, atomically.

@@ -3,7 +3,7 @@
 use std::io;
 use std::path::Path;
 
-use monge_io::{write_atomic, write_output, IoError};
+use monge_io::{check_output, write_atomic, write_output, IoError};
 
 fn entries(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
@@ -55,15 +55,46 @@ fn failing_closure_leaves_an_existing_file_untouched() {
 }
 
 #[test]
-fn missing_directory_is_a_write_error_naming_the_path() {
+fn missing_directory_is_said_plainly() {
     let path = Path::new("/nonexistent-monge-dir/out.ply");
+    let expected = "cannot write `/nonexistent-monge-dir/out.ply`: the directory \
+                    `/nonexistent-monge-dir` does not exist (create it first, or choose another -o)";
     let err = write_atomic(path, |w| w.write_all(b"x")).unwrap_err();
-    assert!(matches!(err, IoError::Write { .. }), "{err:?}");
-    assert!(
-        err.to_string()
-            .starts_with("cannot write `/nonexistent-monge-dir/out.ply`: "),
-        "{err}"
-    );
+    assert!(matches!(err, IoError::NoDirectory { .. }), "{err:?}");
+    assert_eq!(err.to_string(), expected);
+    let err = check_output(path, &[]).unwrap_err();
+    assert_eq!(err.to_string(), expected);
+}
+
+#[test]
+fn an_output_that_is_an_input_is_refused_however_it_is_spelled() {
+    let dir = tempfile::tempdir().unwrap();
+    let sub = dir.path().join("sub");
+    std::fs::create_dir(&sub).unwrap();
+    let input = dir.path().join("d.json");
+    std::fs::write(&input, "{}").unwrap();
+    for same in [
+        input.clone(),
+        dir.path().join(".").join("d.json"),
+        sub.join("..").join("d.json"),
+    ] {
+        let err = check_output(&same, &[Path::new("-"), &input]).unwrap_err();
+        assert!(matches!(err, IoError::OutputIsInput { .. }), "{err:?}");
+        assert!(err.to_string().contains("choose another -o"), "{err}");
+    }
+    #[cfg(unix)]
+    {
+        let link = dir.path().join("link.json");
+        std::os::unix::fs::symlink(&input, &link).unwrap();
+        assert!(check_output(&input, &[&link]).is_err());
+    }
+    // Other files, new files, standard output.
+    std::fs::write(dir.path().join("other.json"), "{}").unwrap();
+    for other in ["other.json", "new.obj", "d.json.obj"] {
+        check_output(&dir.path().join(other), &[&input]).unwrap();
+    }
+    check_output(Path::new("-"), &[Path::new("-")]).unwrap();
+    assert_eq!(std::fs::read_to_string(&input).unwrap(), "{}");
 }
 
 #[test]

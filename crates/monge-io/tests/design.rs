@@ -3,7 +3,10 @@
 use std::path::Path;
 
 use monge_core::design::{ArcSpec, BSplineSpec, Design, GuideSpec, ParabolaSpec, Tolerances};
-use monge_io::{parse_design, read_design, write_design, DesignFormat, IoError};
+use monge_io::{
+    parse_design, read_any_design, read_design, read_mesh, read_multipatch, read_planes,
+    write_design, DesignFormat, FileKind, IoError,
+};
 
 const JSON: &str = r#"{ "theta_deg": 30.0, "guide_u": { "points": [[0,0,0],[1,0,0.2],[2,0,0.7]] }, "guide_v": { "bspline": { "degree": 3, "control_points": [[0,0,0],[0,1,0],[0,2,0.5],[0,3,1.5]], "samples": 41 } } }"#;
 
@@ -215,7 +218,100 @@ fn toml_missing_field_and_wrong_type() {
         panic!("{err:?}")
     };
     assert_eq!(*line, 1);
-    assert!(message.contains("expected f64"), "{message}");
+    assert_eq!(
+        message,
+        "theta_deg must be a number, got the string \"thirty\""
+    );
+}
+
+#[test]
+fn wrong_types_are_said_in_words_with_their_key() {
+    let cases: [(&str, DesignFormat, &str); 4] = [
+        (
+            "theta_deg = \"20\"\n",
+            DesignFormat::Toml,
+            "theta_deg must be a number, got the string \"20\"",
+        ),
+        (
+            r#"{"theta_deg": "20"}"#,
+            DesignFormat::Json,
+            "theta_deg must be a number, got the string \"20\"",
+        ),
+        (
+            r#"{"theta_deg": 1, "guide_u": {"points": 3}}"#,
+            DesignFormat::Json,
+            "guide_u.points must be a list, got the whole number 3",
+        ),
+        (
+            "theta_deg = 1\nguide_u.bspline = { degree = -1 }\n",
+            DesignFormat::Toml,
+            "guide_u.bspline.degree must be a whole number ≥ 0, got the whole number -1",
+        ),
+    ];
+    for (text, format, expected) in cases {
+        let err = parse_design(text, format).unwrap_err();
+        let IoError::Parse { message, line, .. } = &err else {
+            panic!("{err:?}")
+        };
+        assert_eq!(message, expected, "{text}");
+        assert!(*line >= 1, "{text}: located");
+    }
+}
+
+#[test]
+fn a_file_of_another_kind_names_the_command_that_takes_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let patches = file("p.json", r#"{"patches": [{"theta_deg": 30}]}"#);
+    let planes = file("q.toml", "[first_row]\npoint = [0, 0, 0]\n");
+    let developable = file("d.json", r#"{"developable": {}}"#);
+    let design = file("s.json", r#"{"theta_deg": 30, "guide_u": {}}"#);
+    let mesh = file(
+        "m.json",
+        r#"{"rows": 1, "cols": 1, "vertices": [[0, 0, 0]]}"#,
+    );
+    let kind = |err: IoError| match err {
+        IoError::WrongKind {
+            found, expected, ..
+        } => (found, expected),
+        other => panic!("{other:?}"),
+    };
+    use FileKind::*;
+    assert_eq!(
+        kind(read_design(&patches).unwrap_err()),
+        (MultiPatch, Design)
+    );
+    assert_eq!(
+        kind(read_design(&developable).unwrap_err()),
+        (Developable, Design)
+    );
+    assert_eq!(
+        kind(read_any_design(&planes).unwrap_err()),
+        (Planes, Design)
+    );
+    assert_eq!(kind(read_any_design(&mesh).unwrap_err()), (Mesh, Design));
+    assert_eq!(
+        kind(read_multipatch(&design).unwrap_err()),
+        (Design, MultiPatch)
+    );
+    assert_eq!(kind(read_planes(&design).unwrap_err()), (Design, Planes));
+    assert_eq!(kind(read_mesh(&design).unwrap_err()), (Design, Mesh));
+    let message = read_any_design(&patches).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        format!(
+            "{} is a multi-patch design (§4.7), not a design (two guides and θ): use `monge \
+             patches` (or `monge fit` when it has a `fit` key)",
+            patches.display()
+        )
+    );
+    // A file of no known kind is left to the parser.
+    let unknown = file("u.json", r#"{"thetadeg": 30}"#);
+    assert!(matches!(read_design(&unknown), Err(IoError::Parse { .. })));
 }
 
 #[test]
