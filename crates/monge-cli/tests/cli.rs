@@ -729,6 +729,25 @@ fn developable_designs_generate_check_and_report() {
 }
 
 #[test]
+fn smooth_refuses_an_output_above_max_output() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("net.json");
+    monge()
+        .arg("smooth")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--samples", "200", "--max-output", "1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "60 × 40 patches of 200 × 200 points and 4900 arcs, would be about 5.8 GB, above the \
+             limit of 1 GB: lower --samples",
+        ));
+    assert!(!out.exists());
+}
+
+#[test]
 fn smooth_writes_the_cyclidic_net_contract() {
     let dir = TempDir::new().unwrap();
     let design = example("fig12-dupin-theta30.json");
