@@ -150,7 +150,8 @@ pub enum Command {
         after_help = format!(
             "Examples:\n  \
              monge bench\n  \
-             monge bench --sizes 10,100 --runs 20\n\n{EXIT}"
+             monge bench --sizes 10,100 --runs 20\n  \
+             monge bench --all\n\n{EXIT}"
         )
     )]
     Bench(BenchArgs),
@@ -528,15 +529,22 @@ pub struct BenchArgs {
     /// Timed runs per size [default: enough for about 1 s per size, at least 5].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub runs: Option<u32>,
-    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1.
+    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1
+    /// [default: 100,1000; with --all 100,400,1000].
     #[arg(
         long,
         value_name = "N,N,…",
         value_delimiter = ',',
-        default_value = "100,1000",
         value_parser = clap::value_parser!(u32).range(1..)
     )]
-    pub sizes: Vec<u32>,
+    pub sizes: Option<Vec<u32>>,
+    /// Time every command instead (generate to .json/.obj/.ply/.glb, check, fabricate,
+    /// smooth to .json and .igs), each run once as a child process of this binary in a
+    /// temporary directory: one JSON line per command and size with wall time, bytes
+    /// written, time per million faces, peak RSS, and the ratio to the raw-write time of
+    /// as many bytes (`write_all` and `sync_all` of one file in the same directory).
+    #[arg(long)]
+    pub all: bool,
     /// Refuse grids of more than N vertices.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,

@@ -63,30 +63,6 @@ pub fn millis(seconds: f64) -> String {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn numbers_are_short() {
-        assert_eq!(num(0.0), "0");
-        assert_eq!(num(1.0), "1");
-        assert_eq!(num(-2.5), "-2.5");
-        assert_eq!(num(std::f64::consts::FRAC_1_SQRT_2), "0.707107");
-        assert_eq!(num(1.2e-7), "1.2e-7");
-        assert_eq!(num(123456789.0), "1.23457e8");
-        assert_eq!(num(61.927513), "61.9275");
-        assert_eq!(xyz([1.0, 0.0, -0.5]), "(1, 0, -0.5)");
-    }
-
-    #[test]
-    fn milliseconds_have_three_digits() {
-        assert_eq!(millis(0.0012345), "1.23");
-        assert_eq!(millis(0.012345), "12.3");
-        assert_eq!(millis(0.12345), "123");
-    }
-}
-
 /// Default of `--max-output`, in gigabytes (10⁹ bytes): the largest output a
 /// command writes without being asked to (a few times what one `write_all` of the
 /// 1000 × 1000-face mesh's coordinates takes).
@@ -118,5 +94,29 @@ pub fn parse_gigabytes(s: &str) -> Result<f64, String> {
         _ => Err(format!(
             "`{s}` is not a finite, positive number of gigabytes"
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(1.0), "1");
+        assert_eq!(num(-2.5), "-2.5");
+        assert_eq!(num(std::f64::consts::FRAC_1_SQRT_2), "0.707107");
+        assert_eq!(num(1.2e-7), "1.2e-7");
+        assert_eq!(num(123456789.0), "1.23457e8");
+        assert_eq!(num(61.927513), "61.9275");
+        assert_eq!(xyz([1.0, 0.0, -0.5]), "(1, 0, -0.5)");
+    }
+
+    #[test]
+    fn milliseconds_have_three_digits() {
+        assert_eq!(millis(0.0012345), "1.23");
+        assert_eq!(millis(0.012345), "12.3");
+        assert_eq!(millis(0.12345), "123");
     }
 }

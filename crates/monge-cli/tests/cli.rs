@@ -586,6 +586,49 @@ fn bench_prints_one_json_line_per_size() {
 }
 
 #[test]
+fn bench_all_prints_one_json_line_per_command_and_size() {
+    let out = monge()
+        .args(["bench", "--all", "--sizes", "4,6"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2 * 8, "{text}");
+    for (k, v) in lines.iter().enumerate() {
+        let n: u32 = if k < 8 { 4 } else { 6 };
+        assert_eq!(v["faces"], format!("{n}x{n}"));
+        let n = f64::from(n);
+        let wall = v["wall_ms"].as_f64().unwrap();
+        assert!(wall > 0.0, "{v}");
+        // ms per million faces is the wall time scaled by the face count.
+        let per = v["ms_per_mface"].as_f64().unwrap();
+        assert!(
+            (per - wall / (n * n / 1e6)).abs() <= 0.05 + 1e-3 * per,
+            "{v}"
+        );
+        assert!(v["peak_rss_mb"].as_f64().unwrap() > 1.0, "{v}");
+        let bytes = v["bytes"].as_u64().unwrap();
+        if v["command"] == "check .obj" {
+            assert_eq!(bytes, 0);
+            assert!(v["ratio_to_raw"].is_null());
+        } else {
+            assert!(
+                bytes > 0 && v["ratio_to_raw"].as_f64().unwrap() > 0.0,
+                "{v}"
+            );
+        }
+    }
+}
+
+#[test]
 fn help_teaches_theta_examples_and_exit_statuses() {
     monge().arg("--help").assert().success().stdout(
         predicate::str::contains("θ = +90° is singular")
