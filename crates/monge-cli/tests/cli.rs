@@ -608,12 +608,10 @@ fn bench_all_prints_one_json_line_per_command_and_size() {
         let n = f64::from(n);
         let wall = v["wall_ms"].as_f64().unwrap();
         assert!(wall > 0.0, "{v}");
-        // ms per million faces is the wall time scaled by the face count.
-        let per = v["ms_per_mface"].as_f64().unwrap();
-        assert!(
-            (per - wall / (n * n / 1e6)).abs() <= 0.05 + 1e-3 * per,
-            "{v}"
-        );
+        // ms per million faces is the wall time scaled by the face count (both
+        // printed to 0.1: the wall time's rounding is scaled too).
+        let (per, mfaces) = (v["ms_per_mface"].as_f64().unwrap(), n * n / 1e6);
+        assert!((per - wall / mfaces).abs() <= 0.05 + 0.05 / mfaces, "{v}");
         assert!(v["peak_rss_mb"].as_f64().unwrap() > 1.0, "{v}");
         let bytes = v["bytes"].as_u64().unwrap();
         if v["command"] == "check .obj" {
