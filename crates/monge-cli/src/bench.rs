@@ -1,4 +1,5 @@
-//! `monge bench`: time the generator in-process on a bundled design.
+//! `monge bench`: time the generator in-process on a bundled design, or with
+//! `--all` every command as a child process (wall time, bytes, peak RSS).
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -21,10 +22,14 @@ const MAX_RUNS: u32 = 100_000;
 
 /// Runs `monge bench`.
 pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
+    if args.all {
+        let sizes = args.sizes.as_deref().unwrap_or(&[100, 400, 1000]);
+        return run_all(sizes, args.max_vertices);
+    }
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
-    for &n in &args.sizes {
+    for &n in args.sizes.as_deref().unwrap_or(&[100, 1000]) {
         let design = standard_design(n as usize + 1);
         let once = || -> anyhow::Result<Duration> {
             let start = Instant::now();
@@ -50,6 +55,156 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
         print(&format!("{}\n", json_line(n, &mut times)))?;
     }
     Ok(Outcome::Success)
+}
+
+/// The commands of `monge bench --all`: a name, and the arguments after `monge`
+/// with `{design}`, `{dir}` standing for the design file and the temporary directory.
+const COMMANDS: [(&str, &[&str]); 8] = [
+    (
+        "generate .json",
+        &["generate", "{design}", "-o", "{dir}/mesh.json"],
+    ),
+    (
+        "generate .obj",
+        &["generate", "{design}", "-o", "{dir}/mesh.obj"],
+    ),
+    (
+        "generate .ply",
+        &["generate", "{design}", "-o", "{dir}/mesh.ply"],
+    ),
+    (
+        "generate .glb",
+        &["generate", "{design}", "-o", "{dir}/mesh.glb"],
+    ),
+    ("check .obj", &["check", "{dir}/mesh.obj"]),
+    ("fabricate", &["fabricate", "{design}", "-o", "{dir}/fab"]),
+    (
+        "smooth .json",
+        &["smooth", "{design}", "-o", "{dir}/net.json"],
+    ),
+    (
+        "smooth .igs",
+        &["smooth", "{design}", "-o", "{dir}/net.igs"],
+    ),
+];
+
+/// `monge bench --all`: every command of [`COMMANDS`] on the bundled design at
+/// each size, once each, as a child process of this binary.
+fn run_all(sizes: &[u32], max_vertices: usize) -> anyhow::Result<Outcome> {
+    let exe = std::env::current_exe().context("cannot find the monge binary to run")?;
+    for &n in sizes {
+        let dir = tempfile::tempdir().context("cannot create a temporary directory")?;
+        let design = dir.path().join("design.json");
+        let text = serde_json::to_string(&standard_design(n as usize + 1))?;
+        std::fs::write(&design, text)
+            .with_context(|| format!("cannot write `{}`", design.display()))?;
+        let vertices = (n as usize + 1).pow(2);
+        if vertices > max_vertices {
+            anyhow::bail!(
+                "{n} × {n} faces have {vertices} vertices, more than --max-vertices {max_vertices}"
+            );
+        }
+        for (name, template) in COMMANDS {
+            let args: Vec<String> = template
+                .iter()
+                .map(|a| {
+                    a.replace("{design}", &design.to_string_lossy())
+                        .replace("{dir}", &dir.path().to_string_lossy())
+                })
+                .collect();
+            let before = dir_bytes(dir.path())?;
+            let (wall, peak_rss_kb) = run_child(&exe, &args)
+                .with_context(|| format!("`monge {}` on {n} × {n} faces", args.join(" ")))?;
+            let bytes = dir_bytes(dir.path())?.saturating_sub(before);
+            // Nothing written (check): no raw-write time to compare with.
+            let raw = if bytes > 0 {
+                raw_write(dir.path(), bytes)?
+            } else {
+                0.0
+            };
+            let mfaces = (n as f64).powi(2) / 1e6;
+            print(&format!(
+                "{{\"command\":\"{name}\",\"faces\":\"{n}x{n}\",\"wall_ms\":{:.1},\"bytes\":{bytes},\
+                 \"ms_per_mface\":{:.1},\"peak_rss_mb\":{:.1},\"raw_write_ms\":{:.1},\
+                 \"ratio_to_raw\":{}}}\n",
+                wall * 1e3,
+                wall * 1e3 / mfaces,
+                peak_rss_kb as f64 / 1024.0,
+                raw * 1e3,
+                if raw > 0.0 {
+                    format!("{:.2}", wall / raw)
+                } else {
+                    "null".to_owned()
+                }
+            ))?;
+        }
+    }
+    Ok(Outcome::Success)
+}
+
+/// Runs `exe args` with its output discarded; its wall time (seconds) and peak
+/// resident set size (kB, from `wait4`; Linux counts the spawning process's own
+/// 10-15 MB from before `exec` in it). A failing command is an error.
+fn run_child(exe: &std::path::Path, args: &[String]) -> anyhow::Result<(f64, i64)> {
+    use std::process::{Command, Stdio};
+    let start = Instant::now();
+    let child = Command::new(exe)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    let pid = child.id() as libc::pid_t;
+    let mut stderr = child.stderr.context("no standard error of the child")?;
+    let mut message = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut message)?;
+    let mut status = 0;
+    // SAFETY: `rusage` is plain data, zero is a valid value; `wait4` reaps our own
+    // child `pid` exactly once (`Child` is not waited on afterwards) and fills both.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let reaped = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
+    let wall = start.elapsed().as_secs_f64();
+    if reaped != pid {
+        return Err(std::io::Error::last_os_error().into());
+    }
+    if !libc::WIFEXITED(status) || libc::WEXITSTATUS(status) != 0 {
+        anyhow::bail!("it failed: {}", message.trim_end());
+    }
+    Ok((wall, usage.ru_maxrss))
+}
+
+/// Total size of the files under `dir`, in bytes.
+fn dir_bytes(dir: &std::path::Path) -> anyhow::Result<u64> {
+    let mut total = 0;
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let meta = entry.metadata()?;
+        total += if meta.is_dir() {
+            dir_bytes(&entry.path())?
+        } else {
+            meta.len()
+        };
+    }
+    Ok(total)
+}
+
+/// Seconds to write `bytes` bytes into a new file in `dir` (1 MiB `write_all`
+/// calls from one buffer, then `sync_all`, as the commands' atomic writer does).
+fn raw_write(dir: &std::path::Path, bytes: u64) -> anyhow::Result<f64> {
+    use std::io::Write;
+    let chunk = vec![b'x'; 1 << 20];
+    let path = dir.join("raw-write.bin");
+    let start = Instant::now();
+    let mut file = std::fs::File::create(&path)?;
+    let mut left = bytes as usize;
+    while left > 0 {
+        let k = left.min(chunk.len());
+        file.write_all(&chunk[..k])?;
+        left -= k;
+    }
+    file.sync_all()?;
+    let elapsed = start.elapsed().as_secs_f64();
+    std::fs::remove_file(&path)?;
+    Ok(elapsed)
 }
 
 /// Enough runs of `per_run` for about [`TARGET`], within [`MIN_RUNS`]..=[`MAX_RUNS`].

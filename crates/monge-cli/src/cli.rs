@@ -151,7 +151,8 @@ pub enum Command {
         after_help = format!(
             "Examples:\n  \
              monge bench\n  \
-             monge bench --sizes 10,100 --runs 20\n\n{EXIT}"
+             monge bench --sizes 10,100 --runs 20\n  \
+             monge bench --all\n\n{EXIT}"
         )
     )]
     Bench(BenchArgs),
@@ -549,6 +550,10 @@ pub struct SmoothArgs {
     /// Samples per patch side, K ≥ 2 (K × K points a patch).
     #[arg(long, value_name = "K", default_value_t = 9, value_parser = clap::value_parser!(u32).range(2..=1000))]
     pub samples: u32,
+    /// Refuse outputs estimated above this many gigabytes (10⁹ bytes), before computing
+    /// them: about 60 bytes a sample point in `.json`, 190 a dense vertex in `.obj`.
+    #[arg(long, value_name = "GB", default_value_t = crate::output::MAX_OUTPUT_GB, value_parser = crate::output::parse_gigabytes)]
+    pub max_output: f64,
     /// Build folded faces instead of refusing the design.
     #[arg(long)]
     pub allow_folded: bool,
@@ -574,15 +579,22 @@ pub struct BenchArgs {
     /// Timed runs per size [default: enough for about 1 s per size, at least 5].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub runs: Option<u32>,
-    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1.
+    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1
+    /// [default: 100,1000; with --all 100,400,1000].
     #[arg(
         long,
         value_name = "N,N,…",
         value_delimiter = ',',
-        default_value = "100,1000",
         value_parser = clap::value_parser!(u32).range(1..)
     )]
-    pub sizes: Vec<u32>,
+    pub sizes: Option<Vec<u32>>,
+    /// Time every command instead (generate to .json/.obj/.ply/.glb, check, fabricate,
+    /// smooth to .json and .igs), each run once as a child process of this binary in a
+    /// temporary directory: one JSON line per command and size with wall time, bytes
+    /// written, time per million faces, peak RSS, and the ratio to the raw-write time of
+    /// as many bytes (`write_all` and `sync_all` of one file in the same directory).
+    #[arg(long)]
+    pub all: bool,
     /// Refuse grids of more than N vertices.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,

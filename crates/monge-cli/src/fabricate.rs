@@ -9,7 +9,9 @@ use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, GenerateOptions, MeshKind};
 use monge_io::{read_design, write_fabrication};
 
-use crate::output::{eprint, millis, num, print};
+use crate::output::{
+    check_output_size, eprint, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
+};
 use crate::Outcome;
 
 /// Arguments of `monge fabricate` (§6).
@@ -47,7 +49,15 @@ pub struct FabricateArgs {
     /// Refuse grids of more than N vertices (rows × cols).
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
+    /// Refuse outputs estimated above this many gigabytes (10⁹ bytes), before computing
+    /// them: the files take about 4.4 kB a face and layer (and memory about half as much).
+    #[arg(long, value_name = "GB", default_value_t = MAX_OUTPUT_GB, value_parser = parse_gigabytes)]
+    pub max_output: f64,
 }
+
+/// Bytes the fabrication files take per face and layer (measured: 4396 at 100 × 100
+/// and 400 × 400 faces of examples/fig13-freeform.json made finer).
+const BYTES_PER_FACE: f64 = 4400.0;
 
 /// Runs `monge fabricate`.
 pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
@@ -65,6 +75,18 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
     let grid = generate(&design, &options)
         .with_context(|| args.design.display().to_string())?
         .grid;
+    let faces = grid.rows.saturating_sub(1) * grid.cols.saturating_sub(1);
+    check_output_size(
+        BYTES_PER_FACE * (faces * args.layers.len()) as f64,
+        args.max_output,
+        &format!(
+            "the fabrication files of {} × {} faces and {} layer(s)",
+            grid.rows.saturating_sub(1),
+            grid.cols.saturating_sub(1),
+            args.layers.len()
+        ),
+        "use fewer guide samples or fewer --layers",
+    )?;
     let conical = (design.mesh == MeshKind::Conical).then(|| conical_dual(&grid));
     let base = match &conical {
         Some(c) => BaseMesh::Conical(c),

@@ -63,6 +63,40 @@ pub fn millis(seconds: f64) -> String {
     }
 }
 
+/// Default of `--max-output`, in gigabytes (10⁹ bytes): the largest output a
+/// command writes without being asked to (a few times what one `write_all` of the
+/// 1000 × 1000-face mesh's coordinates takes).
+pub const MAX_OUTPUT_GB: f64 = 8.0;
+
+/// Refuses an output estimated at `bytes` above `max_gb` gigabytes, before
+/// anything is computed or written: `what` names the output and how its size
+/// comes about, `lower` says which option makes it smaller.
+pub fn check_output_size(bytes: f64, max_gb: f64, what: &str, lower: &str) -> anyhow::Result<()> {
+    if bytes > max_gb * 1e9 {
+        anyhow::bail!(
+            "{what} would be about {}, above the limit of {} GB: {lower}, or raise the limit \
+             with --max-output GB",
+            if bytes >= 1e9 {
+                format!("{:.1} GB", bytes / 1e9)
+            } else {
+                format!("{:.0} MB", bytes / 1e6)
+            },
+            num(max_gb)
+        );
+    }
+    Ok(())
+}
+
+/// `--max-output`: a finite, positive number of gigabytes.
+pub fn parse_gigabytes(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!(
+            "`{s}` is not a finite, positive number of gigabytes"
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

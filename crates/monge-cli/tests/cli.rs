@@ -569,6 +569,47 @@ fn bench_prints_one_json_line_per_size() {
 }
 
 #[test]
+fn bench_all_prints_one_json_line_per_command_and_size() {
+    let out = monge()
+        .args(["bench", "--all", "--sizes", "4,6"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2 * 8, "{text}");
+    for (k, v) in lines.iter().enumerate() {
+        let n: u32 = if k < 8 { 4 } else { 6 };
+        assert_eq!(v["faces"], format!("{n}x{n}"));
+        let n = f64::from(n);
+        let wall = v["wall_ms"].as_f64().unwrap();
+        assert!(wall > 0.0, "{v}");
+        // ms per million faces is the wall time scaled by the face count (both
+        // printed to 0.1: the wall time's rounding is scaled too).
+        let (per, mfaces) = (v["ms_per_mface"].as_f64().unwrap(), n * n / 1e6);
+        assert!((per - wall / mfaces).abs() <= 0.05 + 0.05 / mfaces, "{v}");
+        assert!(v["peak_rss_mb"].as_f64().unwrap() > 1.0, "{v}");
+        let bytes = v["bytes"].as_u64().unwrap();
+        if v["command"] == "check .obj" {
+            assert_eq!(bytes, 0);
+            assert!(v["ratio_to_raw"].is_null());
+        } else {
+            assert!(
+                bytes > 0 && v["ratio_to_raw"].as_f64().unwrap() > 0.0,
+                "{v}"
+            );
+        }
+    }
+}
+
+#[test]
 fn help_teaches_theta_examples_and_exit_statuses() {
     monge().arg("--help").assert().success().stdout(
         predicate::str::contains("θ = +90° is singular")
@@ -709,6 +750,25 @@ fn developable_designs_generate_check_and_report() {
         .code(2)
         .stderr(predicate::str::contains("α"));
     assert!(!bad.exists());
+}
+
+#[test]
+fn smooth_refuses_an_output_above_max_output() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("net.json");
+    monge()
+        .arg("smooth")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--samples", "200", "--max-output", "1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "60 × 40 patches of 200 × 200 points and 4900 arcs, would be about 5.8 GB, above the \
+             limit of 1 GB: lower --samples",
+        ));
+    assert!(!out.exists());
 }
 
 #[test]

@@ -109,3 +109,37 @@ fn bad_arguments_exit_with_status_2() {
         .code(2)
         .stderr(predicate::str::contains("has zero length"));
 }
+
+#[test]
+fn an_output_above_max_output_is_refused_before_anything_is_written() {
+    // fig13-freeform: 60 × 40 faces, 3 layers: about 32 MB of files.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fab");
+    monge()
+        .args([
+            "fabricate",
+            example("fig13-freeform.json").to_str().unwrap(),
+            "-o",
+        ])
+        .arg(&out)
+        .args(["--layers", "0,0.1,0.2", "--max-output", "0.01"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "the fabrication files of 60 × 40 faces and 3 layer(s) would be about 32 MB",
+        ))
+        .stderr(predicate::str::contains("fewer --layers"))
+        .stderr(predicate::str::contains("--max-output GB"));
+    assert!(!out.exists());
+    monge()
+        .args([
+            "fabricate",
+            example("fig13-freeform.json").to_str().unwrap(),
+            "-o",
+        ])
+        .arg(&out)
+        .args(["--max-output", "0"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("positive number of gigabytes"));
+}

@@ -1073,9 +1073,15 @@ impl CyclidicNet {
     /// `j = 0 … cols − 1`, then the v-lines `i = 0 … rows − 1`; consecutive arcs on
     /// one circle (to [`CyclidicOptions::circle_tolerance`]) are merged.
     pub fn curvature_lines(&self) -> Vec<CurvatureLine> {
+        self.curvature_lines_iter().collect()
+    }
+
+    /// The curvature lines of [`CyclidicNet::curvature_lines`] (§4.4, §4.6), one at a
+    /// time: for writing them without holding them all.
+    pub fn curvature_lines_iter(&self) -> impl Iterator<Item = CurvatureLine> + '_ {
         let tol = self.circle_tolerance;
         let size = self.size;
-        let merge = |arcs: Vec<Arc>| {
+        let merge = move |arcs: Vec<Arc>| {
             let mut out: Vec<Arc> = Vec::with_capacity(arcs.len());
             for arc in arcs {
                 match out.last_mut() {
@@ -1093,7 +1099,7 @@ impl CyclidicNet {
             out
         };
         let (fr, fc) = (self.rows - 1, self.cols - 1);
-        let u_lines = (0..self.cols).map(|j| {
+        let u_lines = (0..self.cols).map(move |j| {
             let (pj, b) = if j < fc { (j, 0) } else { (j - 1, 2) };
             let arcs = (0..fr)
                 .map(|i| {
@@ -1107,7 +1113,7 @@ impl CyclidicNet {
                 arcs: merge(arcs),
             }
         });
-        let v_lines = (0..self.rows).map(|i| {
+        let v_lines = (0..self.rows).map(move |i| {
             let (pi, a) = if i < fr { (i, 0) } else { (i - 1, 2) };
             let arcs = (0..fc)
                 .map(|j| {
@@ -1121,7 +1127,7 @@ impl CyclidicNet {
                 arcs: merge(arcs),
             }
         });
-        u_lines.chain(v_lines).collect()
+        u_lines.chain(v_lines)
     }
 
     /// The whole net as one degree-(2, 2) NURBS surface with double interior

@@ -21,7 +21,7 @@
 //! Everything is pure geometry; the schedules and drawings are written by
 //! `monge-io`.
 
-use std::collections::BTreeMap;
+use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
 use nalgebra::{Matrix3, SymmetricEigen};
@@ -904,8 +904,12 @@ fn extreme_layers(layers: &[LayerMesh]) -> (usize, usize) {
 }
 
 /// Groups nodes whose directions agree and whose angles agree within
-/// `angle_tol`: greedy, each node joins the first type whose representative
-/// matches. Candidates are looked up by the first angle, binned by `angle_tol`.
+/// `angle_tol` (§6): greedy, each node joins the matching type of smallest
+/// index (a type is represented by its first node). Candidates are looked up in
+/// a hash grid of cell `angle_tol` over the first two angles (every signature has
+/// at least three), so each node compares with the few types in the 3 × 3 cells
+/// around it: linear in the nodes even when all their angles are close to 90°, as
+/// on a fine curvature-line mesh.
 fn assign_types(nodes: &mut [Node], angle_tol: f64) {
     let signature = |n: &Node| -> Vec<f64> {
         n.beam_angles
@@ -914,31 +918,39 @@ fn assign_types(nodes: &mut [Node], angle_tol: f64) {
             .copied()
             .collect()
     };
-    let bin_width = angle_tol.max(1e-15);
+    let cell_width = angle_tol.max(1e-15);
+    let cell = |a: f64| (a / cell_width).floor() as i64;
     let mut representatives: Vec<(Vec<String>, Vec<f64>)> = Vec::new();
-    let mut bins: BTreeMap<i64, Vec<usize>> = BTreeMap::new();
+    let mut cells: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
     for node in nodes.iter_mut() {
         let sig = signature(node);
-        let key = sig.first().map_or(0, |a| (a / bin_width).floor() as i64);
-        let found = (key - 1..=key + 1)
-            .filter_map(|b| bins.get(&b))
+        let key = match sig[..] {
+            [a, b, ..] => (cell(a), cell(b)),
+            [a] => (cell(a), 0),
+            [] => (0, 0),
+        };
+        let matches = |&t: &usize| {
+            let (dirs, rep) = &representatives[t];
+            *dirs == node.directions
+                && rep.len() == sig.len()
+                && rep
+                    .iter()
+                    .zip(&sig)
+                    .all(|(a, b)| (a - b).abs() <= angle_tol)
+        };
+        let found = (key.0 - 1..=key.0 + 1)
+            .flat_map(|a| (key.1 - 1..=key.1 + 1).map(move |b| (a, b)))
+            .filter_map(|c| cells.get(&c))
             .flatten()
-            .copied()
-            .find(|&t| {
-                let (dirs, rep) = &representatives[t];
-                *dirs == node.directions
-                    && rep.len() == sig.len()
-                    && rep
-                        .iter()
-                        .zip(&sig)
-                        .all(|(a, b)| (a - b).abs() <= angle_tol)
-            });
+            .filter(|t| matches(t))
+            .min()
+            .copied();
         node.node_type = match found {
             Some(t) => t,
             None => {
                 representatives.push((node.directions.clone(), sig));
                 let t = representatives.len() - 1;
-                bins.entry(key).or_default().push(t);
+                cells.entry(key).or_default().push(t);
                 t
             }
         };

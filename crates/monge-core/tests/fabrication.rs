@@ -432,3 +432,79 @@ fn error_degenerate_face() {
         }
     );
 }
+
+/// Node types of `f` by the definition (§6), by brute force: each node, in
+/// order, takes the smallest type whose first node has the same directions and
+/// all angles within `angle_tol`, else a new type.
+fn brute_force_types(f: &Fabrication, angle_tol: f64) -> Vec<usize> {
+    let sig = |n: &monge_core::fabrication::Node| -> Vec<f64> {
+        n.beam_angles
+            .iter()
+            .chain(&n.axis_angles)
+            .copied()
+            .collect()
+    };
+    let mut firsts: Vec<usize> = Vec::new();
+    let mut types = Vec::with_capacity(f.nodes.len());
+    for (k, n) in f.nodes.iter().enumerate() {
+        let s = sig(n);
+        let found = firsts.iter().position(|&r| {
+            let rep = &f.nodes[r];
+            let t = sig(rep);
+            rep.directions == n.directions
+                && t.len() == s.len()
+                && t.iter().zip(&s).all(|(a, b)| (a - b).abs() <= angle_tol)
+        });
+        types.push(found.unwrap_or_else(|| {
+            firsts.push(k);
+            firsts.len() - 1
+        }));
+    }
+    types
+}
+
+#[test]
+fn node_types_agree_with_brute_force_grouping() {
+    // The Figure 13 guides on a fine grid: every interior beam angle is near 90°,
+    // the case where a one-angle lookup degenerates. Tolerances from none merged
+    // to most merged.
+    let cubic = |control_points: Vec<[f64; 3]>| GuideSpec::bspline(3, control_points, 41);
+    let design = Design {
+        mesh: Default::default(),
+        theta_deg: -30.0,
+        guide_u: cubic(vec![
+            [0.0, 0.0, 0.0],
+            [4.0, 0.0, 0.0],
+            [8.0, 0.0, 2.5],
+            [12.0, 0.0, 1.0],
+            [16.0, 0.0, 3.5],
+        ]),
+        guide_v: cubic(vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 3.0, 0.0],
+            [0.0, 6.0, -1.5],
+            [0.0, 10.0, 1.0],
+        ]),
+        tolerance: None,
+    };
+    let base = mesh(&design);
+    let mut counts = Vec::new();
+    for angle_tol in [1e-9, 1e-3, 5e-3, 2e-2, 1e-1] {
+        let opts = FabricationOptions {
+            angle_tol,
+            ..options(&[0.0])
+        };
+        let f = fabricate(BaseMesh::Circular(&base), &opts).unwrap();
+        let types: Vec<usize> = f.nodes.iter().map(|n| n.node_type).collect();
+        assert_eq!(
+            types,
+            brute_force_types(&f, angle_tol),
+            "angle_tol {angle_tol}"
+        );
+        counts.push(f.summary.node_types);
+    }
+    // The tolerances span the cases: all nodes distinct, some merged, few types.
+    assert_eq!(counts[0], base.vertices.len());
+    assert!(counts.windows(2).all(|w| w[0] >= w[1]), "{counts:?}");
+    assert!(counts[4] < base.vertices.len() / 10, "{counts:?}");
+}

@@ -145,8 +145,11 @@ pub fn write_beams_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
         for e in q.windows(2) {
             dxf.line("EDGE", e[0], e[1])?;
         }
-        for (k, p) in q.iter().enumerate() {
-            let split = b.segments.iter().skip(1).any(|s| s.start == k);
+        let mut split = vec![false; q.len()];
+        for s in b.segments.iter().skip(1) {
+            split[s.start] = true;
+        }
+        for (p, split) in q.iter().zip(split) {
             if split {
                 dxf.circle("SPLIT", *p, 2.0 * mark)?;
             } else {
