@@ -6,7 +6,8 @@ use glam::DVec3;
 ///
 /// Vertex `(i, j)` is entry `i * cols + j`: `i` runs along guide_u, `j` along
 /// guide_v; vertex `(i, 0)` is guide_u's sample `i` and vertex `(0, j)` is
-/// guide_v's sample `j`. Faces are the quads `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`.
+/// guide_v's sample `j`. Faces are the quads `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`;
+/// [`QuadGrid::oriented_faces`] winds them counter-clockwise about the node axes.
 ///
 /// ```
 /// use glam::DVec3;
@@ -71,6 +72,63 @@ impl QuadGrid {
             self.vertex(i + 1, j + 1),
             self.vertex(i, j + 1),
         ]
+    }
+
+    /// Whether the node axes point against the face order
+    /// `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` (§2.2): the sum over all faces
+    /// of the face's vector area dotted with the sum of its corners' normals is
+    /// negative. `false` for a grid without normals.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
+    /// assert!(!QuadGrid::new(2, 2, v.clone(), vec![DVec3::Z; 4]).faces_reversed());
+    /// assert!(QuadGrid::new(2, 2, v, vec![-DVec3::Z; 4]).faces_reversed());
+    /// ```
+    pub fn faces_reversed(&self) -> bool {
+        if self.normals.is_empty() {
+            return false;
+        }
+        let mut sum = 0.0;
+        for [a, b, c, d] in self.face_indices() {
+            let p = |k: usize| self.vertices[k];
+            let area = (p(c) - p(a)).cross(p(d) - p(b));
+            let n = self.normals[a] + self.normals[b] + self.normals[c] + self.normals[d];
+            sum += area.dot(n);
+        }
+        sum < 0.0
+    }
+
+    /// The vertex indices of every face, row by row, wound counter-clockwise
+    /// about the node axes (right-hand rule; §2.2): `(i, j), (i+1, j), (i+1, j+1),
+    /// (i, j+1)`, or `(i, j), (i, j+1), (i+1, j+1), (i+1, j)` when
+    /// [`QuadGrid::faces_reversed`]. Every mesh writer and the renderer use it.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
+    /// let up = QuadGrid::new(2, 2, v.clone(), vec![DVec3::Z; 4]);
+    /// assert_eq!(up.oriented_faces().collect::<Vec<_>>(), [[0, 2, 3, 1]]);
+    /// let down = QuadGrid::new(2, 2, v, vec![-DVec3::Z; 4]);
+    /// assert_eq!(down.oriented_faces().collect::<Vec<_>>(), [[0, 1, 3, 2]]);
+    /// ```
+    pub fn oriented_faces(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+        let reversed = self.faces_reversed();
+        self.face_indices()
+            .map(move |[a, b, c, d]| if reversed { [a, d, c, b] } else { [a, b, c, d] })
+    }
+
+    /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of every face, row by row.
+    fn face_indices(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+        let c = self.cols;
+        (0..self.rows.saturating_sub(1)).flat_map(move |i| {
+            (0..c.saturating_sub(1)).map(move |j| {
+                let k = i * c + j;
+                [k, k + c, k + c + 1, k + 1]
+            })
+        })
     }
 
     /// Number of faces, `(rows − 1) · (cols − 1)`.
