@@ -173,3 +173,32 @@ pub fn bbox_diagonal(points: &[DVec3]) -> f64 {
     let (lo, hi) = it.fold((*first, *first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
     (hi - lo).length()
 }
+
+/// Distance from the origin, relative to the size, beyond which f64 coordinates
+/// cannot hold a mesh to 1e-9 of its size (§5.2): `1e-9 / (4 ε)` ≈ 1.1e6, since
+/// writing a coordinate rounds it by up to ε times its magnitude and the measured
+/// error of a mesh reaches a few such roundings (up to 4.6 in the tests).
+pub const FAR_FROM_ORIGIN: f64 = 1e-9 / (4.0 * f64::EPSILON);
+
+/// How far `points` lie from the origin compared with their size (§5.2): the
+/// largest |coordinate| divided by the bounding-box diagonal (0 for no points,
+/// infinite for one point away from the origin). Above [`FAR_FROM_ORIGIN`] the
+/// output coordinates themselves cannot hold 1e-9 of the size.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::grid::origin_ratio;
+/// let p = [DVec3::new(1e5, 0.0, 0.0), DVec3::new(1e5, 1e-3, 0.0)];
+/// assert_eq!(origin_ratio(&p), 1e8);
+/// ```
+pub fn origin_ratio(points: &[DVec3]) -> f64 {
+    let far = points
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    if far == 0.0 {
+        0.0
+    } else {
+        far / bbox_diagonal(points)
+    }
+}
