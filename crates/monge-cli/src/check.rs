@@ -9,7 +9,7 @@ use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
 use serde_json::{json, Map, Value};
 
 use crate::cli::{CheckArgs, KindArg};
-use crate::output::{num, print};
+use crate::output::{eprint, far_from_origin_warning, num, print};
 use crate::Outcome;
 
 /// Runs `monge check`.
@@ -59,6 +59,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         text_report(&name, &grid, &m, &metrics, args.tol, pass)
     };
     print(&text)?;
+    eprint(&far_from_origin_warning(&grid.vertices).unwrap_or_default());
     Ok(if pass {
         Outcome::Success
     } else {

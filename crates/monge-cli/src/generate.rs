@@ -18,7 +18,7 @@ use monge_io::{
 use serde_json::{json, Map, Value};
 
 use crate::cli::{output_format, GenerateArgs};
-use crate::output::{eprint, millis, num};
+use crate::output::{eprint, far_from_origin_warning, millis, num};
 use crate::Outcome;
 
 /// Below this smallest crossing sine the summary warns that the mesh nearly pinches (§5.2).
@@ -59,6 +59,7 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         generation,
         writing,
     ));
+    eprint(&far_from_origin_warning(&layers[0].grid.vertices).unwrap_or_default());
     if design.mesh == MeshKind::Conical {
         let g = &layers[0].grid;
         eprint(&format!(
@@ -180,6 +181,7 @@ fn run_developable(
         format.extension().to_uppercase(),
         millis(start.elapsed().as_secs_f64()),
     ));
+    eprint(&far_from_origin_warning(&g.vertices).unwrap_or_default());
     Ok(Outcome::Success)
 }
 

@@ -9,7 +9,7 @@ use serde_json::{json, Value};
 
 use crate::cli::InfoArgs;
 use crate::generate::{mode_name, near_singular, range_text, SINGULAR_DEG};
-use crate::output::{num, print, xyz};
+use crate::output::{eprint, far_from_origin_warning, num, print, xyz};
 use crate::Outcome;
 
 /// Runs `monge info`.
@@ -40,6 +40,8 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
         )
     };
     print(&text)?;
+    let guide_points = [info.guide_u.points.as_slice(), &info.guide_v.points].concat();
+    eprint(&far_from_origin_warning(&guide_points).unwrap_or_default());
     Ok(Outcome::Success)
 }
 
@@ -74,6 +76,7 @@ fn developable_info(args: &InfoArgs, spec: &DevelopableSpec) -> anyhow::Result<O
         )
     };
     print(&text)?;
+    eprint(&far_from_origin_warning(&mesh.grid.vertices).unwrap_or_default());
     Ok(Outcome::Success)
 }
 

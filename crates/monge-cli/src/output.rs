@@ -3,7 +3,9 @@
 use std::io::{self, Write};
 
 use anyhow::Context;
+use glam::DVec3;
 use monge_core::design::Xyz;
+use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN};
 
 /// Writes `text` to standard output and flushes it; a closed pipe is an error
 /// (never a panic).
@@ -17,6 +19,23 @@ pub fn print(text: &str) -> anyhow::Result<()> {
 /// Writes `text` to standard error, ignoring failure (there is nowhere left to report it).
 pub fn eprint(text: &str) {
     let _ = io::stderr().lock().write_all(text.as_bytes());
+}
+
+/// The warning of `generate` and `info` when the coordinates lie so far from the
+/// origin, compared with the design's size, that f64 output cannot hold the mesh
+/// to 1e-9 of its size (`None` otherwise).
+pub fn far_from_origin_warning(points: &[DVec3]) -> Option<String> {
+    let ratio = origin_ratio(points);
+    (ratio > FAR_FROM_ORIGIN).then(|| {
+        format!(
+            "warning: the coordinates are up to {ratio:.1e} times the design's size away from the \
+             origin: as f64 numbers they are rounded by up to {:.1e} of the size, so no output file \
+             can hold the mesh to 1e-9 of its size (beyond {FAR_FROM_ORIGIN:.1e} times). Model the \
+             design near the origin (e.g. with the guides' start point at 0) and move it into place \
+             afterwards.\n",
+            ratio * f64::EPSILON
+        )
+    })
 }
 
 /// A point or vector as `(x, y, z)` with 6 significant digits.

@@ -938,3 +938,60 @@ fn meshes_also_go_to_gltf_for_viewers_but_are_not_measured_from_it() {
         .code(2)
         .stderr(predicate::str::contains("glTF"));
 }
+
+/// A characteristic design of size about 4e-3 with its corner at `corner`.
+fn small_design(corner: [f64; 3]) -> String {
+    let p = |x: f64, y: f64, z: f64| {
+        format!("[{}, {}, {}]", corner[0] + x, corner[1] + y, corner[2] + z)
+    };
+    format!(
+        r#"{{ "theta_deg": 30,
+  "guide_u": {{ "bspline": {{ "degree": 3, "samples": 11, "control_points": [{}, {}, {}, {}] }} }},
+  "guide_v": {{ "bspline": {{ "degree": 3, "samples": 11, "control_points": [{}, {}, {}, {}] }} }} }}"#,
+        p(0.0, 0.0, 0.0),
+        p(0.001, 0.0, 0.0),
+        p(0.002, 0.0, 0.0005),
+        p(0.003, 0.0, 0.0015),
+        p(0.0, 0.0, 0.0),
+        p(0.0, 0.001, 0.0),
+        p(0.0, 0.002, 0.0004),
+        p(0.0, 0.003, 0.001),
+    )
+}
+
+#[test]
+fn designs_too_far_from_the_origin_for_f64_output_are_warned_about() {
+    let dir = TempDir::new().unwrap();
+    let warning = "times the design's size away from the origin";
+    for (name, corner, warned) in [
+        ("near", [0.0, 0.0, 0.0], false),
+        // 4e-3 at 1e3: coordinates round to 5e-11 of the size, still fine.
+        ("middle", [1e3, 0.0, 0.0], false),
+        // 4e-3 at 5e5: 2.5e-8 of the size, which no f64 file can hold to 1e-9.
+        ("far", [5e5, 3e5, 1e3], true),
+    ] {
+        let design = dir.path().join(format!("{name}.json"));
+        fs::write(&design, small_design(corner)).unwrap();
+        let mesh = dir.path().join(format!("{name}.obj"));
+        let runs = [
+            monge().arg("info").arg(&design).assert().success(),
+            monge()
+                .arg("generate")
+                .arg(&design)
+                .args(["-o", mesh.to_str().unwrap()])
+                .assert()
+                .success(),
+            monge().arg("check").arg(&mesh).assert(),
+        ];
+        for run in runs {
+            let stderr = String::from_utf8_lossy(&run.get_output().stderr).into_owned();
+            assert_eq!(stderr.contains(warning), warned, "{name}: {stderr}");
+            if warned {
+                assert!(
+                    stderr.contains("Model the design near the origin"),
+                    "{stderr}"
+                );
+            }
+        }
+    }
+}

@@ -2,6 +2,8 @@
 
 use std::fmt;
 
+use glam::DVec3;
+
 use crate::combescure::{combescure_rows, CombescureReport, ParallelLines};
 use crate::design::Design;
 use crate::gauss_map::{
@@ -296,7 +298,9 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
 /// Generate the circular mesh with planar curvature lines of `design` (§3).
 ///
 /// Normals along the guides (rotation-minimising, §3.2) → pencil axes from θ
-/// (§2.1.2) → Gauss map (§2.2.1) → Combescure transform through the guides (§2.2.3).
+/// (§2.1.2) → Gauss map (§2.2.1) → Combescure transform through the guides (§2.2.3),
+/// computed relative to the guides' common start point (added back at the end), so
+/// that the error stays relative to the design's size far from the origin.
 ///
 /// ```
 /// use monge_core::{generate, Design, GenerateOptions, GuideSpec};
@@ -331,11 +335,16 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
     let n_p = info.frame.n_p;
     let along_u = guide_normals(&info.guide_u.points, n_p);
     let along_v = guide_normals(&info.guide_v.points, n_p);
+    // Relative to the guides' common start point (exact differences of nearby
+    // numbers), so that round-off stays relative to the design's size however
+    // far it is from the origin.
+    let origin = info.guide_u.points[0];
+    let local = |g: &Guide| -> Vec<DVec3> { g.points.iter().map(|p| *p - origin).collect() };
+    let (guide_u, guide_v) = (local(&info.guide_u), local(&info.guide_v));
     // The Gauss map and the Combescure transform, row by row, so that each Gauss
     // row is used while it is still in cache.
-    let (guide_u, guide_v) = (&info.guide_u.points, &info.guide_v.points);
     let gauss = GaussRows::new(&axes, &along_u, &along_v);
-    let transform = combescure_rows(guide_u, guide_v, |i, out| gauss.fill(i, out))
+    let mut transform = combescure_rows(&guide_u, &guide_v, |i, out| gauss.fill(i, out))
         .map_err(|ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
             face,
             sine,
@@ -348,13 +357,17 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
                 "The mesh pinches to a point there (§5.2). Change θ or the guides"
             },
         })?;
+    let (rows, cols) = (guide_u.len(), guide_v.len());
+    for p in &mut transform.vertices {
+        *p += origin;
+    }
+    // The guide samples themselves, bit for bit (p − origin + origin may round).
+    transform.vertices[..cols].copy_from_slice(&info.guide_v.points);
+    for (i, p) in info.guide_u.points.iter().enumerate() {
+        transform.vertices[i * cols] = *p;
+    }
     Ok(Generated {
-        grid: QuadGrid::new(
-            guide_u.len(),
-            guide_v.len(),
-            transform.vertices,
-            transform.normals,
-        ),
+        grid: QuadGrid::new(rows, cols, transform.vertices, transform.normals),
         info,
         axes,
         report: transform.report,

@@ -6,7 +6,8 @@ use glam::DVec3;
 ///
 /// Vertex `(i, j)` is entry `i * cols + j`: `i` runs along guide_u, `j` along
 /// guide_v; vertex `(i, 0)` is guide_u's sample `i` and vertex `(0, j)` is
-/// guide_v's sample `j`. Faces are the quads `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`.
+/// guide_v's sample `j`. Faces are the quads `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`;
+/// [`QuadGrid::oriented_faces`] winds them counter-clockwise about the node axes.
 ///
 /// ```
 /// use glam::DVec3;
@@ -73,6 +74,63 @@ impl QuadGrid {
         ]
     }
 
+    /// Whether the node axes point against the face order
+    /// `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` (§2.2): the sum over all faces
+    /// of the face's vector area dotted with the sum of its corners' normals is
+    /// negative. `false` for a grid without normals.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
+    /// assert!(!QuadGrid::new(2, 2, v.clone(), vec![DVec3::Z; 4]).faces_reversed());
+    /// assert!(QuadGrid::new(2, 2, v, vec![-DVec3::Z; 4]).faces_reversed());
+    /// ```
+    pub fn faces_reversed(&self) -> bool {
+        if self.normals.is_empty() {
+            return false;
+        }
+        let mut sum = 0.0;
+        for [a, b, c, d] in self.face_indices() {
+            let p = |k: usize| self.vertices[k];
+            let area = (p(c) - p(a)).cross(p(d) - p(b));
+            let n = self.normals[a] + self.normals[b] + self.normals[c] + self.normals[d];
+            sum += area.dot(n);
+        }
+        sum < 0.0
+    }
+
+    /// The vertex indices of every face, row by row, wound counter-clockwise
+    /// about the node axes (right-hand rule; §2.2): `(i, j), (i+1, j), (i+1, j+1),
+    /// (i, j+1)`, or `(i, j), (i, j+1), (i+1, j+1), (i+1, j)` when
+    /// [`QuadGrid::faces_reversed`]. Every mesh writer and the renderer use it.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
+    /// let up = QuadGrid::new(2, 2, v.clone(), vec![DVec3::Z; 4]);
+    /// assert_eq!(up.oriented_faces().collect::<Vec<_>>(), [[0, 2, 3, 1]]);
+    /// let down = QuadGrid::new(2, 2, v, vec![-DVec3::Z; 4]);
+    /// assert_eq!(down.oriented_faces().collect::<Vec<_>>(), [[0, 1, 3, 2]]);
+    /// ```
+    pub fn oriented_faces(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+        let reversed = self.faces_reversed();
+        self.face_indices()
+            .map(move |[a, b, c, d]| if reversed { [a, d, c, b] } else { [a, b, c, d] })
+    }
+
+    /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of every face, row by row.
+    fn face_indices(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+        let c = self.cols;
+        (0..self.rows.saturating_sub(1)).flat_map(move |i| {
+            (0..c.saturating_sub(1)).map(move |j| {
+                let k = i * c + j;
+                [k, k + c, k + c + 1, k + 1]
+            })
+        })
+    }
+
     /// Number of faces, `(rows − 1) · (cols − 1)`.
     pub fn face_count(&self) -> usize {
         self.rows.saturating_sub(1) * self.cols.saturating_sub(1)
@@ -114,4 +172,33 @@ pub fn bbox_diagonal(points: &[DVec3]) -> f64 {
     let Some(first) = it.next() else { return 0.0 };
     let (lo, hi) = it.fold((*first, *first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
     (hi - lo).length()
+}
+
+/// Distance from the origin, relative to the size, beyond which f64 coordinates
+/// cannot hold a mesh to 1e-9 of its size (§5.2): `1e-9 / (4 ε)` ≈ 1.1e6, since
+/// writing a coordinate rounds it by up to ε times its magnitude and the measured
+/// error of a mesh reaches a few such roundings (up to 4.6 in the tests).
+pub const FAR_FROM_ORIGIN: f64 = 1e-9 / (4.0 * f64::EPSILON);
+
+/// How far `points` lie from the origin compared with their size (§5.2): the
+/// largest |coordinate| divided by the bounding-box diagonal (0 for no points,
+/// infinite for one point away from the origin). Above [`FAR_FROM_ORIGIN`] the
+/// output coordinates themselves cannot hold 1e-9 of the size.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::grid::origin_ratio;
+/// let p = [DVec3::new(1e5, 0.0, 0.0), DVec3::new(1e5, 1e-3, 0.0)];
+/// assert_eq!(origin_ratio(&p), 1e8);
+/// ```
+pub fn origin_ratio(points: &[DVec3]) -> f64 {
+    let far = points
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    if far == 0.0 {
+        0.0
+    } else {
+        far / bbox_diagonal(points)
+    }
 }

@@ -829,8 +829,12 @@ fn sample_bspline(
         }
         None => vec![1.0; count],
     };
-    let points: Vec<DVec3> = b.control_points.iter().map(v).collect();
+    // Relative to P0, so that round-off stays relative to the curve's size far
+    // from the origin (and coordinates shared by all control points stay exact).
+    let origin = v(&b.control_points[0]);
+    let points: Vec<DVec3> = b.control_points.iter().map(|p| v(p) - origin).collect();
     let tangent = points[1] - points[0];
+    let end = v(&b.control_points[count - 1]);
     let curve = Nurbs {
         degree,
         points: &points,
@@ -851,7 +855,11 @@ fn sample_bspline(
             let s = k as f64 / last;
             // Exactly `lo` at s = 0 and exactly `hi` at s = 1.
             let u = parameters.map_or((1.0 - s) * lo + s * hi, |t| t[k]);
-            curve.point(u, &mut d, &mut w)
+            if u >= hi {
+                end // the clamped end, exactly (P_n − P0 + P0 may round)
+            } else {
+                curve.point(u, &mut d, &mut w) + origin
+            }
         })
         .collect();
     Ok((samples, Some((tangent, TangentSource::ControlPolygon))))

@@ -285,10 +285,11 @@ pub fn circularity(quad: &[DVec3; 4]) -> f64 {
     if w2 == 0.0 {
         return 0.0; // all four corners collinear (the best triple is)
     }
-    let centre = c + (u.length_squared() * v - v.length_squared() * u).cross(w) / (2.0 * w2);
-    let radius = ((a - centre).length() + (b - centre).length() + (c - centre).length()) / 3.0;
+    // Relative to corner c, so that no coordinate far from the origin rounds.
+    let centre = (u.length_squared() * v - v.length_squared() * u).cross(w) / (2.0 * w2);
+    let radius = ((u - centre).length() + (v - centre).length() + centre.length()) / 3.0;
     let normal = w / w2.sqrt();
-    let p = quad[k] - centre;
+    let p = (quad[k] - c) - centre;
     let h = p.dot(normal);
     h.hypot((p - h * normal).length() - radius)
 }
@@ -354,11 +355,13 @@ pub fn polyline_planarity(points: &[DVec3]) -> (f64, usize) {
         // Three points always lie in a plane, however close to a line they are.
         return (0.0, 0);
     }
-    // Centre on the first point, then on the centroid, to keep the rounding
-    // error relative to the polyline's size rather than its distance to the origin.
+    // Relative to the first point, then to the centroid (never added back), to
+    // keep the rounding error relative to the polyline's size rather than its
+    // distance to the origin.
     let origin = points[0];
-    let centroid = points.iter().map(|p| *p - origin).sum::<DVec3>() / points.len() as f64 + origin;
-    let m = DMatrix::from_fn(points.len(), 3, |r, c| (points[r] - centroid)[c]);
+    let centroid = points.iter().map(|p| *p - origin).sum::<DVec3>() / points.len() as f64;
+    let local = |p: &DVec3| (*p - origin) - centroid;
+    let m = DMatrix::from_fn(points.len(), 3, |r, c| local(&points[r])[c]);
     // Golub–Kahan converges in a few sweeps per singular value; the cap only
     // guards against pathological input, which is then reported as NaN.
     let Some(svd) = m.try_svd(false, true, f64::EPSILON, 10_000) else {
@@ -369,7 +372,7 @@ pub fn polyline_planarity(points: &[DVec3]) -> (f64, usize) {
     let normal = DVec3::new(v_t[(k, 0)], v_t[(k, 1)], v_t[(k, 2)]);
     let mut worst = Worst::NONE;
     for (idx, p) in points.iter().enumerate() {
-        worst.update((*p - centroid).dot(normal).abs(), (idx, 0));
+        worst.update(local(p).dot(normal).abs(), (idx, 0));
     }
     (worst.value, worst.at.0)
 }

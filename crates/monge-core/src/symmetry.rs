@@ -117,11 +117,6 @@ impl Isometry {
         }
     }
 
-    /// Whether the motion reverses orientation (a reflection) (§4.5).
-    pub fn reverses(&self) -> bool {
-        self.linear.determinant() < 0.0
-    }
-
     /// The image of a grid: points moved, node axes turned (§4.5).
     pub fn apply(&self, grid: &QuadGrid) -> QuadGrid {
         QuadGrid::new(
@@ -239,8 +234,8 @@ pub const MERGE_RELATIVE: f64 = 1e-9;
 
 /// Apply every isometry to every grid and merge vertices closer than
 /// [`MERGE_RELATIVE`] of the structure's size into one [`QuadMesh`] (§4.5, §4.7).
-/// Quads of orientation-reversing copies are wound backwards so that every quad
-/// turns counter-clockwise about its node axes.
+/// Every quad turns counter-clockwise about its node axes
+/// ([`QuadGrid::oriented_faces`] of each copy: a mirror turns axes and faces alike).
 ///
 /// ```
 /// use glam::DVec3;
@@ -315,15 +310,9 @@ pub fn assemble(grids: &[QuadGrid], isometries: &[Isometry]) -> Assembly {
             };
             copy.vertex_map.push(v);
         }
-        let reverse = copy.isometry.reverses();
-        for i in 0..g.rows.saturating_sub(1) {
-            for j in 0..g.cols.saturating_sub(1) {
-                let m = |a: usize, b: usize| copy.vertex_map[g.index(a, b)];
-                let q = [m(i, j), m(i + 1, j), m(i + 1, j + 1), m(i, j + 1)];
-                mesh.quads
-                    .push(if reverse { [q[0], q[3], q[2], q[1]] } else { q });
-            }
-        }
+        // The copy's own node axes orient its faces (a mirror turns both).
+        mesh.quads
+            .extend(g.oriented_faces().map(|q| q.map(|k| copy.vertex_map[k])));
     }
     Assembly {
         mesh,

@@ -23,7 +23,9 @@ use std::fmt;
 use glam::{DQuat, DVec3};
 use monge_core::design::{ArcSpec, BSplineSpec, ParabolaSpec};
 use monge_core::measure::measure;
-use monge_core::{generate, inspect, Design, GenerateError, GenerateOptions, GuideSpec};
+use monge_core::{
+    generate, inspect, Design, GenerateError, GenerateOptions, GuideSpec, Tolerances,
+};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
@@ -756,6 +758,116 @@ fn characteristic_designs_are_exact() {
 #[test]
 fn arbitrary_designs_are_exact() {
     run_mode(Mode::Arbitrary, arbitrary_case(), 23);
+}
+
+/// `spec` scaled by `s` about the origin, then moved by `shift`.
+fn placed(spec: &GuideSpec, s: f64, shift: DVec3) -> GuideSpec {
+    let point = |p: &[f64; 3]| (s * DVec3::from_array(*p) + shift).to_array();
+    let vector = |v: &[f64; 3]| (s * DVec3::from_array(*v)).to_array();
+    let mut g = spec.clone();
+    if let Some(points) = &mut g.points {
+        points.iter_mut().for_each(|p| *p = point(p));
+    }
+    g.tangent = g.tangent.as_ref().map(vector);
+    if let Some(b) = &mut g.bspline {
+        b.control_points.iter_mut().for_each(|p| *p = point(p));
+    }
+    if let Some(a) = &mut g.arc {
+        (a.center, a.start) = (point(&a.center), point(&a.start));
+    }
+    if let Some(p) = &mut g.parabola {
+        (p.start, p.tangent, p.quadratic) =
+            (point(&p.start), vector(&p.tangent), vector(&p.quadratic));
+    }
+    g
+}
+
+/// ulp of `x ≥ 0` (0 for 0).
+fn ulp(x: f64) -> f64 {
+    if x == 0.0 {
+        0.0
+    } else {
+        f64::from_bits(x.to_bits() + 1) - x
+    }
+}
+
+/// Random characteristic designs in axis-aligned planes (every kind of guide,
+/// any θ), scaled to 1e-3 … 5 and moved up to 5e5 from the origin in any
+/// direction: every measure (relative to the size) stays within 1e-9 plus a few
+/// ulps of the coordinates (the rounding of the output itself), relative to the
+/// size. Axis-aligned planes keep the input itself exact when moved (a tilted
+/// plane's points round by ε |corner|, which bends the guides and the angle
+/// between them by ε |corner| / size: another design; tests/far_from_origin.rs
+/// covers the arbitrary mode with a tilted plane).
+#[test]
+fn designs_far_from_the_origin_stay_exact_relative_to_their_size() {
+    let case = characteristic_case().prop_filter("axis-aligned planes", |c| {
+        c.label.ends_with("rotated=false")
+    });
+    let place = (
+        -3.0..0.7f64,
+        prop::sample::select(vec![0.0, 1e4, 1e5, 5e5]),
+        (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+    );
+    let mut config = TestRunner::new_with_rng(
+        Config {
+            cases: 400,
+            max_global_rejects: 20_000,
+            failure_persistence: None,
+            ..Config::default()
+        },
+        TestRng::from_seed(RngAlgorithm::ChaCha, &[31; 32]),
+    );
+    let worst = RefCell::new((0.0f64, String::new()));
+    let result = config.run(&(case, place), |(case, (log_s, corner, (x, y, z)))| {
+        let shift = corner * DVec3::new(x, y, z).normalize_or(DVec3::X);
+        let s = 10f64.powf(log_s);
+        let size = s * bbox(&case.u).max(bbox(&case.v));
+        // Input rounding at |shift| bends planes by up to ε |shift| / size.
+        let slack = (64.0 * f64::EPSILON * corner / size).max(1e-9);
+        let design = Design {
+            guide_u: placed(&case.design.guide_u, s, shift),
+            guide_v: placed(&case.design.guide_v, s, shift),
+            tolerance: Some(Tolerances {
+                planarity: slack,
+                angle: slack,
+                start: slack,
+            }),
+            ..case.design.clone()
+        };
+        let Ok(g) = generate(&design, &GenerateOptions::default()) else {
+            return Err(TestCaseError::reject("invalid or degenerate"));
+        };
+        if g.report.folded_faces > 0 || g.report.min_crossing.sine < 1e-2 {
+            return Err(TestCaseError::reject("folded or nearly pinched"));
+        }
+        let grid = &g.grid;
+        let m = measure(grid);
+        let mut own: f64 = 0.0;
+        for i in 0..grid.rows - 1 {
+            for j in 0..grid.cols - 1 {
+                let q = grid.face(i, j);
+                let o = q[0];
+                own = own.max(own_face_planarity(&q.map(|p| p - o)) / m.scale);
+            }
+        }
+        let err = own
+            .max(m.circularity.value)
+            .max(m.row_planarity.value)
+            .max(m.column_planarity.value);
+        let ulps = (err - TOL).max(0.0) * m.scale / ulp(corner).max(f64::MIN_POSITIVE);
+        let label = format!("{} s={s:.1e} corner={corner:e}: {err:.2e}", case.label);
+        if ulps > worst.borrow().0 {
+            *worst.borrow_mut() = (ulps, label.clone());
+        }
+        prop_assert!(err <= TOL + 4.0 * ulp(corner) / m.scale, "{label}");
+        Ok(())
+    });
+    let (ulps, label) = worst.into_inner();
+    eprintln!("far from the origin: worst excess over 1e-9 {ulps:.2} ulps of the corner [{label}]");
+    if let Err(e) = result {
+        panic!("{e}");
+    }
 }
 
 #[test]

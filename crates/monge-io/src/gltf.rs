@@ -253,13 +253,9 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
     b.finish(w)
 }
 
-/// Two triangles per face of a quad grid.
+/// Two triangles per face of a quad grid, wound about its node axes.
 fn grid_triangles(g: &QuadGrid) -> Vec<u32> {
-    let quads = (0..g.face_count()).map(|k| {
-        let (i, j) = (k / (g.cols - 1), k % (g.cols - 1));
-        [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(i, j)| g.index(i, j))
-    });
-    quad_triangles(quads)
+    quad_triangles(g.oriented_faces())
 }
 
 /// Two triangles per quad of vertex indices.

@@ -3,7 +3,9 @@
 //! All three write every coordinate with the shortest decimal that parses
 //! back to the same `f64` (`ryu`), vertex `(i, j)` as vertex number
 //! `i * cols + j`, and face `(i, j)` as the quad
-//! `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`.
+//! `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`, reversed when the node axes point
+//! the other way, so that every face turns counter-clockwise about its normals
+//! ([`QuadGrid::oriented_faces`]).
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -153,7 +155,7 @@ pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
             }
         }
         let with_normals = !grid.normals.is_empty();
-        for corners in faces(grid) {
+        for corners in grid.oriented_faces() {
             line.push_str("f");
             for c in corners {
                 line.push(b' ');
@@ -202,7 +204,7 @@ pub fn write_ply<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
             }
             line.end()?;
         }
-        for corners in faces(grid) {
+        for corners in grid.oriented_faces() {
             line.push(b'4');
             for c in corners {
                 line.push(b' ');
@@ -278,17 +280,6 @@ pub fn write_mesh_json<W: Write + ?Sized>(
         }
         line.push_str("}\n");
         Ok(())
-    })
-}
-
-/// The 0-based corner indices of every face, row by row.
-fn faces(grid: &QuadGrid) -> impl Iterator<Item = [usize; 4]> + '_ {
-    let c = grid.cols;
-    (0..grid.rows.saturating_sub(1)).flat_map(move |i| {
-        (0..c.saturating_sub(1)).map(move |j| {
-            let k = i * c + j;
-            [k, k + c, k + c + 1, k + 1]
-        })
     })
 }
 

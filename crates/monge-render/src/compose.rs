@@ -508,37 +508,30 @@ fn draw_mesh(scene: &Scene, r: Rect, o: &RenderOptions, scale: f64, shapes: &mut
         .collect();
     let stroke = edge_pen(o);
     let mut faces = Vec::with_capacity(mesh.face_count());
-    for i in 0..mesh.rows.saturating_sub(1) {
-        for j in 0..mesh.cols.saturating_sub(1) {
-            let ids = [
-                mesh.index(i, j),
-                mesh.index(i + 1, j),
-                mesh.index(i + 1, j + 1),
-                mesh.index(i, j + 1),
-            ];
-            let Some(corners) = ids
-                .iter()
-                .map(|&k| projected[k])
-                .collect::<Option<Vec<_>>>()
-            else {
-                continue;
-            };
-            let [a, b, c, d] = ids.map(|k| mesh.vertices[k]);
-            let normal = (c - a).cross(d - b).normalize_or_zero();
-            let centre = (a + b + c + d) / 4.0;
-            let facing = normal.dot(projector.to_eye(centre)) >= 0.0;
-            let base = if facing { o.front_color } else { o.back_color };
-            let lambert = normal.dot(light).abs();
-            faces.push(Face {
-                depth: corners.iter().map(|c| c.1).sum::<f64>() / 4.0,
-                index: faces.len(),
-                shape: Shape::Polygon {
-                    points: corners.iter().map(|c| c.0).collect(),
-                    fill: Some(shade(base, 0.4 + 0.65 * lambert)),
-                    stroke,
-                },
-            });
-        }
+    // Faces wound about the node axes: the front is the side they point to.
+    for ids in mesh.oriented_faces() {
+        let Some(corners) = ids
+            .iter()
+            .map(|&k| projected[k])
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let [a, b, c, d] = ids.map(|k| mesh.vertices[k]);
+        let normal = (c - a).cross(d - b).normalize_or_zero();
+        let centre = (a + b + c + d) / 4.0;
+        let facing = normal.dot(projector.to_eye(centre)) >= 0.0;
+        let base = if facing { o.front_color } else { o.back_color };
+        let lambert = normal.dot(light).abs();
+        faces.push(Face {
+            depth: corners.iter().map(|c| c.1).sum::<f64>() / 4.0,
+            index: faces.len(),
+            shape: Shape::Polygon {
+                points: corners.iter().map(|c| c.0).collect(),
+                fill: Some(shade(base, 0.4 + 0.65 * lambert)),
+                stroke,
+            },
+        });
     }
     paint(faces, shapes);
     draw_highlights(
