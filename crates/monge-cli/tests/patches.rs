@@ -83,9 +83,10 @@ fn fit_recovers_the_hippohaus_thetas() {
 /// Write `design` (the HippoHaus fit example, edited) and run `monge fit` on it.
 fn fit_error(edit: impl FnOnce(&mut Value)) -> String {
     let dir = TempDir::new().unwrap();
-    let mut d: Value =
-        serde_json::from_str(&fs::read_to_string(example("fig21-hippohaus-fit.patches.json")).unwrap())
-            .unwrap();
+    let mut d: Value = serde_json::from_str(
+        &fs::read_to_string(example("fig21-hippohaus-fit.patches.json")).unwrap(),
+    )
+    .unwrap();
     edit(&mut d);
     let path = dir.path().join("d.json");
     fs::write(&path, d.to_string()).unwrap();

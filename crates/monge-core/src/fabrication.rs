@@ -28,7 +28,7 @@ use nalgebra::{Matrix3, SymmetricEigen};
 use serde::Serialize;
 
 use crate::conical::ConicalMesh;
-use crate::grid::QuadGrid;
+use crate::grid::{quad_area, QuadGrid};
 use crate::measure::{circularity, face_planarity};
 use crate::offset::{face_offset, vertex_offset};
 
@@ -207,7 +207,7 @@ pub struct Panel {
     pub edge_lengths: [f64; 4],
     /// Interior corner angles, radians (sum 2π for a convex panel).
     pub angles: [f64; 4],
-    /// Area of the flat outline (shoelace formula; positive if counter-clockwise about the normal).
+    /// Area of the panel ([`quad_area`]: half the diagonals' cross product).
     pub area: f64,
     /// Radius of the circle through corners 0, 1 and 2 (the circumcircle of a circular face).
     pub circumradius: f64,
@@ -552,10 +552,6 @@ fn layer_panels(k: usize, layer: &LayerMesh) -> Result<Vec<Panel>, FabricationEr
                 let (prev, next) = (quad[(c + 3) % 4] - quad[c], quad[(c + 1) % 4] - quad[c]);
                 angle_between(prev, next)
             });
-            let area = 0.5
-                * (0..4)
-                    .map(|c| outline[c].perp_dot(outline[(c + 1) % 4]))
-                    .sum::<f64>();
             panels.push(Panel {
                 layer: k,
                 i,
@@ -564,7 +560,7 @@ fn layer_panels(k: usize, layer: &LayerMesh) -> Result<Vec<Panel>, FabricationEr
                 outline,
                 edge_lengths,
                 angles,
-                area,
+                area: quad_area(&quad),
                 circumradius: circumradius(quad[0], quad[1], quad[2]),
                 planarity: face_planarity(&quad),
                 circularity: circularity(&quad),

@@ -73,6 +73,19 @@ impl QuadGrid {
         ]
     }
 
+    /// Area of face `(i, j)` (§4.8): [`quad_area`] of [`QuadGrid::face`].
+    pub fn face_area(&self, i: usize, j: usize) -> f64 {
+        quad_area(&self.face(i, j))
+    }
+
+    /// Areas of all faces (§4.8), row-major (face `(i, j)` is entry `i·(cols − 1) + j`).
+    pub fn face_areas(&self) -> Vec<f64> {
+        let cols = self.cols.saturating_sub(1);
+        (0..self.rows.saturating_sub(1))
+            .flat_map(|i| (0..cols).map(move |j| self.face_area(i, j)))
+            .collect()
+    }
+
     /// Number of faces, `(rows − 1) · (cols − 1)`.
     pub fn face_count(&self) -> usize {
         self.rows.saturating_sub(1) * self.cols.saturating_sub(1)
@@ -106,6 +119,30 @@ impl QuadGrid {
         };
         QuadGrid::new(self.cols, self.rows, t(&self.vertices), t(&self.normals))
     }
+}
+
+/// Area of a quad `[A, B, C, D]` given in cyclic order (§4.8, panel areas):
+/// `½ |(C − A) × (D − B)|`, half the length of the cross product of its diagonals.
+///
+/// For a planar quad that is not crossed (convex or not) this is its area: the
+/// sum of the areas of triangles `ABC` and `ACD`. For a skew quad it is the
+/// area of its projection on the plane of the two diagonals (the length of its
+/// vector area). The corners must be in cyclic order, as [`QuadGrid::face`]
+/// gives them: with two corners exchanged the diagonals are two opposite edges
+/// and the value means nothing.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::grid::quad_area;
+/// // A trapezoid with parallel sides 4 and 2, height 3: (4 + 2) / 2 · 3 = 9.
+/// let q = [DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(3.0, 3.0, 0.0), DVec3::new(1.0, 3.0, 0.0)];
+/// assert_eq!(quad_area(&q), 9.0);
+/// // A non-convex quad (a dart, reflex at C): triangles ABC and ACD, 2 each.
+/// let dart = [DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.0, 4.0, 0.0)];
+/// assert_eq!(quad_area(&dart), 4.0);
+/// ```
+pub fn quad_area(q: &[DVec3; 4]) -> f64 {
+    0.5 * (q[2] - q[0]).cross(q[3] - q[1]).length()
 }
 
 /// Diagonal of the axis-aligned bounding box of `points` (0 for none).
