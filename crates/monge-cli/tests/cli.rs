@@ -546,6 +546,56 @@ fn check_passes_a_good_mesh_and_fails_a_moved_vertex() {
         .code(0);
 }
 
+/// Issue 10, item 2: the unit 3 × 3 grid with vertices (2, 1) and (2, 2)
+/// exchanged has face (1, 1) crossed (a symmetric bow-tie: its edges
+/// (1, 1)–(2, 1) and (2, 2)–(1, 2) cross at (1.5, 1.5), its diagonals are
+/// parallel), planar and circular: `check` fails it, whatever the tolerance.
+#[test]
+fn check_fails_a_crossed_face_with_its_index() {
+    let dir = TempDir::new().unwrap();
+    let mesh = write(
+        &dir,
+        "bow-tie.json",
+        r#"{"rows": 3, "cols": 3, "vertices": [[0,0,0], [0,1,0], [0,2,0], [1,0,0], [1,1,0],
+            [1,2,0], [2,0,0], [2,2,0], [2,1,0]]}"#,
+    );
+    monge()
+        .arg("check")
+        .arg(&mesh)
+        .args(["--tol", "1"])
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains(
+            "folded faces               1  at first face (1, 1)",
+        ));
+    let out = monge()
+        .arg("check")
+        .arg(&mesh)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["pass"], false);
+    let folds = &v["metrics"]["folded_faces"];
+    assert_eq!(folds["value"], 1);
+    assert_eq!(folds["at"], serde_json::json!([1, 1]));
+    assert_eq!(folds["pass"], false);
+    // Exchanged back, the grid passes with no folded face.
+    let fair = write(&dir, "fair.json", &grid_json(0.0));
+    let out = monge()
+        .arg("check")
+        .arg(&fair)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        v["metrics"]["folded_faces"],
+        serde_json::json!({"value": 0, "at": null, "pass": true})
+    );
+}
+
 #[test]
 fn check_reports_a_malformed_mesh_as_an_error() {
     let dir = TempDir::new().unwrap();

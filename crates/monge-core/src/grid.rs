@@ -86,6 +86,38 @@ impl QuadGrid {
             .collect()
     }
 
+    /// Folded faces (§5.2): each face's [`quad_turn`] about the sum of its four
+    /// node axes, or without normals [`quad_turn_alone`] (which finds crossed
+    /// and non-convex faces, not faces turned over whole), counted by [`Folds`].
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// // Two unit squares side by side; then the far edge of the second twisted into a bow-tie.
+    /// let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    /// let mut g = QuadGrid::new(3, 2, vec![v(0.0, 0.0), v(0.0, 1.0), v(1.0, 0.0), v(1.0, 1.0), v(2.0, 0.0), v(2.0, 1.0)], vec![DVec3::Z; 6]);
+    /// assert_eq!(g.folds().count(), 0);
+    /// g.vertices.swap(4, 5);
+    /// assert_eq!((g.folds().count(), g.folds().first()), (1, Some((1, 0))));
+    /// ```
+    pub fn folds(&self) -> Folds {
+        let mut folds = Folds::default();
+        for i in 0..self.rows.saturating_sub(1) {
+            for j in 0..self.cols.saturating_sub(1) {
+                let q = self.face(i, j);
+                let turn = if self.normals.is_empty() {
+                    quad_turn_alone(&q)
+                } else {
+                    let n = |i, j| self.normals[self.index(i, j)];
+                    let axis = n(i, j) + n(i + 1, j) + n(i + 1, j + 1) + n(i, j + 1);
+                    quad_turn(&q, axis)
+                };
+                folds.add((i, j), turn);
+            }
+        }
+        folds
+    }
+
     /// Number of faces, `(rows − 1) · (cols − 1)`.
     pub fn face_count(&self) -> usize {
         self.rows.saturating_sub(1) * self.cols.saturating_sub(1)
@@ -143,6 +175,134 @@ impl QuadGrid {
 /// ```
 pub fn quad_area(q: &[DVec3; 4]) -> f64 {
     0.5 * (q[2] - q[0]).cross(q[3] - q[1]).length()
+}
+
+/// How the corners of a quad turn about an axis (§5.2): see [`quad_turn`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Turn {
+    /// Every corner turns counter-clockwise about the axis.
+    Positive,
+    /// Every corner turns clockwise about the axis.
+    Negative,
+    /// The corners do not all turn the same way: the quad is crossed (a bow-tie,
+    /// two corners each way), non-convex (one corner), or has a corner with no
+    /// turn (a zero edge or three corners on a line, NaN included).
+    Crossed,
+}
+
+/// How the quad `[A, B, C, D]` (cyclic order) turns about `axis` (§5.2): the
+/// sign of `(e_in × e_out) · axis` at each corner, `e_in` the edge arriving at
+/// the corner and `e_out` the edge leaving it.
+///
+/// A planar convex quad turns the same way at its four corners; a crossed one
+/// (a bow-tie) turns one way at two corners and the other way at the two
+/// others, even when it is symmetric and its diagonals' cross product (its
+/// vector area) vanishes. The axis only decides which way is positive: the
+/// node axes of the face, or, without them, the quad's largest corner turn
+/// (see [`quad_turn_alone`]).
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::grid::{quad_turn, Turn};
+/// let square = [DVec3::ZERO, DVec3::X, DVec3::X + DVec3::Y, DVec3::Y];
+/// assert_eq!(quad_turn(&square, DVec3::Z), Turn::Positive);
+/// assert_eq!(quad_turn(&square, -DVec3::Z), Turn::Negative);
+/// // C and D exchanged: edges AB and CD cross at (½, ½); (C − A) × (D − B) = 0.
+/// let bow_tie = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X + DVec3::Y];
+/// assert_eq!((bow_tie[2] - bow_tie[0]).cross(bow_tie[3] - bow_tie[1]), DVec3::ZERO);
+/// assert_eq!(quad_turn(&bow_tie, DVec3::Z), Turn::Crossed);
+/// // A dart (non-convex at C) turns the other way at C only.
+/// let dart = [DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.0, 4.0, 0.0)];
+/// assert_eq!(quad_turn(&dart, DVec3::Z), Turn::Crossed);
+/// ```
+pub fn quad_turn(q: &[DVec3; 4], axis: DVec3) -> Turn {
+    let edges = [q[1] - q[0], q[2] - q[1], q[3] - q[2], q[0] - q[3]];
+    let mut signs = [0.0; 4];
+    for (k, sign) in signs.iter_mut().enumerate() {
+        *sign = edges[(k + 3) % 4].cross(edges[k]).dot(axis);
+    }
+    if signs.iter().all(|s| *s > 0.0) {
+        Turn::Positive
+    } else if signs.iter().all(|s| *s < 0.0) {
+        Turn::Negative
+    } else {
+        Turn::Crossed
+    }
+}
+
+/// [`quad_turn`] about the quad's own largest corner turn (§5.2), for a quad
+/// without node axes: [`Turn::Positive`] or [`Turn::Crossed`].
+pub fn quad_turn_alone(q: &[DVec3; 4]) -> Turn {
+    let corner = |k: usize| (q[k] - q[(k + 3) % 4]).cross(q[(k + 1) % 4] - q[k]);
+    let axis = (1..4).map(corner).fold(corner(0), |a, b| {
+        if b.length_squared() > a.length_squared() {
+            b
+        } else {
+            a
+        }
+    });
+    quad_turn(q, axis)
+}
+
+/// Folded faces of a quad grid (§5.2), counted face by face with [`Folds::add`].
+///
+/// A face is folded when it is [`Turn::Crossed`], or when it turns the other
+/// way than most faces do (the mesh folds back over itself there); on a tie,
+/// the way of the first face that is not crossed counts as the right one.
+///
+/// ```
+/// use monge_core::grid::{Folds, Turn};
+/// let mut f = Folds::default();
+/// for (face, turn) in [((0, 0), Turn::Negative), ((0, 1), Turn::Positive), ((0, 2), Turn::Positive), ((1, 0), Turn::Crossed)] {
+///     f.add(face, turn);
+/// }
+/// assert_eq!((f.count(), f.first()), (2, Some((0, 0))));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Folds {
+    /// Faces turning positively, and the first of them (row-major).
+    positive: (usize, Option<(usize, usize)>),
+    /// Faces turning negatively, and the first of them.
+    negative: (usize, Option<(usize, usize)>),
+    /// Crossed faces, and the first of them.
+    crossed: (usize, Option<(usize, usize)>),
+}
+
+impl Folds {
+    /// Counts face `(i, j)`, which turns as `turn`; faces come in row-major order.
+    pub fn add(&mut self, face: (usize, usize), turn: Turn) {
+        let class = match turn {
+            Turn::Positive => &mut self.positive,
+            Turn::Negative => &mut self.negative,
+            Turn::Crossed => &mut self.crossed,
+        };
+        class.0 += 1;
+        class.1.get_or_insert(face);
+    }
+
+    /// The faces turning the wrong way: the fewer of the two ways (on a tie, the
+    /// way of the later first face).
+    fn wrong_way(&self) -> (usize, Option<(usize, usize)>) {
+        let (p, n) = (self.positive, self.negative);
+        if p.0 > n.0 || (p.0 == n.0 && p.1 < n.1) {
+            n
+        } else {
+            p
+        }
+    }
+
+    /// Number of folded faces.
+    pub fn count(&self) -> usize {
+        self.crossed.0 + self.wrong_way().0
+    }
+
+    /// The first folded face (row-major), if any.
+    pub fn first(&self) -> Option<(usize, usize)> {
+        [self.crossed.1, self.wrong_way().1]
+            .into_iter()
+            .flatten()
+            .min()
+    }
 }
 
 /// Diagonal of the axis-aligned bounding box of `points` (0 for none).

@@ -4,7 +4,8 @@
 //! [`QuadGrid`] and measures, with elementary and numerically careful formulas,
 //! how far it is from the guarantees of the paper — planar faces, circular
 //! faces, planar curvature lines (§2.2), torsion-free unit node axes (§2.2) and,
-//! for conical meshes, vertices whose face normals are concyclic (§2.3).
+//! for conical meshes, vertices whose face normals are concyclic (§2.3). Only
+//! what a folded face is (§5.2) is one definition for both, [`QuadGrid::folds`].
 //!
 //! Lengths are divided by [`Measurements::scale`], the bounding-box diagonal of
 //! the grid, so every value is relative to the model size (torsion too: see
@@ -90,10 +91,17 @@ pub struct Measurements {
     /// Unit node axes (§2.2), with normals: max over vertices of `| |n| − 1 |`;
     /// `at` = vertex `(i, j)`.
     pub normal_length: Option<Worst>,
+    /// Folded faces (§5.2, [`QuadGrid::folds`]): crossed (bow-tie) or
+    /// non-convex faces, and with normals faces turned over against most
+    /// others. A count, not an error: not part of [`Measurements::max_error`].
+    pub folded_faces: usize,
+    /// The first folded face `(i, j)` (row-major), if any.
+    pub first_fold: Option<(usize, usize)>,
 }
 
 impl Measurements {
-    /// The largest of all measured values (§2.2); NaN if any of them is NaN.
+    /// The largest of all measured errors (§2.2), circularity included; NaN if
+    /// any of them is NaN.
     pub fn max_error(&self) -> f64 {
         [
             Some(self.face_planarity),
@@ -174,8 +182,11 @@ pub fn measure(grid: &QuadGrid) -> Measurements {
         (Some(t), Some(l))
     };
 
+    let folds = grid.folds();
     Measurements {
         scale,
+        folded_faces: folds.count(),
+        first_fold: folds.first(),
         face_planarity: planar.relative(scale),
         circularity: circular.relative(scale),
         row_planarity: rows.relative(scale),
