@@ -640,7 +640,9 @@ fn metrics_json(b: &Built) -> Value {
     let m = &mut metrics;
     m["max_error"] = json!(measured.max_error());
     if b.design.mesh == MeshKind::Conical {
-        m["conical"] = json!(conical_error(&b.mesh));
+        let conical = conical_error(&b.mesh);
+        m["max_error"] = json!(measured.max_error_conical(conical));
+        m["conical"] = json!(conical);
     }
     m["faces"] = json!(b.mesh.face_count());
     let (area, edge) = panel_stats(&b.mesh);

@@ -568,28 +568,15 @@ fn check_fails_a_crossed_face_with_its_index() {
         .stdout(predicate::str::contains(
             "folded faces               1  at first face (1, 1)",
         ));
-    let out = monge()
-        .arg("check")
-        .arg(&mesh)
-        .arg("--json")
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["pass"], false);
+    let (code, v) = check_json(&mesh, &[]);
+    assert_eq!((code, &v["pass"]), (Some(1), &Value::Bool(false)));
     let folds = &v["metrics"]["folded_faces"];
     assert_eq!(folds["value"], 1);
     assert_eq!(folds["at"], serde_json::json!([1, 1]));
     assert_eq!(folds["pass"], false);
     // Exchanged back, the grid passes with no folded face.
     let fair = write(&dir, "fair.json", &grid_json(0.0));
-    let out = monge()
-        .arg("check")
-        .arg(&fair)
-        .arg("--json")
-        .output()
-        .unwrap();
-    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (_, v) = check_json(&fair, &[]);
     assert_eq!(
         v["metrics"]["folded_faces"],
         serde_json::json!({"value": 0, "at": null, "pass": true})
@@ -732,6 +719,75 @@ fn conical_meshes_and_offsets_are_written_and_pass_check() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("the grids differ"));
+}
+
+/// `monge check --json` of `mesh` with `args`: its exit code and its JSON report.
+fn check_json(mesh: &Path, args: &[&str]) -> (Option<i32>, Value) {
+    let out = monge()
+        .arg("check")
+        .arg(mesh)
+        .arg("--json")
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        serde_json::from_slice(&out.stdout).unwrap(),
+    )
+}
+
+/// Issue 10, item 3: the `max_error` of `check --kind conical` is the largest of
+/// the metrics a conical mesh must meet, not its circularity (1.4e-5), which a
+/// conical mesh need not meet.
+#[test]
+fn check_conical_max_error_is_the_largest_required_metric() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("c.obj");
+    monge()
+        .arg("generate")
+        .arg(example("fig13-conical.json"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let (code, v) = check_json(&out, &["--kind", "conical"]);
+    assert_eq!((code, &v["pass"]), (Some(0), &Value::Bool(true)), "{v}");
+    let metrics = v["metrics"].as_object().unwrap();
+    let keys: Vec<&str> = metrics.keys().map(String::as_str).collect();
+    let expected = [
+        "column_planarity",
+        "conical",
+        "face_planarity",
+        "folded_faces",
+        "row_planarity",
+    ];
+    assert_eq!(keys, expected);
+    let largest = [
+        "face_planarity",
+        "conical",
+        "row_planarity",
+        "column_planarity",
+    ]
+    .iter()
+    .map(|k| metrics[*k]["value"].as_f64().unwrap())
+    .fold(0.0, f64::max);
+    let max_error = v["max_error"].as_f64().unwrap();
+    assert_eq!(max_error, largest);
+    assert!(max_error <= 1e-9, "{v}");
+    // The same mesh measured as circular: its circularity is what max_error was.
+    let (code, circular) = check_json(&out, &[]);
+    let circularity = circular["metrics"]["circularity"]["value"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(
+        (code, circular["max_error"].as_f64()),
+        (Some(1), Some(circularity))
+    );
+    println!("conical max_error {max_error:e}, circularity {circularity:e}");
+    assert!(
+        circularity > 1e-6 && circularity != max_error,
+        "{circularity}"
+    );
 }
 
 #[test]
