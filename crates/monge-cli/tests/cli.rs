@@ -982,6 +982,27 @@ fn render_smooth_draws_the_net_and_refuses_conical_designs() {
         ));
 }
 
+/// Issue 10, item 5: `smooth` refused a conical design by ignoring its
+/// `"mesh": "conical"`; now it says why and how to proceed, exit 2, no output.
+#[test]
+fn smooth_refuses_a_conical_design() {
+    let dir = TempDir::new().unwrap();
+    for ext in ["json", "igs", "obj"] {
+        let out = dir.path().join(format!("net.{ext}"));
+        monge()
+            .arg("smooth")
+            .arg(example("fig13-conical.json"))
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains("fig13-conical.json"))
+            .stderr(predicate::str::contains("built on circular meshes"))
+            .stderr(predicate::str::contains(r#"Remove `"mesh": "conical"`"#));
+        assert!(!out.exists(), "{} was written", out.display());
+    }
+}
+
 #[test]
 fn meshes_also_go_to_gltf_for_viewers_but_are_not_measured_from_it() {
     let dir = TempDir::new().unwrap();

@@ -351,8 +351,9 @@ pub struct Summary {
     pub max_offset_deviation: f64,
     /// Largest panel planarity residual.
     pub max_panel_planarity: f64,
-    /// Largest panel circularity residual (meaningful for circular meshes).
-    pub max_panel_circularity: f64,
+    /// Largest panel circularity residual (§2.2); `None` for a conical mesh,
+    /// whose panels need not be circular (§2.3).
+    pub max_panel_circularity: Option<f64>,
     /// Largest distance of a beam's node from its plane.
     pub max_beam_plane_residual: f64,
     /// Largest distance of a beam's node from its segment's arc or line.
@@ -1013,7 +1014,8 @@ fn summarise(
         ),
         max_offset_deviation: offset_deviation(base, layers),
         max_panel_planarity: max(&mut panels.iter().map(|p| p.planarity)),
-        max_panel_circularity: max(&mut panels.iter().map(|p| p.circularity)),
+        max_panel_circularity: matches!(base, BaseMesh::Circular(_))
+            .then(|| max(&mut panels.iter().map(|p| p.circularity))),
         max_beam_plane_residual: max(&mut beams.iter().map(|b| b.plane_residual)),
         max_arc_residual: max(&mut beams.iter().flat_map(|b| &b.segments).map(|s| s.residual)),
         max_torsion: max(&mut nodes.iter().map(|n| n.torsion)),
