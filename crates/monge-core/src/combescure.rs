@@ -206,10 +206,17 @@ impl Propagation {
             let p2 = xp[1];
             let r = p2 - p1;
             let v = p2 + c2.dot(r) * d2;
-            let axis = np[0] + nc[0] + nc[1] + np[1];
-            self.folds.add((i, j), quad_turn(&[xp[0], p1, v, p2], axis));
             *out = v;
             p1 = v;
+        }
+        // How each face turns about its node axes (§5.2), in a pass of its own:
+        // off the dependency chain of the vertices above.
+        let corners = x_prev.windows(2).zip(x_cur.windows(2));
+        let axes = n_prev.windows(2).zip(n_cur.windows(2));
+        for (j, ((xp, xc), (np, nc))) in corners.zip(axes).enumerate() {
+            let axis = np[0] + nc[0] + nc[1] + np[1];
+            self.folds
+                .add((i, j), quad_turn(&[xp[0], xc[0], xc[1], xp[1]], axis));
         }
         self.report.min_crossing.sine = min_sine2.sqrt();
         self.report.folded_faces = self.folds.count();

@@ -216,17 +216,26 @@ pub enum Turn {
 /// assert_eq!(quad_turn(&dart, DVec3::Z), Turn::Crossed);
 /// ```
 pub fn quad_turn(q: &[DVec3; 4], axis: DVec3) -> Turn {
-    let edges = [q[1] - q[0], q[2] - q[1], q[3] - q[2], q[0] - q[3]];
-    let mut signs = [0.0; 4];
-    for (k, sign) in signs.iter_mut().enumerate() {
-        *sign = edges[(k + 3) % 4].cross(edges[k]).dot(axis);
-    }
-    if signs.iter().all(|s| *s > 0.0) {
-        Turn::Positive
-    } else if signs.iter().all(|s| *s < 0.0) {
-        Turn::Negative
-    } else {
-        Turn::Crossed
+    // The sign of corner k's turn is that of the 2D cross product of its edges
+    // in the quad's projection along the axis. There, the quad is convex and
+    // turns positively iff each diagonal's line has the other two corners
+    // strictly on its proper sides: 2 cross and 4 dot products instead of 4 and 4.
+    let [a, b, c, d] = *q;
+    let across_ac = (c - a).cross(axis);
+    let across_bd = (d - b).cross(axis);
+    let sides = [
+        across_ac.dot(b - a),
+        -across_ac.dot(d - a),
+        across_bd.dot(c - b),
+        -across_bd.dot(a - b),
+    ];
+    // Counted without branches; NaN counts neither way, so it is crossed.
+    let positive: u32 = sides.iter().map(|s| u32::from(*s > 0.0)).sum();
+    let negative: u32 = sides.iter().map(|s| u32::from(*s < 0.0)).sum();
+    match (positive, negative) {
+        (4, _) => Turn::Positive,
+        (_, 4) => Turn::Negative,
+        _ => Turn::Crossed,
     }
 }
 
@@ -260,31 +269,28 @@ pub fn quad_turn_alone(q: &[DVec3; 4]) -> Turn {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Folds {
-    /// Faces turning positively, and the first of them (row-major).
-    positive: (usize, Option<(usize, usize)>),
-    /// Faces turning negatively, and the first of them.
-    negative: (usize, Option<(usize, usize)>),
-    /// Crossed faces, and the first of them.
-    crossed: (usize, Option<(usize, usize)>),
+    /// Faces turning each way (indexed by `Turn as usize`).
+    count: [usize; 3],
+    /// The first face turning each way (row-major).
+    first: [Option<(usize, usize)>; 3],
 }
 
 impl Folds {
     /// Counts face `(i, j)`, which turns as `turn`; faces come in row-major order.
+    #[inline]
     pub fn add(&mut self, face: (usize, usize), turn: Turn) {
-        let class = match turn {
-            Turn::Positive => &mut self.positive,
-            Turn::Negative => &mut self.negative,
-            Turn::Crossed => &mut self.crossed,
-        };
-        class.0 += 1;
-        class.1.get_or_insert(face);
+        let k = turn as usize;
+        self.count[k] += 1;
+        self.first[k].get_or_insert(face);
     }
 
-    /// The faces turning the wrong way: the fewer of the two ways (on a tie, the
+    /// The way that counts as wrong: the fewer of the two ways (on a tie, the
     /// way of the later first face).
-    fn wrong_way(&self) -> (usize, Option<(usize, usize)>) {
-        let (p, n) = (self.positive, self.negative);
-        if p.0 > n.0 || (p.0 == n.0 && p.1 < n.1) {
+    fn wrong_way(&self) -> usize {
+        let (p, n) = (Turn::Positive as usize, Turn::Negative as usize);
+        let positive_is_right = self.count[p] > self.count[n]
+            || (self.count[p] == self.count[n] && self.first[p] < self.first[n]);
+        if positive_is_right {
             n
         } else {
             p
@@ -293,15 +299,18 @@ impl Folds {
 
     /// Number of folded faces.
     pub fn count(&self) -> usize {
-        self.crossed.0 + self.wrong_way().0
+        self.count[Turn::Crossed as usize] + self.count[self.wrong_way()]
     }
 
     /// The first folded face (row-major), if any.
     pub fn first(&self) -> Option<(usize, usize)> {
-        [self.crossed.1, self.wrong_way().1]
-            .into_iter()
-            .flatten()
-            .min()
+        [
+            self.first[Turn::Crossed as usize],
+            self.first[self.wrong_way()],
+        ]
+        .into_iter()
+        .flatten()
+        .min()
     }
 }
 
