@@ -3,7 +3,7 @@
 use std::io;
 
 use anyhow::bail;
-use monge_core::measure::{conical_error, measure, Measurements, Worst};
+use monge_core::measure::{conical_error, largest, measure, Measurements, Worst};
 use monge_core::QuadGrid;
 use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
 use serde_json::{json, Map, Value};
@@ -49,7 +49,17 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         }
         metrics.push(offset_metric(&base, &grid, args.kind, m.scale));
     }
-    let pass = metrics.iter().all(|r| passes(r.worst.value, args.tol));
+    metrics.push(Metric {
+        key: "folded_faces",
+        label: "folded faces",
+        element: "first face",
+        worst: Worst {
+            value: m.folded_faces as f64,
+            at: m.first_fold.unwrap_or((0, 0)),
+        },
+        count: true,
+    });
+    let pass = metrics.iter().all(|r| r.passes(args.tol));
     let text = if args.json {
         format!(
             "{}\n",
@@ -77,6 +87,15 @@ struct Metric {
     element: &'static str,
     /// The worst value and where.
     worst: Worst,
+    /// A count that must be 0 (folded faces), not an error compared with the tolerance.
+    count: bool,
+}
+
+impl Metric {
+    /// Whether the metric passes: a count is 0, an error is ≤ `tol` (NaN fails).
+    fn passes(&self, tol: f64) -> bool {
+        passes(self.worst.value, if self.count { 0.0 } else { tol })
+    }
 }
 
 /// The metrics of `m` for a mesh of `kind`, in print order: for a circular mesh
@@ -88,6 +107,7 @@ fn metrics(m: &Measurements, kind: KindArg, conical: Option<Worst>) -> Vec<Metri
         label,
         element,
         worst,
+        count: false,
     };
     let mut v = vec![metric(
         "face_planarity",
@@ -174,6 +194,7 @@ fn offset_metric(base: &QuadGrid, grid: &QuadGrid, kind: KindArg, scale: f64) ->
             },
         );
     Metric {
+        count: false,
         key: "offset_distance",
         label: "offset distance",
         element: if kind == KindArg::Circular {
@@ -223,23 +244,24 @@ fn text_report(
     );
     for r in metrics {
         let (i, j) = r.worst.at;
+        let at = format!("at {} ({i}, {j})", r.element);
+        let (value, at) = match (r.count, r.worst.value) {
+            (true, 0.0) => ("0".to_owned(), String::new()),
+            (true, n) => (n.to_string(), at),
+            (false, e) => (format!("{e:.3e}"), at),
+        };
         s.push_str(&format!(
-            "{:<17} {:>10.3e}  at {:<20} {}\n",
+            "{:<17} {value:>10}  {at:<23} {}\n",
             r.label,
-            r.worst.value,
-            format!("{} ({i}, {j})", r.element),
-            verdict(passes(r.worst.value, tol))
+            verdict(r.passes(tol))
         ));
     }
-    let failed = metrics
-        .iter()
-        .filter(|r| !passes(r.worst.value, tol))
-        .count();
+    let failed = metrics.iter().filter(|r| !r.passes(tol)).count();
     if pass {
-        s.push_str(&format!("PASS: every metric ≤ {tol:e}\n"));
+        s.push_str(&format!("PASS: every metric ≤ {tol:e}, no folded face\n"));
     } else {
         s.push_str(&format!(
-            "FAIL: {failed} of {} metrics exceed {tol:e}\n",
+            "FAIL: {failed} of {} metrics fail (errors must be ≤ {tol:e}, folded faces 0)\n",
             metrics.len()
         ));
     }
@@ -259,11 +281,16 @@ fn json_report(
     for r in metrics {
         all.insert(
             r.key.to_owned(),
-            json!({
-                "value": r.worst.value,
-                "at": [r.worst.at.0, r.worst.at.1],
-                "pass": passes(r.worst.value, tol),
-            }),
+            if r.count {
+                let at = (r.worst.value > 0.0).then_some([r.worst.at.0, r.worst.at.1]);
+                json!({ "value": r.worst.value as usize, "at": at, "pass": r.passes(tol) })
+            } else {
+                json!({
+                    "value": r.worst.value,
+                    "at": [r.worst.at.0, r.worst.at.1],
+                    "pass": r.passes(tol),
+                })
+            },
         );
     }
     json!({
@@ -274,7 +301,7 @@ fn json_report(
         "normals": !grid.normals.is_empty(),
         "scale": m.scale,
         "tol": tol,
-        "max_error": m.max_error(),
+        "max_error": largest(metrics.iter().filter(|r| !r.count).map(|r| r.worst.value)),
         "pass": pass,
         "metrics": all,
     })

@@ -653,7 +653,9 @@ fn metrics_json(b: &Built) -> Value {
     let m = &mut metrics;
     m["max_error"] = json!(measured.max_error());
     if b.design.mesh == MeshKind::Conical {
-        m["conical"] = json!(conical_error(&b.mesh));
+        let conical = conical_error(&b.mesh);
+        m["max_error"] = json!(measured.max_error_conical(conical));
+        m["conical"] = json!(conical);
     }
     m["faces"] = json!(b.mesh.face_count());
     let (area, edge) = panel_stats(&b.mesh);
@@ -662,8 +664,7 @@ fn metrics_json(b: &Built) -> Value {
     metrics
 }
 
-/// Smallest and largest panel area (half the diagonals' cross product, exact
-/// for planar quads) and edge length of a grid; zeros for an empty grid.
+/// Smallest and largest panel area ([`QuadGrid::face_area`]) and edge length of a grid; zeros for an empty grid.
 fn panel_stats(grid: &QuadGrid) -> ((f64, f64), (f64, f64)) {
     let extend = |(lo, hi): (f64, f64), x: f64| (lo.min(x), hi.max(x));
     let empty = (f64::INFINITY, f64::NEG_INFINITY);
@@ -678,8 +679,7 @@ fn panel_stats(grid: &QuadGrid) -> ((f64, f64), (f64, f64)) {
                 edge = extend(edge, p.distance(grid.vertex(i + 1, j)));
             }
             if i + 1 < grid.rows && j + 1 < grid.cols {
-                let [a, b, c, d] = grid.face(i, j);
-                area = extend(area, 0.5 * (c - a).cross(d - b).length());
+                area = extend(area, grid.face_area(i, j));
             }
         }
     }

@@ -158,15 +158,15 @@ fn summary(s: &Summary, kind: MeshKind) -> String {
         "distinct radii: {} ({radii})\n\
          node types: {}\n\
          node height: {} to {}\n\
-         max residuals: offset {}, panel planarity {}, panel circularity {}, beam plane {}, \
-         arc {}, torsion {}\n",
+         max residuals: offset {}, panel planarity {}{}, beam plane {}, arc {}, torsion {}\n",
         s.radii.len(),
         s.node_types,
         num(s.node_height.0),
         num(s.node_height.1),
         sci(s.max_offset_deviation),
         sci(s.max_panel_planarity),
-        sci(s.max_panel_circularity),
+        s.max_panel_circularity
+            .map_or(String::new(), |c| format!(", panel circularity {}", sci(c))),
         sci(s.max_beam_plane_residual),
         sci(s.max_arc_residual),
         sci(s.max_torsion)

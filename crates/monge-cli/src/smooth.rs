@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::cyclidic::{Arc, CyclidicNet, CyclidicOptions, Family, Frame};
-use monge_core::{generate, GenerateOptions};
+use monge_core::{generate, GenerateOptions, MeshKind};
 use monge_io::{
     check_output, read_design, read_mesh, write_iges, write_mesh_to, write_output, MeshFormat,
 };
@@ -40,6 +40,16 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
         read_mesh(&args.design)?
     } else {
         let design = read_design(&args.design)?;
+        if design.mesh == MeshKind::Conical {
+            bail!(
+                "{}: the design asks for a conical mesh (`\"mesh\": \"conical\"`), but the cyclidic \
+                 net (§4.4) is built on circular meshes: each patch is a Dupin cyclide through the \
+                 four corners of a circular face, and a conical mesh's faces are not circular. \
+                 Remove `\"mesh\": \"conical\"` to get the net of the design's circular mesh \
+                 (whose conical dual, §2.3, the design describes)",
+                args.design.display()
+            );
+        }
         generate(&design, &GenerateOptions::default())
             .with_context(|| args.design.display().to_string())?
             .grid

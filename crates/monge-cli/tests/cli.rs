@@ -529,6 +529,43 @@ fn check_passes_a_good_mesh_and_fails_a_moved_vertex() {
         .code(0);
 }
 
+/// Issue 10, item 2: the unit 3 × 3 grid with vertices (2, 1) and (2, 2)
+/// exchanged has face (1, 1) crossed (a symmetric bow-tie: its edges
+/// (1, 1)–(2, 1) and (2, 2)–(1, 2) cross at (1.5, 1.5), its diagonals are
+/// parallel), planar and circular: `check` fails it, whatever the tolerance.
+#[test]
+fn check_fails_a_crossed_face_with_its_index() {
+    let dir = TempDir::new().unwrap();
+    let mesh = write(
+        &dir,
+        "bow-tie.json",
+        r#"{"rows": 3, "cols": 3, "vertices": [[0,0,0], [0,1,0], [0,2,0], [1,0,0], [1,1,0],
+            [1,2,0], [2,0,0], [2,2,0], [2,1,0]]}"#,
+    );
+    monge()
+        .arg("check")
+        .arg(&mesh)
+        .args(["--tol", "1"])
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains(
+            "folded faces               1  at first face (1, 1)",
+        ));
+    let (code, v) = check_json(&mesh, &[]);
+    assert_eq!((code, &v["pass"]), (Some(1), &Value::Bool(false)));
+    let folds = &v["metrics"]["folded_faces"];
+    assert_eq!(folds["value"], 1);
+    assert_eq!(folds["at"], serde_json::json!([1, 1]));
+    assert_eq!(folds["pass"], false);
+    // Exchanged back, the grid passes with no folded face.
+    let fair = write(&dir, "fair.json", &grid_json(0.0));
+    let (_, v) = check_json(&fair, &[]);
+    assert_eq!(
+        v["metrics"]["folded_faces"],
+        serde_json::json!({"value": 0, "at": null, "pass": true})
+    );
+}
+
 #[test]
 fn check_reports_a_malformed_mesh_as_an_error() {
     let dir = TempDir::new().unwrap();
@@ -706,6 +743,75 @@ fn conical_meshes_and_offsets_are_written_and_pass_check() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("the grids differ"));
+}
+
+/// `monge check --json` of `mesh` with `args`: its exit code and its JSON report.
+fn check_json(mesh: &Path, args: &[&str]) -> (Option<i32>, Value) {
+    let out = monge()
+        .arg("check")
+        .arg(mesh)
+        .arg("--json")
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        serde_json::from_slice(&out.stdout).unwrap(),
+    )
+}
+
+/// Issue 10, item 3: the `max_error` of `check --kind conical` is the largest of
+/// the metrics a conical mesh must meet, not its circularity (1.4e-5), which a
+/// conical mesh need not meet.
+#[test]
+fn check_conical_max_error_is_the_largest_required_metric() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("c.obj");
+    monge()
+        .arg("generate")
+        .arg(example("fig13-conical.json"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let (code, v) = check_json(&out, &["--kind", "conical"]);
+    assert_eq!((code, &v["pass"]), (Some(0), &Value::Bool(true)), "{v}");
+    let metrics = v["metrics"].as_object().unwrap();
+    let keys: Vec<&str> = metrics.keys().map(String::as_str).collect();
+    let expected = [
+        "column_planarity",
+        "conical",
+        "face_planarity",
+        "folded_faces",
+        "row_planarity",
+    ];
+    assert_eq!(keys, expected);
+    let largest = [
+        "face_planarity",
+        "conical",
+        "row_planarity",
+        "column_planarity",
+    ]
+    .iter()
+    .map(|k| metrics[*k]["value"].as_f64().unwrap())
+    .fold(0.0, f64::max);
+    let max_error = v["max_error"].as_f64().unwrap();
+    assert_eq!(max_error, largest);
+    assert!(max_error <= 1e-9, "{v}");
+    // The same mesh measured as circular: its circularity is what max_error was.
+    let (code, circular) = check_json(&out, &[]);
+    let circularity = circular["metrics"]["circularity"]["value"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(
+        (code, circular["max_error"].as_f64()),
+        (Some(1), Some(circularity))
+    );
+    println!("conical max_error {max_error:e}, circularity {circularity:e}");
+    assert!(
+        circularity > 1e-6 && circularity != max_error,
+        "{circularity}"
+    );
 }
 
 #[test]
@@ -917,6 +1023,27 @@ fn render_smooth_draws_the_net_and_refuses_conical_designs() {
         .stderr(predicate::str::contains(
             "--smooth draws the cyclidic net of a circular mesh",
         ));
+}
+
+/// Issue 10, item 5: `smooth` refused a conical design by ignoring its
+/// `"mesh": "conical"`; now it says why and how to proceed, exit 2, no output.
+#[test]
+fn smooth_refuses_a_conical_design() {
+    let dir = TempDir::new().unwrap();
+    for ext in ["json", "igs", "obj"] {
+        let out = dir.path().join(format!("net.{ext}"));
+        monge()
+            .arg("smooth")
+            .arg(example("fig13-conical.json"))
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains("fig13-conical.json"))
+            .stderr(predicate::str::contains("built on circular meshes"))
+            .stderr(predicate::str::contains(r#"Remove `"mesh": "conical"`"#));
+        assert!(!out.exists(), "{} was written", out.display());
+    }
 }
 
 #[test]

@@ -44,6 +44,7 @@ fn biarc_design_has_biarc_rows_circular_columns_and_one_node_height() {
         "{cols}"
     );
     assert!(stdout.contains("node height: 0.2 to 0.2"), "{stdout}");
+    assert!(stdout.contains(", panel circularity "), "{stdout}");
     for name in FABRICATION_FILES {
         assert!(out.join(name).is_file(), "{name} missing");
     }
@@ -73,7 +74,18 @@ fn conical_design_uses_face_offsets() {
         .success()
         .stdout(predicate::str::contains(
             "conical mesh, face offsets (§2.3)",
-        ));
+        ))
+        // Issue 10, item 5: a conical mesh's panels need not be circular, so
+        // their circularity is no residual (the summary JSON has null).
+        .stdout(predicate::str::contains("max residuals: offset "))
+        .stdout(predicate::str::contains("circularity").not());
+    let json = std::fs::read_to_string(dir.path().join("schedule.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(
+        v["summary"]["max_panel_circularity"],
+        serde_json::Value::Null
+    );
+    assert!(v["summary"]["max_panel_planarity"].as_f64().unwrap() <= 1e-9);
 }
 
 #[test]

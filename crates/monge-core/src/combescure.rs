@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::gauss_map::GaussMap;
+use crate::grid::{quad_turn, Folds};
 
 /// A face where the two lines that define its last vertex are (nearly) parallel,
 /// so that the vertex is undefined (§5.2).
@@ -30,9 +31,10 @@ pub struct CombescureReport {
     /// The smallest sine of the angle between the two lines that defined a
     /// vertex, and the face where it occurred.
     pub min_crossing: ParallelLines,
-    /// Number of faces whose orientation is opposite to that of face (0, 0) with
-    /// respect to the node axes, or zero: where the mesh pinches or folds over
-    /// itself (self-intersection, §5.2).
+    /// Number of folded faces (see [`Folds`]): faces whose corners do not all
+    /// turn the same way about the face's node axes (crossed, as a bow-tie, or
+    /// pinched to a zero edge), or that turn the other way than most faces:
+    /// where the mesh pinches or folds over itself (self-intersection, §5.2).
     pub folded_faces: usize,
     /// The first folded face (row-major), if any.
     pub first_fold: Option<(usize, usize)>,
@@ -131,10 +133,10 @@ pub fn combescure_rows(
 /// The Combescure transform face row by face row (§2.2.3).
 #[derive(Clone, Debug)]
 struct Propagation {
-    /// What has been seen so far.
+    /// What has been seen so far (the fold count is in `folds`).
     report: CombescureReport,
-    /// Orientation of face (0, 0) with respect to its node axis.
-    reference: f64,
+    /// How the faces turn about their node axes (§5.2).
+    folds: Folds,
 }
 
 impl Propagation {
@@ -150,7 +152,7 @@ impl Propagation {
                 folded_faces: 0,
                 first_fold: None,
             },
-            reference: 0.0,
+            folds: Folds::default(),
         }
     }
 
@@ -204,18 +206,21 @@ impl Propagation {
             let p2 = xp[1];
             let r = p2 - p1;
             let v = p2 + c2.dot(r) * d2;
-            // Orientation of the face with respect to its node axis.
-            let o = (v - xp[0]).cross(r).dot(np[0]);
-            if i == 0 && j == 0 {
-                self.reference = o;
-            } else if o.is_nan() || o * self.reference <= 0.0 {
-                self.report.folded_faces += 1;
-                self.report.first_fold.get_or_insert((i, j));
-            }
             *out = v;
             p1 = v;
         }
+        // How each face turns about its node axes (§5.2), in a pass of its own:
+        // off the dependency chain of the vertices above.
+        let corners = x_prev.windows(2).zip(x_cur.windows(2));
+        let axes = n_prev.windows(2).zip(n_cur.windows(2));
+        for (j, ((xp, xc), (np, nc))) in corners.zip(axes).enumerate() {
+            let axis = np[0] + nc[0] + nc[1] + np[1];
+            self.folds
+                .add((i, j), quad_turn(&[xp[0], xc[0], xc[1], xp[1]], axis));
+        }
         self.report.min_crossing.sine = min_sine2.sqrt();
+        self.report.folded_faces = self.folds.count();
+        self.report.first_fold = self.folds.first();
         Ok(())
     }
 }

@@ -28,7 +28,7 @@ use nalgebra::{Matrix3, SymmetricEigen};
 use serde::Serialize;
 
 use crate::conical::ConicalMesh;
-use crate::grid::QuadGrid;
+use crate::grid::{quad_area, QuadGrid};
 use crate::measure::{circularity, face_planarity};
 use crate::offset::{face_offset, vertex_offset};
 
@@ -207,7 +207,7 @@ pub struct Panel {
     pub edge_lengths: [f64; 4],
     /// Interior corner angles, radians (sum 2π for a convex panel).
     pub angles: [f64; 4],
-    /// Area of the flat outline (shoelace formula; positive if counter-clockwise about the normal).
+    /// Area of the panel ([`quad_area`]: half the diagonals' cross product).
     pub area: f64,
     /// Radius of the circle through corners 0, 1 and 2 (the circumcircle of a circular face).
     pub circumradius: f64,
@@ -351,8 +351,9 @@ pub struct Summary {
     pub max_offset_deviation: f64,
     /// Largest panel planarity residual.
     pub max_panel_planarity: f64,
-    /// Largest panel circularity residual (meaningful for circular meshes).
-    pub max_panel_circularity: f64,
+    /// Largest panel circularity residual (§2.2); `None` for a conical mesh,
+    /// whose panels need not be circular (§2.3).
+    pub max_panel_circularity: Option<f64>,
     /// Largest distance of a beam's node from its plane.
     pub max_beam_plane_residual: f64,
     /// Largest distance of a beam's node from its segment's arc or line.
@@ -552,10 +553,6 @@ fn layer_panels(k: usize, layer: &LayerMesh) -> Result<Vec<Panel>, FabricationEr
                 let (prev, next) = (quad[(c + 3) % 4] - quad[c], quad[(c + 1) % 4] - quad[c]);
                 angle_between(prev, next)
             });
-            let area = 0.5
-                * (0..4)
-                    .map(|c| outline[c].perp_dot(outline[(c + 1) % 4]))
-                    .sum::<f64>();
             panels.push(Panel {
                 layer: k,
                 i,
@@ -564,7 +561,7 @@ fn layer_panels(k: usize, layer: &LayerMesh) -> Result<Vec<Panel>, FabricationEr
                 outline,
                 edge_lengths,
                 angles,
-                area,
+                area: quad_area(&quad),
                 circumradius: circumradius(quad[0], quad[1], quad[2]),
                 planarity: face_planarity(&quad),
                 circularity: circularity(&quad),
@@ -1029,7 +1026,8 @@ fn summarise(
         ),
         max_offset_deviation: offset_deviation(base, layers),
         max_panel_planarity: max(&mut panels.iter().map(|p| p.planarity)),
-        max_panel_circularity: max(&mut panels.iter().map(|p| p.circularity)),
+        max_panel_circularity: matches!(base, BaseMesh::Circular(_))
+            .then(|| max(&mut panels.iter().map(|p| p.circularity))),
         max_beam_plane_residual: max(&mut beams.iter().map(|b| b.plane_residual)),
         max_arc_residual: max(&mut beams.iter().flat_map(|b| &b.segments).map(|s| s.residual)),
         max_torsion: max(&mut nodes.iter().map(|n| n.torsion)),

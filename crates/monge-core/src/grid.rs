@@ -74,6 +74,51 @@ impl QuadGrid {
         ]
     }
 
+    /// Area of face `(i, j)` (§4.8): [`quad_area`] of [`QuadGrid::face`].
+    pub fn face_area(&self, i: usize, j: usize) -> f64 {
+        quad_area(&self.face(i, j))
+    }
+
+    /// Areas of all faces (§4.8), row-major (face `(i, j)` is entry `i·(cols − 1) + j`).
+    pub fn face_areas(&self) -> Vec<f64> {
+        let cols = self.cols.saturating_sub(1);
+        (0..self.rows.saturating_sub(1))
+            .flat_map(|i| (0..cols).map(move |j| self.face_area(i, j)))
+            .collect()
+    }
+
+    /// Folded faces (§5.2): each face's [`quad_turn`] about the sum of its four
+    /// node axes, or without normals [`quad_turn_alone`] (which finds crossed
+    /// and non-convex faces, not faces turned over whole), counted by [`Folds`].
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// // Two unit squares side by side; then the far edge of the second twisted into a bow-tie.
+    /// let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    /// let mut g = QuadGrid::new(3, 2, vec![v(0.0, 0.0), v(0.0, 1.0), v(1.0, 0.0), v(1.0, 1.0), v(2.0, 0.0), v(2.0, 1.0)], vec![DVec3::Z; 6]);
+    /// assert_eq!(g.folds().count(), 0);
+    /// g.vertices.swap(4, 5);
+    /// assert_eq!((g.folds().count(), g.folds().first()), (1, Some((1, 0))));
+    /// ```
+    pub fn folds(&self) -> Folds {
+        let mut folds = Folds::default();
+        for i in 0..self.rows.saturating_sub(1) {
+            for j in 0..self.cols.saturating_sub(1) {
+                let q = self.face(i, j);
+                let turn = if self.normals.is_empty() {
+                    quad_turn_alone(&q)
+                } else {
+                    let n = |i, j| self.normals[self.index(i, j)];
+                    let axis = n(i, j) + n(i + 1, j) + n(i + 1, j + 1) + n(i, j + 1);
+                    quad_turn(&q, axis)
+                };
+                folds.add((i, j), turn);
+            }
+        }
+        folds
+    }
+
     /// Whether the node axes point against the face order
     /// `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` (§2.2): the sum over all faces
     /// of the face's vector area dotted with the sum of its corners' normals is
@@ -163,6 +208,167 @@ impl QuadGrid {
                 .collect()
         };
         QuadGrid::new(self.cols, self.rows, t(&self.vertices), t(&self.normals))
+    }
+}
+
+/// Area of a quad `[A, B, C, D]` given in cyclic order (§4.8, panel areas):
+/// `½ |(C − A) × (D − B)|`, half the length of the cross product of its diagonals.
+///
+/// For a planar quad that is not crossed (convex or not) this is its area: the
+/// sum of the areas of triangles `ABC` and `ACD`. For a skew quad it is the
+/// area of its projection on the plane of the two diagonals (the length of its
+/// vector area). The corners must be in cyclic order, as [`QuadGrid::face`]
+/// gives them: with two corners exchanged the diagonals are two opposite edges
+/// and the value means nothing.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::grid::quad_area;
+/// // A trapezoid with parallel sides 4 and 2, height 3: (4 + 2) / 2 · 3 = 9.
+/// let q = [DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(3.0, 3.0, 0.0), DVec3::new(1.0, 3.0, 0.0)];
+/// assert_eq!(quad_area(&q), 9.0);
+/// // A non-convex quad (a dart, reflex at C): triangles ABC and ACD, 2 each.
+/// let dart = [DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.0, 4.0, 0.0)];
+/// assert_eq!(quad_area(&dart), 4.0);
+/// ```
+pub fn quad_area(q: &[DVec3; 4]) -> f64 {
+    0.5 * (q[2] - q[0]).cross(q[3] - q[1]).length()
+}
+
+/// How the corners of a quad turn about an axis (§5.2): see [`quad_turn`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Turn {
+    /// Every corner turns counter-clockwise about the axis.
+    Positive,
+    /// Every corner turns clockwise about the axis.
+    Negative,
+    /// The corners do not all turn the same way: the quad is crossed (a bow-tie,
+    /// two corners each way), non-convex (one corner), or has a corner with no
+    /// turn (a zero edge or three corners on a line, NaN included).
+    Crossed,
+}
+
+/// How the quad `[A, B, C, D]` (cyclic order) turns about `axis` (§5.2): the
+/// sign of `(e_in × e_out) · axis` at each corner, `e_in` the edge arriving at
+/// the corner and `e_out` the edge leaving it.
+///
+/// A planar convex quad turns the same way at its four corners; a crossed one
+/// (a bow-tie) turns one way at two corners and the other way at the two
+/// others, even when it is symmetric and its diagonals' cross product (its
+/// vector area) vanishes. The axis only decides which way is positive: the
+/// node axes of the face, or, without them, the quad's largest corner turn
+/// (see [`quad_turn_alone`]).
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::grid::{quad_turn, Turn};
+/// let square = [DVec3::ZERO, DVec3::X, DVec3::X + DVec3::Y, DVec3::Y];
+/// assert_eq!(quad_turn(&square, DVec3::Z), Turn::Positive);
+/// assert_eq!(quad_turn(&square, -DVec3::Z), Turn::Negative);
+/// // C and D exchanged: edges AB and CD cross at (½, ½); (C − A) × (D − B) = 0.
+/// let bow_tie = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X + DVec3::Y];
+/// assert_eq!((bow_tie[2] - bow_tie[0]).cross(bow_tie[3] - bow_tie[1]), DVec3::ZERO);
+/// assert_eq!(quad_turn(&bow_tie, DVec3::Z), Turn::Crossed);
+/// // A dart (non-convex at C) turns the other way at C only.
+/// let dart = [DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.0, 4.0, 0.0)];
+/// assert_eq!(quad_turn(&dart, DVec3::Z), Turn::Crossed);
+/// ```
+pub fn quad_turn(q: &[DVec3; 4], axis: DVec3) -> Turn {
+    // The sign of corner k's turn is that of the 2D cross product of its edges
+    // in the quad's projection along the axis. There, the quad is convex and
+    // turns positively iff each diagonal's line has the other two corners
+    // strictly on its proper sides: 2 cross and 4 dot products instead of 4 and 4.
+    let [a, b, c, d] = *q;
+    let across_ac = (c - a).cross(axis);
+    let across_bd = (d - b).cross(axis);
+    let sides = [
+        across_ac.dot(b - a),
+        -across_ac.dot(d - a),
+        across_bd.dot(c - b),
+        -across_bd.dot(a - b),
+    ];
+    // Counted without branches; NaN counts neither way, so it is crossed.
+    let positive: u32 = sides.iter().map(|s| u32::from(*s > 0.0)).sum();
+    let negative: u32 = sides.iter().map(|s| u32::from(*s < 0.0)).sum();
+    match (positive, negative) {
+        (4, _) => Turn::Positive,
+        (_, 4) => Turn::Negative,
+        _ => Turn::Crossed,
+    }
+}
+
+/// [`quad_turn`] about the quad's own largest corner turn (§5.2), for a quad
+/// without node axes: [`Turn::Positive`] or [`Turn::Crossed`].
+pub fn quad_turn_alone(q: &[DVec3; 4]) -> Turn {
+    let corner = |k: usize| (q[k] - q[(k + 3) % 4]).cross(q[(k + 1) % 4] - q[k]);
+    let axis = (1..4).map(corner).fold(corner(0), |a, b| {
+        if b.length_squared() > a.length_squared() {
+            b
+        } else {
+            a
+        }
+    });
+    quad_turn(q, axis)
+}
+
+/// Folded faces of a quad grid (§5.2), counted face by face with [`Folds::add`].
+///
+/// A face is folded when it is [`Turn::Crossed`], or when it turns the other
+/// way than most faces do (the mesh folds back over itself there); on a tie,
+/// the way of the first face that is not crossed counts as the right one.
+///
+/// ```
+/// use monge_core::grid::{Folds, Turn};
+/// let mut f = Folds::default();
+/// for (face, turn) in [((0, 0), Turn::Negative), ((0, 1), Turn::Positive), ((0, 2), Turn::Positive), ((1, 0), Turn::Crossed)] {
+///     f.add(face, turn);
+/// }
+/// assert_eq!((f.count(), f.first()), (2, Some((0, 0))));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Folds {
+    /// Faces turning each way (indexed by `Turn as usize`).
+    count: [usize; 3],
+    /// The first face turning each way (row-major).
+    first: [Option<(usize, usize)>; 3],
+}
+
+impl Folds {
+    /// Counts face `(i, j)`, which turns as `turn`; faces come in row-major order.
+    #[inline]
+    pub fn add(&mut self, face: (usize, usize), turn: Turn) {
+        let k = turn as usize;
+        self.count[k] += 1;
+        self.first[k].get_or_insert(face);
+    }
+
+    /// The way that counts as wrong: the fewer of the two ways (on a tie, the
+    /// way of the later first face).
+    fn wrong_way(&self) -> usize {
+        let (p, n) = (Turn::Positive as usize, Turn::Negative as usize);
+        let positive_is_right = self.count[p] > self.count[n]
+            || (self.count[p] == self.count[n] && self.first[p] < self.first[n]);
+        if positive_is_right {
+            n
+        } else {
+            p
+        }
+    }
+
+    /// Number of folded faces.
+    pub fn count(&self) -> usize {
+        self.count[Turn::Crossed as usize] + self.count[self.wrong_way()]
+    }
+
+    /// The first folded face (row-major), if any.
+    pub fn first(&self) -> Option<(usize, usize)> {
+        [
+            self.first[Turn::Crossed as usize],
+            self.first[self.wrong_way()],
+        ]
+        .into_iter()
+        .flatten()
+        .min()
     }
 }
 

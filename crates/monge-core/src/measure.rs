@@ -4,7 +4,8 @@
 //! [`QuadGrid`] and measures, with elementary and numerically careful formulas,
 //! how far it is from the guarantees of the paper — planar faces, circular
 //! faces, planar curvature lines (§2.2), torsion-free unit node axes (§2.2) and,
-//! for conical meshes, vertices whose face normals are concyclic (§2.3).
+//! for conical meshes, vertices whose face normals are concyclic (§2.3). Only
+//! what a folded face is (§5.2) is one definition for both, [`QuadGrid::folds`].
 //!
 //! Lengths are divided by [`Measurements::scale`], the bounding-box diagonal of
 //! the grid, so every value is relative to the model size (torsion too: see
@@ -90,29 +91,82 @@ pub struct Measurements {
     /// Unit node axes (§2.2), with normals: max over vertices of `| |n| − 1 |`;
     /// `at` = vertex `(i, j)`.
     pub normal_length: Option<Worst>,
+    /// Folded faces (§5.2, [`QuadGrid::folds`]): crossed (bow-tie) or
+    /// non-convex faces, and with normals faces turned over against most
+    /// others. A count, not an error: not part of [`Measurements::max_error`].
+    pub folded_faces: usize,
+    /// The first folded face `(i, j)` (row-major), if any.
+    pub first_fold: Option<(usize, usize)>,
 }
 
 impl Measurements {
-    /// The largest of all measured values (§2.2); NaN if any of them is NaN.
+    /// The largest of the errors a circular mesh must meet (§2.2): all of them,
+    /// circularity and the node axes included; NaN if any of them is NaN.
     pub fn max_error(&self) -> f64 {
-        [
-            Some(self.face_planarity),
-            Some(self.circularity),
-            Some(self.row_planarity),
-            Some(self.column_planarity),
-            self.torsion,
-            self.normal_length,
-        ]
-        .into_iter()
-        .flatten()
-        .fold(0.0, |m: f64, w| {
-            if m.is_nan() || w.value.is_nan() {
-                f64::NAN
-            } else {
-                m.max(w.value)
-            }
-        })
+        largest(
+            [
+                Some(self.face_planarity),
+                Some(self.circularity),
+                Some(self.row_planarity),
+                Some(self.column_planarity),
+                self.torsion,
+                self.normal_length,
+            ]
+            .into_iter()
+            .flatten()
+            .map(|w| w.value),
+        )
     }
+
+    /// The largest of the errors a conical mesh must meet (§2.3): face
+    /// planarity, `conical` (its [`conical_error`], `None` without an interior
+    /// vertex), row and column planarity; not circularity nor the node axes,
+    /// which a conical mesh has no reason to meet. NaN if any of them is NaN.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::measure::{conical_error, measure};
+    /// use monge_core::QuadGrid;
+    /// // A planar 3 × 3 grid of kites: conical (all face normals equal), not circular.
+    /// let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    /// let g = QuadGrid::new(3, 3, vec![v(0.0, 0.0), v(0.0, 1.0), v(0.0, 2.0), v(1.0, 0.0), v(1.4, 1.4),
+    ///     v(1.0, 2.0), v(2.0, 0.0), v(2.0, 1.0), v(2.0, 2.0)], vec![]);
+    /// let m = measure(&g);
+    /// assert!(m.circularity.value > 0.01);
+    /// assert_eq!(m.max_error(), m.circularity.value);
+    /// assert_eq!(m.max_error_conical(conical_error(&g)), 0.0);
+    /// ```
+    pub fn max_error_conical(&self, conical: Option<Worst>) -> f64 {
+        largest(
+            [
+                Some(self.face_planarity),
+                conical,
+                Some(self.row_planarity),
+                Some(self.column_planarity),
+            ]
+            .into_iter()
+            .flatten()
+            .map(|w| w.value),
+        )
+    }
+}
+
+/// The largest of `values` (errors ≥ 0, §2.2), 0 for none; NaN if any is NaN.
+///
+/// ```
+/// use monge_core::measure::largest;
+/// assert_eq!(largest([1e-16, 3e-15, 0.0]), 3e-15);
+/// assert!(largest([1.0, f64::NAN, 2.0]).is_nan());
+/// assert_eq!(largest([]), 0.0);
+/// ```
+pub fn largest(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, |m: f64, v| {
+        if m.is_nan() || v.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v)
+        }
+    })
 }
 
 /// Measure planarity and circularity of faces, planarity of rows and columns,
@@ -174,8 +228,11 @@ pub fn measure(grid: &QuadGrid) -> Measurements {
         (Some(t), Some(l))
     };
 
+    let folds = grid.folds();
     Measurements {
         scale,
+        folded_faces: folds.count(),
+        first_fold: folds.first(),
         face_planarity: planar.relative(scale),
         circularity: circular.relative(scale),
         row_planarity: rows.relative(scale),

@@ -248,7 +248,8 @@ pub struct FitResult {
     pub status: String,
 }
 
-/// Fit the free parameters of `design.fit` with BOBYQA (§4.7).
+/// Fit the free parameters of `design.fit` with BOBYQA (§4.7). Values where a
+/// patch cannot be built or folds (§5.2) are infeasible.
 ///
 /// ```
 /// use monge_core::multipatch::MultiPatchDesign;
@@ -295,11 +296,12 @@ pub fn fit(design: &MultiPatchDesign, options: &GenerateOptions) -> Result<FitRe
             .collect();
         let trial = with_values(design, &spec.free, &values);
         match build(&trial, options) {
-            Ok(mesh) => {
+            // A folded patch (§5.2) is infeasible, like one that cannot be built.
+            Ok(mesh) if mesh.patches.iter().all(|p| p.folded_faces == 0) => {
                 let d = distance(&mesh, spec, &target, scale);
                 (d.rms / scale).powi(2)
             }
-            Err(_) => f64::NAN,
+            _ => f64::NAN,
         }
     };
     let max_fun = spec.max_evaluations.unwrap_or(1000 * n + 200);

@@ -17,7 +17,7 @@
 use crate::design::{Design, GuideSpec};
 use crate::generate::{generate, GenerateError, GenerateOptions};
 use crate::guide::clamped_uniform_knots;
-use crate::scan::{face_areas, panel_stats, PanelStats};
+use crate::scan::{panel_stats, PanelStats};
 
 /// Options of [`optimise_panels`] (§4.8).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,7 +121,7 @@ fn parameters(lo: f64, hi: f64, n: usize, y: &[f64]) -> Vec<f64> {
 fn objective(design: &Design, options: &GenerateOptions) -> f64 {
     match generate(design, options) {
         Ok(g) if g.report.folded_faces == 0 => {
-            let a = face_areas(&g.grid);
+            let a = g.grid.face_areas();
             let n = a.len() as f64;
             let mean = a.iter().sum::<f64>() / n;
             a.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n / (mean * mean)

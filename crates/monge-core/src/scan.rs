@@ -11,7 +11,6 @@
 
 use std::fmt::Write as _;
 
-use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
@@ -268,23 +267,10 @@ impl PanelStats {
     }
 }
 
-/// Area of a planar quad `[(i,j), (i,j+1), (i+1,j), (i+1,j+1)]` as half the
-/// length of the cross product of its diagonals (exact for planar quads).
-pub fn face_area(q: &[DVec3; 4]) -> f64 {
-    0.5 * (q[3] - q[0]).cross(q[1] - q[2]).length()
-}
-
-/// Face areas of a grid, row-major.
-pub fn face_areas(grid: &QuadGrid) -> Vec<f64> {
-    (0..grid.rows.saturating_sub(1))
-        .flat_map(|i| (0..grid.cols.saturating_sub(1)).map(move |j| (i, j)))
-        .map(|(i, j)| face_area(&grid.face(i, j)))
-        .collect()
-}
-
-/// Panel statistics of a grid with at least one face (§4.8).
+/// Panel statistics of a grid with at least one face (§4.8); the areas are
+/// [`QuadGrid::face_areas`].
 pub fn panel_stats(grid: &QuadGrid) -> PanelStats {
-    let areas = face_areas(grid);
+    let areas = grid.face_areas();
     let n = areas.len().max(1) as f64;
     let mean = areas.iter().sum::<f64>() / n;
     let variance = areas.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / n;

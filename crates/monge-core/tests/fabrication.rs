@@ -95,8 +95,10 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
                 p.layer
             );
         }
-        let area = 0.5 * ((quad[2] - quad[0]).cross(quad[3] - quad[1])).length();
-        assert!((p.area.abs() - area).abs() <= TOL * size * size);
+        // Independently: the shoelace formula on the flat outline.
+        let o = &p.outline;
+        let area = 0.5 * (0..4).map(|c| o[c].perp_dot(o[(c + 1) % 4])).sum::<f64>();
+        assert!((p.area - area).abs() <= TOL * size * size);
         let angle_sum: f64 = p.angles.iter().sum();
         assert!((angle_sum - std::f64::consts::TAU).abs() < 1e-9);
     }

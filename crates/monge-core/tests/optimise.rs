@@ -303,3 +303,58 @@ fn error_too_few_evaluations() {
         }
     );
 }
+
+/// Issue 10, item 2: a folded mesh is infeasible. The guides of Figure 14 fold
+/// for θ between about 78° and 110°; the target is the last row of their mesh
+/// at θ = 84° (folded), so the unconstrained fit would go there (distance 0).
+#[test]
+fn fit_never_returns_a_folded_mesh() {
+    let patch = |theta_deg| PatchSpec {
+        theta_deg,
+        guide_u: Some(GuideSpec::bspline(
+            2,
+            vec![[0.0; 3], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]],
+            21,
+        )),
+        guide_v: Some(GuideSpec::bspline(
+            2,
+            vec![[0.0; 3], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]],
+            21,
+        )),
+        attach: None,
+        guide: None,
+    };
+    let design = |theta_deg| MultiPatchDesign {
+        patches: vec![patch(theta_deg)],
+        tolerance: None,
+        fit: None,
+        symmetry: vec![],
+    };
+    let folded = build(&design(84.0), &opts()).unwrap();
+    assert!(folded.patches[0].folded_faces > 0);
+    let target: Vec<[f64; 3]> = folded
+        .boundary(0, Side::LastRow)
+        .iter()
+        .map(|p| p.to_array())
+        .collect();
+    let mut d = design(60.0);
+    d.fit = Some(FitSpec {
+        free: vec![FreeParameter::Theta {
+            patch: 0,
+            bounds: Some([50.0, 88.0]),
+        }],
+        boundary: BoundaryRef {
+            patch: 0,
+            side: Side::LastRow,
+        },
+        target: Target::Polyline(target),
+        max_distance: None,
+        max_evaluations: None,
+    });
+    let r = fit(&d, &opts()).unwrap();
+    let theta = r.values[0].2;
+    println!("fitted θ = {theta}, distance {:?}", r.after);
+    assert_eq!(r.mesh.patches[0].folded_faces, 0, "θ = {theta}");
+    assert_eq!(measure(&r.mesh.grid).folded_faces, 0, "θ = {theta}");
+    assert!(r.after.max > 1e-3, "{:?}", r.after);
+}

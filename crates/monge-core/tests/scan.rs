@@ -4,7 +4,7 @@ use monge_core::scan::{
     parse_range, plot_svg, scan, set_parameter, to_csv, values, ScanError, Status, CSV_HEADER,
     MAX_VALUES,
 };
-use monge_core::{Design, GuideSpec};
+use monge_core::{generate, Design, GuideSpec};
 
 /// The two guides of Figure 14 (`examples/fig14-family.toml`, fewer samples):
 /// their θ family folds over itself between about 80° and 110°.
@@ -190,4 +190,66 @@ fn bad_ranges_and_paths_are_typed_errors() {
         set_parameter(&d, "guide_u.bspline.control_points[1][0]", f64::NAN),
         Err(ScanError::BadPath { .. })
     ));
+}
+
+/// Area of a planar polygon without crossings, independently of the code under
+/// test: half the length of its vector area `½ Σ p_k × p_{k+1}` (the shoelace
+/// formula in 3D), coordinates relative to the first corner, written out by hand.
+fn shoelace_area(q: &[glam::DVec3; 4]) -> f64 {
+    let p: Vec<[f64; 3]> = q.iter().map(|v| (*v - q[0]).to_array()).collect();
+    let mut s = [0.0; 3];
+    for k in 0..4 {
+        let (a, b) = (p[k], p[(k + 1) % 4]);
+        s[0] += a[1] * b[2] - a[2] * b[1];
+        s[1] += a[2] * b[0] - a[0] * b[2];
+        s[2] += a[0] * b[1] - a[1] * b[0];
+    }
+    0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt()
+}
+
+/// Issue 10, item 1: the scan's panel areas are the areas of the quads (they were
+/// half the cross product of two opposite edges: at θ = 20° a spread of 137
+/// instead of 1.58, at θ = ±180° an infinite one).
+#[test]
+fn scan_panel_areas_are_the_quads_areas() {
+    let mut d = figure14();
+    d.guide_u.bspline.as_mut().unwrap().samples = 41;
+    d.guide_v.bspline.as_mut().unwrap().samples = 41;
+    let s = scan(
+        &d,
+        "theta",
+        &[-180.0, 20.0, 180.0],
+        &Default::default(),
+        &|| {},
+    )
+    .unwrap();
+    for r in &s.rows {
+        let g = generate(
+            &Design {
+                theta_deg: r.value,
+                ..d.clone()
+            },
+            &Default::default(),
+        )
+        .unwrap()
+        .grid;
+        let truth: Vec<f64> = (0..g.rows - 1)
+            .flat_map(|i| (0..g.cols - 1).map(move |j| (i, j)))
+            .map(|(i, j)| shoelace_area(&g.face(i, j)))
+            .collect();
+        for (a, t) in g.face_areas().iter().zip(&truth) {
+            assert!((a - t).abs() <= 1e-12 * t, "θ = {}: {a} vs {t}", r.value);
+        }
+        let n = truth.len() as f64;
+        let mean = truth.iter().sum::<f64>() / n;
+        let variance = truth.iter().map(|t| (t - mean).powi(2)).sum::<f64>() / n;
+        let min = truth.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = truth.iter().copied().fold(0.0, f64::max);
+        let p = r.panels.unwrap();
+        println!("θ = {}: areas {min} … {max}, spread {}", r.value, max / min);
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
+        assert!(close(p.area_min, min) && close(p.area_max, max), "{p:?}");
+        assert!(close(p.area_mean, mean) && close(p.area_variance, variance));
+        assert!(p.spread().is_finite() && p.spread() < 10.0, "{p:?}");
+    }
 }

@@ -22,3 +22,58 @@ pub fn example(name: &str) -> PathBuf {
 pub fn monge() -> Command {
     Command::new(env!("CARGO_BIN_EXE_monge"))
 }
+
+/// The faces of an OBJ file as lists of corners, read by hand (`v` and `f`
+/// lines only), independently of monge-io's reader.
+pub fn obj_faces(path: &Path) -> Vec<Vec<[f64; 3]>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut vertices = Vec::new();
+    let mut faces = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let x: Vec<f64> = words.map(|w| w.parse().unwrap()).collect();
+                vertices.push([x[0], x[1], x[2]]);
+            }
+            Some("f") => faces.push(
+                words
+                    .map(|w| w.split('/').next().unwrap().parse::<usize>().unwrap() - 1)
+                    .collect::<Vec<_>>(),
+            ),
+            _ => {}
+        }
+    }
+    faces
+        .into_iter()
+        .map(|f| f.into_iter().map(|k| vertices[k]).collect())
+        .collect()
+}
+
+/// Area of a planar polygon without crossings: half the length of its vector
+/// area `½ Σ p_k × p_{k+1}` (the shoelace formula in 3D), relative to the first corner.
+pub fn shoelace_area(polygon: &[[f64; 3]]) -> f64 {
+    let o = polygon[0];
+    let p: Vec<[f64; 3]> = polygon
+        .iter()
+        .map(|v| [v[0] - o[0], v[1] - o[1], v[2] - o[2]])
+        .collect();
+    let mut s = [0.0; 3];
+    for k in 0..p.len() {
+        let (a, b) = (p[k], p[(k + 1) % p.len()]);
+        s[0] += a[1] * b[2] - a[2] * b[1];
+        s[1] += a[2] * b[0] - a[0] * b[2];
+        s[2] += a[0] * b[1] - a[1] * b[0];
+    }
+    0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt()
+}
+
+/// Population variance and max/min of `values`.
+pub fn variance_and_spread(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let variance = values.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n;
+    let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (variance, max / min)
+}
