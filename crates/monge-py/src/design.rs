@@ -6,7 +6,7 @@ use monge_core::MeshKind;
 use monge_io::{parse_design, read_design, write_design, DesignFormat};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use pythonize::pythonize;
+use serde::Serialize;
 
 use crate::errors::{io_error, DesignError};
 
@@ -59,6 +59,17 @@ pub fn dict_to_json(d: &Bound<'_, PyAny>) -> PyResult<String> {
     text.extract()
 }
 
+/// `value` as the Python data `json.loads` makes of its JSON: dicts and lists,
+/// as in a design file (non-finite numbers become None).
+pub fn json_to_python<'py, T: Serialize>(
+    py: Python<'py>,
+    value: &T,
+) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value)
+        .map_err(|e| DesignError::new_err(format!("cannot convert to JSON: {e}")))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 #[pymethods]
 impl Design {
     /// Reads a design file, JSON or TOML by its extension (§3).
@@ -83,9 +94,9 @@ impl Design {
         })
     }
 
-    /// The design as a dict with the keys of a design file.
+    /// The design as a dict with the keys of a design file (lists, as in the file).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        Ok(pythonize(py, &self.inner)?)
+        json_to_python(py, &self.inner)
     }
 
     /// Writes the design file, pretty JSON or TOML by the extension, atomically.

@@ -84,17 +84,9 @@ impl Mesh {
             .map_err(|e| generate_error(design.context(), &e))?;
         let geometry = match kind {
             MeshKind::Circular => Geometry::Circular(g.grid),
-            MeshKind::Conical => {
-                let (rows, cols) = (g.grid.rows, g.grid.cols);
-                if rows < 3 || cols < 3 {
-                    return Err(DesignError::new_err(format!(
-                        "a conical mesh (§2.3) has one vertex per circular face and needs 2 × 2 \
-                         of them, but the circular mesh has {rows} × {cols} vertices: give each \
-                         guide at least 3 samples"
-                    )));
-                }
-                Geometry::Conical(conical_dual(&g.grid))
-            }
+            // Guides have at least 3 samples (2 would be straight), so the
+            // circular mesh has the 3 × 3 vertices a conical dual needs.
+            MeshKind::Conical => Geometry::Conical(conical_dual(&g.grid)),
         };
         Ok(Mesh::new(
             geometry,

@@ -14,13 +14,13 @@ use monge_core::optimise::fit as core_fit;
 use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
 use monge_core::scan::scan as core_scan;
 use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
-use monge_io::{parse_multipatch, read_mesh, read_multipatch, DesignFormat};
+use monge_io::{parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyBytes, PyDict, PyList};
 use pythonize::pythonize;
 
-use crate::design::{dict_to_json, parse_kind, Design};
+use crate::design::{dict_to_json, json_to_python, parse_kind, Design};
 use crate::errors::{
     generate_error, io_error, text, FabricationError, MeshError, OptimiseError, ScanError,
     SmoothError,
@@ -284,10 +284,11 @@ pub fn smooth<'py>(
     Ok(d)
 }
 
-/// Everything a fabricator needs (§6), as `monge fabricate`: the layers (node
-/// offsets of a circular mesh, face offsets of a conical one) with their
-/// vertices, and the panel, beam and node schedules and the summary as lists of
-/// dicts. `radius_tol` defaults to `tol`; `angle_tol_deg` is in degrees.
+/// Everything a fabricator needs (§6), as `monge fabricate`: the contents of its
+/// `schedule.json` (`summary`, `layers` (distances), `panels`, `beams`, `nodes`,
+/// lists of dicts), and `layer_vertices`, each layer's vertices (rows, cols, 3):
+/// node offsets of a circular mesh, face offsets of a conical one.
+/// `radius_tol` defaults to `tol`; `angle_tol_deg` is in degrees.
 #[pyfunction]
 #[pyo3(signature = (design, layers = vec![0.0], tol = 1e-9, radius_tol = None, angle_tol_deg = 1e-4))]
 pub fn fabricate<'py>(
@@ -316,23 +317,19 @@ pub fn fabricate<'py>(
         };
         core_fabricate(base, &options).map_err(|e| FabricationError::new_err(text(context, e)))
     })?;
-    let layers = PyList::empty(py);
+    let mut schedule = Vec::new();
+    write_schedule_json(&f, &mut schedule)
+        .map_err(|e| FabricationError::new_err(format!("cannot write the schedule: {e}")))?;
+    let d = py
+        .import("json")?
+        .call_method1("loads", (PyBytes::new(py, &schedule),))?
+        .cast_into::<PyDict>()?;
+    let meshes = PyList::empty(py);
     for layer in &f.layers {
-        let l = PyDict::new(py);
-        l.set_item("distance", layer.distance)?;
         let g = &layer.grid;
-        l.set_item(
-            "vertices",
-            points_array(py, &g.vertices, &[g.rows, g.cols])?,
-        )?;
-        layers.append(l)?;
+        meshes.append(points_array(py, &g.vertices, &[g.rows, g.cols])?)?;
     }
-    let d = PyDict::new(py);
-    d.set_item("layers", layers)?;
-    d.set_item("panels", pythonize(py, &f.panels)?)?;
-    d.set_item("beams", pythonize(py, &f.beams)?)?;
-    d.set_item("nodes", pythonize(py, &f.nodes)?)?;
-    d.set_item("summary", pythonize(py, &f.summary)?)?;
+    d.set_item("layer_vertices", meshes)?;
     Ok(d)
 }
 
@@ -455,7 +452,7 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
         values.append(v)?;
     }
     let d = PyDict::new(py);
-    d.set_item("design", pythonize(py, &r.design)?)?;
+    d.set_item("design", json_to_python(py, &r.design)?)?;
     d.set_item(
         "vertices",
         points_array(py, &g.vertices, &[g.rows, g.cols])?,
