@@ -11,7 +11,7 @@ venv="$target/venv"
 if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
-"$venv/bin/python" -m pip install --quiet --upgrade "maturin>=1.5,<2" numpy pytest rhino3dm compas
+"$venv/bin/python" -m pip install --quiet --upgrade "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask
 
 echo "== wheel (maturin build --release)"
 rm -rf "$target/wheels"

@@ -55,19 +55,34 @@ def _attributes(layer, name, colour=None):
     return a
 
 
-def rhino_mesh(mesh):
-    """The quad mesh as a ``rhino3dm.Mesh`` with double-precision vertices and,
-    for a circular mesh, the node axes as vertex normals."""
+def quad_mesh(vertices, faces, normals=None):
+    """A ``rhino3dm.Mesh`` with double-precision ``vertices`` (rows, cols, 3),
+    quad ``faces`` (indices into the flattened vertices) and optional vertex
+    ``normals`` (rows, cols, 3)."""
     m = rhino3dm.Mesh()
     m.Vertices.UseDoublePrecisionVertices = True
-    for p in mesh.vertices.reshape(-1, 3):
-        m.Vertices.AddPoint3d(float(p[0]), float(p[1]), float(p[2]))
-    for a, b, c, d in mesh.faces.tolist():
+    for p in np.asarray(vertices, dtype=float).reshape(-1, 3).tolist():
+        m.Vertices.AddPoint3d(*p)
+    for a, b, c, d in np.asarray(faces).tolist():
         m.Faces.AddFace(a, b, c, d)
-    if mesh.normals is not None:
-        for n in mesh.normals.reshape(-1, 3):
-            m.Normals.Add(float(n[0]), float(n[1]), float(n[2]))
+    if normals is not None:
+        for n in np.asarray(normals, dtype=float).reshape(-1, 3).tolist():
+            m.Normals.Add(*n)
     return m
+
+
+def rhino_mesh(mesh):
+    """A ``monge.Mesh`` as a ``rhino3dm.Mesh``: quads, and for a circular mesh the
+    node axes as vertex normals."""
+    return quad_mesh(mesh.vertices, mesh.faces, mesh.normals)
+
+
+def gauss_mesh(mesh):
+    """The Gauss map of a circular ``monge.Mesh`` (§2.2.1) as a ``rhino3dm.Mesh``
+    on the unit sphere: its node axes as vertices, with the mesh's faces."""
+    if mesh.normals is None:
+        raise MeshError("a conical mesh has no node axes: its Gauss map is that of the circular mesh")
+    return quad_mesh(mesh.normals, mesh.faces, mesh.normals)
 
 
 def polyline_nurbs(points):
