@@ -4,7 +4,7 @@
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
 use monge_core::conical::{conical_dual, ConicalMesh};
-use monge_core::measure::measure;
+use monge_core::measure::{conical_error, measure, Measurements, Worst};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate as core_generate, GenerateOptions, MeshKind, Mode, QuadGrid};
 use numpy::ndarray::ArrayView3;
@@ -47,10 +47,24 @@ pub struct Mesh {
     mode: Mode,
     /// Folds and pinches seen by the Combescure transform (§5.2).
     report: CombescureReport,
-    /// Measured largest error relative to the model size (`monge check`'s max).
+    /// The largest error `check` measures on this mesh ([`measurements`]).
     max_error: f64,
     /// The offset distance from the generated mesh (§2.2, §2.3); 0 for it.
     offset: f64,
+}
+
+/// What `monge check --kind KIND` measures (§2.2, §2.3): for a conical mesh the
+/// conical condition takes the place of `circularity`, which such a mesh need
+/// not satisfy, so that `max_error` is the largest error of its own kind.
+pub fn measurements(grid: &QuadGrid, kind: MeshKind) -> Measurements {
+    let mut m = measure(grid);
+    if kind == MeshKind::Conical {
+        m.circularity = conical_error(grid).unwrap_or(Worst {
+            value: 0.0,
+            at: (0, 0),
+        });
+    }
+    m
 }
 
 /// The `(rows, cols, 3)` read-only numpy view of `points`, kept alive by `owner`.
@@ -104,7 +118,11 @@ impl Mesh {
         report: CombescureReport,
         offset: f64,
     ) -> Mesh {
-        let max_error = measure(geometry.grid()).max_error();
+        let kind = match geometry {
+            Geometry::Circular(_) => MeshKind::Circular,
+            Geometry::Conical(_) => MeshKind::Conical,
+        };
+        let max_error = measurements(geometry.grid(), kind).max_error();
         Mesh {
             geometry,
             theta_deg,
@@ -208,8 +226,8 @@ impl Mesh {
 
     /// What the generation found (§5.2): `folded_faces`, `first_fold` ((i, j) or
     /// None), `min_crossing_sine`, `min_crossing_face`, and `max_error`, the
-    /// largest planarity/circularity/line error measured on this mesh relative to
-    /// its size (as `monge check` measures it).
+    /// largest error `check(mesh)` measures on this mesh (planarity, circularity
+    /// or the conical condition, planar lines, torsion; lengths relative to its size).
     #[getter]
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let r = &self.report;

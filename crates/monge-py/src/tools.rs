@@ -9,7 +9,6 @@ use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
 use monge_core::guide::Guide;
-use monge_core::measure::{conical_error, measure};
 use monge_core::optimise::fit as core_fit;
 use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
 use monge_core::scan::scan as core_scan;
@@ -25,7 +24,7 @@ use crate::errors::{
     generate_error, io_error, text, FabricationError, MeshError, OptimiseError, ScanError,
     SmoothError,
 };
-use crate::mesh::{Geometry, Mesh};
+use crate::mesh::{measurements, Geometry, Mesh};
 
 /// `points` copied into a numpy array of `shape` (whose product times 3 is the
 /// number of coordinates; the last axis, 3, is appended).
@@ -162,24 +161,14 @@ pub fn check<'py>(
     };
     let kind = parse_kind(kind, default)?;
     let grid = grid_of(vertices, normals)?;
-    let m = measure(&grid);
+    let m = measurements(&grid, kind);
     let d = pythonize(py, &m)?.cast_into::<PyDict>()?;
     if kind == MeshKind::Conical {
+        let conical = d.get_item("circularity")?;
         d.del_item("circularity")?;
-        d.set_item("conical", pythonize(py, &conical_error(&grid))?)?;
+        d.set_item("conical", conical)?;
     }
-    let worst: f64 = d
-        .values()
-        .iter()
-        .filter_map(|v| v.get_item("value").ok()?.extract::<f64>().ok())
-        .fold(0.0, |a, b| {
-            if b.is_nan() || a.is_nan() {
-                f64::NAN
-            } else {
-                a.max(b)
-            }
-        });
-    d.set_item("max_error", worst)?;
+    d.set_item("max_error", m.max_error())?;
     d.set_item("rows", grid.rows)?;
     d.set_item("cols", grid.cols)?;
     Ok(d.into_any())

@@ -58,6 +58,7 @@ def test_conical_mesh_equals_the_command_and_is_conical(cli_mesh):
     assert mnp.face_planarity(mesh.vertices) <= TOL
     assert mnp.line_planarity(mesh.vertices) <= TOL
     assert mnp.conical(mesh.vertices) <= TOL
+    assert mesh.report["max_error"] == monge.check(mesh)["max_error"] <= TOL
     # the face normals are those of the faces' planes (measured by SVD)
     assert np.abs(mnp.face_normals(mesh.vertices) - mesh.face_normals).max() <= TOL
 
