@@ -1,0 +1,137 @@
+"""Type stubs of the native module monge._monge (re-exported by ``monge``)."""
+
+import os
+from typing import Any, Dict, List, Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Kind = Literal["circular", "conical"]
+PathLike = Union[str, "os.PathLike[str]"]
+Array = npt.NDArray[np.float64]
+
+class MongeError(Exception):
+    """Every error raised by monge; the message says what, where, by how much, and how to fix it."""
+
+class FileError(MongeError):
+    """A file cannot be found, read or written."""
+
+class DesignError(MongeError):
+    """A design is malformed or invalid: its guides, their start point and angle, its size (§3)."""
+
+class ThetaError(DesignError):
+    """θ is not finite, outside the admissible range of the guides (§3.2) or singular (θ = +90°)."""
+
+class DegenerateError(MongeError):
+    """The Gauss map degenerates: the mesh pinches or a curvature line is straight there (§5.2)."""
+
+class MeshError(MongeError):
+    """A mesh (file or arrays) is not a regular row-major quad grid of finite points."""
+
+class SmoothError(MongeError):
+    """The cyclidic net (§4.4) cannot be built on the mesh."""
+
+class FabricationError(MongeError):
+    """Panels, beams or nodes (§6) cannot be built."""
+
+class ScanError(MongeError):
+    """A design-space scan (§4.3) cannot be run: bad values or parameter path."""
+
+class OptimiseError(MongeError):
+    """θ fitting (§4.7) or panel-size optimisation (§4.8) cannot be run."""
+
+class Design:
+    """A design (§3): two planar guide curves that meet at 90° and the angle θ."""
+
+    theta_deg: float
+    """θ in degrees (§3.1, §3.2); settable."""
+    @property
+    def mesh(self) -> Kind:
+        """The mesh ``generate`` builds by default (the file's ``"mesh"``)."""
+    @property
+    def source(self) -> Optional[str]:
+        """The file the design was read from, or None."""
+    @staticmethod
+    def from_file(path: PathLike) -> "Design":
+        """Reads a design file, JSON or TOML by its extension (§3)."""
+    @staticmethod
+    def from_dict(d: Dict[str, Any]) -> "Design":
+        """A design from the keys of a design file; numpy arrays accepted for lists."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The design as a dict with the keys of a design file."""
+    def to_file(self, path: PathLike) -> None:
+        """Writes the design file, pretty JSON or TOML by the extension, atomically."""
+
+class Mesh:
+    """A generated mesh (§2.2, §2.3); arrays are read-only views of its memory."""
+
+    @property
+    def vertices(self) -> Array:
+        """(rows, cols, 3): vertex (i, j), i along guide_u, j along guide_v."""
+    @property
+    def normals(self) -> Optional[Array]:
+        """(rows, cols, 3) unit node axes, the Gauss map (circular meshes; None for conical)."""
+    @property
+    def face_normals(self) -> Optional[Array]:
+        """(rows − 1, cols − 1, 3) unit face normals of a conical mesh (None for circular)."""
+    @property
+    def faces(self) -> npt.NDArray[np.uint64]:
+        """(faces, 4) indices into vertices.reshape(-1, 3), as in OBJ/PLY files."""
+    @property
+    def rows(self) -> int: ...
+    @property
+    def cols(self) -> int: ...
+    @property
+    def kind(self) -> Kind: ...
+    @property
+    def theta_deg(self) -> float: ...
+    @property
+    def mode(self) -> Literal["characteristic", "arbitrary"]: ...
+    @property
+    def offset_distance(self) -> float:
+        """Distance from the generated mesh (0 for it)."""
+    @property
+    def report(self) -> Dict[str, Any]:
+        """folded_faces, first_fold, min_crossing_sine, min_crossing_face (§5.2), max_error (as check)."""
+    def offset(self, d: float) -> "Mesh":
+        """Node offset (circular, §2.2) or face offset (conical, §2.3) at distance d."""
+
+def generate(design: Design, kind: Optional[Kind] = None) -> Mesh:
+    """The circular (§2.2) or conical (§2.3) mesh of a design (§3)."""
+
+def info(design: Design) -> Dict[str, Any]:
+    """Mode, θ and its admissible range, grid size, guides (§3.1, §3.2)."""
+
+def check(
+    vertices: Union[Mesh, PathLike, npt.ArrayLike],
+    kind: Optional[Kind] = None,
+    normals: Optional[npt.ArrayLike] = None,
+) -> Dict[str, Any]:
+    """Independent measurements of a quad mesh (§2.2, §2.3), as ``monge check``."""
+
+def smooth(design: Union[Design, Mesh], samples: int = 9, allow_folded: bool = False) -> Dict[str, Any]:
+    """The cyclidic net (§4.4): patches, curvature lines as arcs, one NURBS surface."""
+
+def fabricate(
+    design: Design,
+    layers: Sequence[float] = (0.0,),
+    tol: float = 1e-9,
+    radius_tol: Optional[float] = None,
+    angle_tol_deg: float = 1e-4,
+) -> Dict[str, Any]:
+    """Layers, panels, beams, nodes and summary (§6), as ``monge fabricate``."""
+
+def scan(design: Design, values: Sequence[float], param: str = "theta") -> Dict[str, Any]:
+    """Design-space scan (§4.3) in parallel, GIL released; returns columns."""
+
+def optimise_panels(
+    design: Design, max_gap_ratio: float = 8.0, max_evaluations: Optional[int] = None
+) -> Dict[str, Any]:
+    """Panel-size optimisation (§4.8), as ``monge optimise-panels``."""
+
+def fit(design: Union[PathLike, Dict[str, Any]]) -> Dict[str, Any]:
+    """Fit θ of a multi-patch design (§4.7), as ``monge fit``."""
+
+__all__: List[str]

@@ -1,0 +1,132 @@
+//! The typed errors of monge-core and monge-io as Python exceptions, all under
+//! `monge.MongeError`, with the messages the `monge` command prints.
+
+use monge_core::GenerateError;
+use monge_io::IoError;
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+
+create_exception!(
+    monge,
+    MongeError,
+    PyException,
+    "Every error raised by monge; the message says what, where, by how much, and how to fix it."
+);
+create_exception!(
+    monge,
+    FileError,
+    MongeError,
+    "A file cannot be found, read or written."
+);
+create_exception!(
+    monge,
+    DesignError,
+    MongeError,
+    "A design is malformed or invalid: its guides, their start point and angle, its size (§3)."
+);
+create_exception!(
+    monge,
+    ThetaError,
+    DesignError,
+    "θ is not finite, outside the admissible range of the guides (§3.2) or singular (θ = +90°)."
+);
+create_exception!(
+    monge,
+    DegenerateError,
+    MongeError,
+    "The Gauss map degenerates: the mesh pinches or a curvature line is straight there (§5.2)."
+);
+create_exception!(
+    monge,
+    MeshError,
+    MongeError,
+    "A mesh (file or arrays) is not a regular row-major quad grid of finite points."
+);
+create_exception!(
+    monge,
+    SmoothError,
+    MongeError,
+    "The cyclidic net (§4.4) cannot be built on the mesh."
+);
+create_exception!(
+    monge,
+    FabricationError,
+    MongeError,
+    "Panels, beams or nodes (§6) cannot be built."
+);
+create_exception!(
+    monge,
+    ScanError,
+    MongeError,
+    "A design-space scan (§4.3) cannot be run: bad values or parameter path."
+);
+create_exception!(
+    monge,
+    OptimiseError,
+    MongeError,
+    "θ fitting (§4.7) or panel-size optimisation (§4.8) cannot be run."
+);
+
+/// Registers the exception classes in the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("MongeError", py.get_type::<MongeError>())?;
+    m.add("FileError", py.get_type::<FileError>())?;
+    m.add("DesignError", py.get_type::<DesignError>())?;
+    m.add("ThetaError", py.get_type::<ThetaError>())?;
+    m.add("DegenerateError", py.get_type::<DegenerateError>())?;
+    m.add("MeshError", py.get_type::<MeshError>())?;
+    m.add("SmoothError", py.get_type::<SmoothError>())?;
+    m.add("FabricationError", py.get_type::<FabricationError>())?;
+    m.add("ScanError", py.get_type::<ScanError>())?;
+    m.add("OptimiseError", py.get_type::<OptimiseError>())?;
+    Ok(())
+}
+
+/// `context: message`, as the command line joins a file name and an error;
+/// the message alone without a context.
+pub fn text(context: Option<&str>, message: impl std::fmt::Display) -> String {
+    match context {
+        Some(c) => format!("{c}: {message}"),
+        None => message.to_string(),
+    }
+}
+
+/// A monge-io error: missing or unreadable files are `FileError`, mesh files
+/// that are not quad grids `MeshError`, everything else about a design file
+/// `DesignError`. The message names the file already.
+pub fn io_error(e: IoError) -> PyErr {
+    let message = e.to_string();
+    match e {
+        IoError::NotFound { .. }
+        | IoError::Read { .. }
+        | IoError::Write { .. }
+        | IoError::NoDirectory { .. }
+        | IoError::OutputIsInput { .. } => FileError::new_err(message),
+        IoError::Syntax { .. } | IoError::CountMismatch { .. } | IoError::NotAGrid { .. } => {
+            MeshError::new_err(message)
+        }
+        IoError::UnknownExtension { .. }
+        | IoError::NeedFormat { .. }
+        | IoError::Parse { .. }
+        | IoError::NonFinite { .. }
+        | IoError::WrongKind { .. } => DesignError::new_err(message),
+    }
+}
+
+/// A generation error (§3, §5.2), after `context` (the design file, if any).
+pub fn generate_error(context: Option<&str>, e: &GenerateError) -> PyErr {
+    let message = text(context, e);
+    match e {
+        GenerateError::ThetaNotFinite(_)
+        | GenerateError::ThetaInadmissible { .. }
+        | GenerateError::ThetaSingular { .. } => ThetaError::new_err(message),
+        GenerateError::Degenerate { .. } => DegenerateError::new_err(message),
+        GenerateError::Guide(_)
+        | GenerateError::GridTooLarge { .. }
+        | GenerateError::ScaleOutOfRange { .. }
+        | GenerateError::StartPointsDiffer { .. }
+        | GenerateError::NotOrthogonal { .. } => DesignError::new_err(message),
+    }
+}

@@ -1,0 +1,291 @@
+//! `monge.generate` and `monge.Mesh`: the circular mesh (§2.2) or its conical
+//! dual (§2.3) of a design, its arrays shared with numpy without copies.
+
+use glam::DVec3;
+use monge_core::combescure::CombescureReport;
+use monge_core::conical::{conical_dual, ConicalMesh};
+use monge_core::measure::{conical_error, measure, Measurements, Worst};
+use monge_core::offset::{face_offset, vertex_offset};
+use monge_core::{generate as core_generate, GenerateOptions, MeshKind, Mode, QuadGrid};
+use numpy::ndarray::ArrayView3;
+use numpy::{PyArray2, PyArray3, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::design::{kind_name, parse_kind, Design};
+use crate::errors::{generate_error, DesignError};
+
+/// The geometry of a mesh: a circular mesh with its node axes, or a conical mesh
+/// with its face normals and offset directions.
+#[derive(Clone, Debug)]
+pub enum Geometry {
+    /// A circular mesh (§2.2): vertices and unit node axes.
+    Circular(QuadGrid),
+    /// A conical mesh (§2.3).
+    Conical(ConicalMesh),
+}
+
+impl Geometry {
+    /// The quad grid of vertices.
+    pub fn grid(&self) -> &QuadGrid {
+        match self {
+            Geometry::Circular(g) => g,
+            Geometry::Conical(c) => &c.grid,
+        }
+    }
+}
+
+/// A generated mesh (§2.2, §2.3): `vertices` and `normals` are read-only numpy
+/// views, shape (rows, cols, 3), of the mesh's own memory.
+#[pyclass(module = "monge", frozen)]
+pub struct Mesh {
+    /// The vertices and what offsets need.
+    pub geometry: Geometry,
+    /// θ in degrees, reduced to (−180, 180].
+    theta_deg: f64,
+    /// The generation mode (§3.1, §3.2).
+    mode: Mode,
+    /// Folds and pinches seen by the Combescure transform (§5.2).
+    report: CombescureReport,
+    /// The largest error `check` measures on this mesh ([`measurements`]).
+    max_error: f64,
+    /// The offset distance from the generated mesh (§2.2, §2.3); 0 for it.
+    offset: f64,
+}
+
+/// What `monge check --kind KIND` measures (§2.2, §2.3): for a conical mesh the
+/// conical condition takes the place of `circularity`, which such a mesh need
+/// not satisfy. Returns the measurements and their `max_error`, the largest of
+/// the metrics the kind requires ([`Measurements::max_error_conical`] for a
+/// conical mesh), as `monge check --json` reports it.
+pub fn measurements(grid: &QuadGrid, kind: MeshKind) -> (Measurements, f64) {
+    let mut m = measure(grid);
+    if kind != MeshKind::Conical {
+        let max_error = m.max_error();
+        return (m, max_error);
+    }
+    let conical = conical_error(grid);
+    let max_error = m.max_error_conical(conical);
+    m.circularity = conical.unwrap_or(Worst {
+        value: 0.0,
+        at: (0, 0),
+    });
+    (m, max_error)
+}
+
+/// The `(rows, cols, 3)` read-only numpy view of `points`, kept alive by `owner`.
+fn view<'py>(
+    owner: &Bound<'py, Mesh>,
+    points: &[DVec3],
+    rows: usize,
+    cols: usize,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    const _: () = assert!(std::mem::size_of::<DVec3>() == 3 * std::mem::size_of::<f64>());
+    if points.len() != rows * cols {
+        return Err(DesignError::new_err(format!(
+            "{} points cannot be viewed as a {rows} × {cols} grid",
+            points.len()
+        )));
+    }
+    // SAFETY: DVec3 is `repr(C)` with three f64 fields (size checked above), so
+    // `points` is `rows · cols · 3` contiguous, aligned f64 values.
+    let array = unsafe { ArrayView3::from_shape_ptr((rows, cols, 3), points.as_ptr().cast()) };
+    // SAFETY: `points` belongs to the frozen `owner`, which never changes or
+    // reallocates it, and becomes the array's base, so it outlives the array.
+    let array = unsafe { PyArray3::borrow_from_array(&array, owner.clone().into_any()) };
+    array.readwrite().make_nonwriteable();
+    Ok(array)
+}
+
+impl Mesh {
+    /// The mesh of `kind` (§2.2, §2.3) generated from `design`.
+    fn generate(design: &Design, kind: MeshKind) -> PyResult<Mesh> {
+        let g = core_generate(&design.inner, &GenerateOptions::default())
+            .map_err(|e| generate_error(design.context(), &e))?;
+        let geometry = match kind {
+            MeshKind::Circular => Geometry::Circular(g.grid),
+            // Guides have at least 3 samples (2 would be straight), so the
+            // circular mesh has the 3 × 3 vertices a conical dual needs.
+            MeshKind::Conical => Geometry::Conical(conical_dual(&g.grid)),
+        };
+        Ok(Mesh::new(
+            geometry,
+            g.info.theta_deg,
+            g.info.mode,
+            g.report,
+            0.0,
+        ))
+    }
+
+    fn new(
+        geometry: Geometry,
+        theta_deg: f64,
+        mode: Mode,
+        report: CombescureReport,
+        offset: f64,
+    ) -> Mesh {
+        let kind = match geometry {
+            Geometry::Circular(_) => MeshKind::Circular,
+            Geometry::Conical(_) => MeshKind::Conical,
+        };
+        let (_, max_error) = measurements(geometry.grid(), kind);
+        Mesh {
+            geometry,
+            theta_deg,
+            mode,
+            report,
+            max_error,
+            offset,
+        }
+    }
+}
+
+#[pymethods]
+impl Mesh {
+    /// Vertex (i, j) at `[i, j]`: i along guide_u, j along guide_v (read-only view).
+    #[getter]
+    fn vertices<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let g = slf.get().geometry.grid();
+        view(slf, &g.vertices, g.rows, g.cols)
+    }
+
+    /// The unit node axes (§2.2), the mesh's Gauss map, for a circular mesh;
+    /// None for a conical mesh (see `face_normals`).
+    #[getter]
+    fn normals<'py>(slf: &Bound<'py, Self>) -> PyResult<Option<Bound<'py, PyArray3<f64>>>> {
+        match &slf.get().geometry {
+            Geometry::Circular(g) => view(slf, &g.normals, g.rows, g.cols).map(Some),
+            Geometry::Conical(_) => Ok(None),
+        }
+    }
+
+    /// The unit face normals of a conical mesh (§2.3), shape (rows − 1, cols − 1, 3),
+    /// face (i, j) at `[i, j]`; None for a circular mesh.
+    #[getter]
+    fn face_normals<'py>(slf: &Bound<'py, Self>) -> PyResult<Option<Bound<'py, PyArray3<f64>>>> {
+        match &slf.get().geometry {
+            Geometry::Circular(_) => Ok(None),
+            Geometry::Conical(c) => {
+                view(slf, &c.face_normals, c.grid.rows - 1, c.grid.cols - 1).map(Some)
+            }
+        }
+    }
+
+    /// The quad faces as rows of four 0-based indices into `vertices.reshape(-1, 3)`,
+    /// face (i, j) at row `i·(cols − 1) + j`, corners (i, j), (i+1, j), (i+1, j+1),
+    /// (i, j+1) as in the OBJ and PLY files of `monge generate`.
+    #[getter]
+    fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u64>>> {
+        let g = self.geometry.grid();
+        let c = g.cols as u64;
+        let faces: Vec<Vec<u64>> = (0..g.rows.saturating_sub(1) as u64)
+            .flat_map(|i| (0..c.saturating_sub(1)).map(move |j| i * c + j))
+            .map(|k| vec![k, k + c, k + c + 1, k + 1])
+            .collect();
+        if faces.is_empty() {
+            return Ok(PyArray2::zeros(py, (0, 4), false));
+        }
+        Ok(PyArray2::from_vec2(py, &faces)?)
+    }
+
+    /// Number of rows (samples of guide_u, or one less for a conical mesh).
+    #[getter]
+    fn rows(&self) -> usize {
+        self.geometry.grid().rows
+    }
+
+    /// Number of columns (samples of guide_v, or one less for a conical mesh).
+    #[getter]
+    fn cols(&self) -> usize {
+        self.geometry.grid().cols
+    }
+
+    /// `"circular"` (§2.2) or `"conical"` (§2.3).
+    #[getter]
+    fn kind(&self) -> &'static str {
+        kind_name(match self.geometry {
+            Geometry::Circular(_) => MeshKind::Circular,
+            Geometry::Conical(_) => MeshKind::Conical,
+        })
+    }
+
+    /// θ in degrees, reduced to (−180, 180].
+    #[getter]
+    fn theta_deg(&self) -> f64 {
+        self.theta_deg
+    }
+
+    /// `"characteristic"` (§3.1) or `"arbitrary"` (§3.2).
+    #[getter]
+    fn mode(&self) -> &'static str {
+        match self.mode {
+            Mode::Characteristic => "characteristic",
+            Mode::Arbitrary => "arbitrary",
+        }
+    }
+
+    /// The distance of this mesh from the generated one (`offset(d)`); 0 for it.
+    #[getter]
+    fn offset_distance(&self) -> f64 {
+        self.offset
+    }
+
+    /// What the generation found (§5.2): `folded_faces`, `first_fold` ((i, j) or
+    /// None), `min_crossing_sine`, `min_crossing_face`, and `max_error`, the
+    /// largest error `check(mesh)` measures on this mesh (planarity, circularity
+    /// or the conical condition, planar lines, torsion; lengths relative to its size).
+    #[getter]
+    fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let r = &self.report;
+        let d = PyDict::new(py);
+        d.set_item("folded_faces", r.folded_faces)?;
+        d.set_item("first_fold", r.first_fold)?;
+        d.set_item("min_crossing_sine", r.min_crossing.sine)?;
+        d.set_item("min_crossing_face", r.min_crossing.face)?;
+        d.set_item("max_error", self.max_error)?;
+        Ok(d)
+    }
+
+    /// The offset mesh at distance `d` (§2.2, §2.3): for a circular mesh the node
+    /// offset along the node axes, for a conical mesh the face offset.
+    fn offset(&self, d: f64) -> PyResult<Mesh> {
+        if !d.is_finite() {
+            return Err(DesignError::new_err(format!(
+                "offset distance {d}: give a finite distance"
+            )));
+        }
+        let geometry = match &self.geometry {
+            Geometry::Circular(g) => Geometry::Circular(vertex_offset(g, d)),
+            Geometry::Conical(c) => Geometry::Conical(face_offset(c, d)),
+        };
+        Ok(Mesh::new(
+            geometry,
+            self.theta_deg,
+            self.mode,
+            self.report,
+            self.offset + d,
+        ))
+    }
+
+    fn __repr__(&self) -> String {
+        let g = self.geometry.grid();
+        format!(
+            "Mesh(kind={:?}, rows={}, cols={}, theta_deg={}, offset={})",
+            self.kind(),
+            g.rows,
+            g.cols,
+            self.theta_deg,
+            self.offset
+        )
+    }
+}
+
+/// Generates the mesh of a design (§3): `kind` `"circular"` (§2.2) or
+/// `"conical"` (§2.3), by default the design's own `mesh`.
+#[pyfunction]
+#[pyo3(signature = (design, kind = None))]
+pub fn generate(py: Python<'_>, design: &Design, kind: Option<&str>) -> PyResult<Mesh> {
+    let kind = parse_kind(kind, design.inner.mesh)?;
+    let design = design.clone();
+    py.detach(move || Mesh::generate(&design, kind))
+}

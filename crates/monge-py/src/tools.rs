@@ -1,0 +1,456 @@
+//! The other commands of `monge` as functions: `info`, `check`, `smooth`,
+//! `fabricate`, `scan`, `fit`, `optimise_panels`. Each calls monge-core as the
+//! command does and returns plain Python data (dicts, lists, numpy arrays).
+
+use std::path::PathBuf;
+
+use glam::DVec3;
+use monge_core::conical::conical_dual;
+use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
+use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
+use monge_core::guide::Guide;
+use monge_core::optimise::fit as core_fit;
+use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
+use monge_core::scan::scan as core_scan;
+use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
+use monge_io::{parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyList};
+use pythonize::pythonize;
+
+use crate::design::{dict_to_json, json_to_python, parse_kind, Design};
+use crate::errors::{
+    generate_error, io_error, text, FabricationError, MeshError, OptimiseError, ScanError,
+    SmoothError,
+};
+use crate::mesh::{measurements, Geometry, Mesh};
+
+/// `points` copied into a numpy array of `shape` (whose product times 3 is the
+/// number of coordinates; the last axis, 3, is appended).
+fn points_array<'py>(
+    py: Python<'py>,
+    points: &[DVec3],
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let flat: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+    let mut dims = shape.to_vec();
+    dims.push(3);
+    PyArray1::from_vec(py, flat).reshape(dims)
+}
+
+/// `"characteristic"` (§3.1) or `"arbitrary"` (§3.2).
+fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Characteristic => "characteristic",
+        Mode::Arbitrary => "arbitrary",
+    }
+}
+
+/// One validated guide (§3) as a dict.
+fn guide_dict<'py>(py: Python<'py>, g: &Guide) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("samples", points_array(py, &g.points, &[g.points.len()])?)?;
+    d.set_item("start_tangent", g.tangent.to_array())?;
+    d.set_item("plane_normal", g.plane_normal.to_array())?;
+    d.set_item("planarity", g.planarity)?;
+    d.set_item("size", g.size)?;
+    Ok(d)
+}
+
+/// Validates a design without generating it (§3.1, §3.2), as `monge info`: the
+/// mode, θ and its admissible range, the grid size, and each guide's samples,
+/// start tangent, plane normal, planarity and size.
+#[pyfunction]
+pub fn info<'py>(py: Python<'py>, design: &Design) -> PyResult<Bound<'py, PyDict>> {
+    let i = inspect(&design.inner, &GenerateOptions::default())
+        .map_err(|e| generate_error(design.context(), &e))?;
+    let (rows, cols) = i.grid_size();
+    let d = PyDict::new(py);
+    d.set_item("mode", mode_name(i.mode))?;
+    d.set_item("theta_deg", i.theta_deg)?;
+    d.set_item("theta_admissible", i.theta_range.contains(i.theta_deg))?;
+    d.set_item("theta_abs_min_deg", i.theta_range.min_deg)?;
+    d.set_item("theta_abs_max_deg", i.theta_range.max_deg)?;
+    d.set_item("rows", rows)?;
+    d.set_item("cols", cols)?;
+    d.set_item("faces", (rows - 1) * (cols - 1))?;
+    d.set_item("guide_u", guide_dict(py, &i.guide_u)?)?;
+    d.set_item("guide_v", guide_dict(py, &i.guide_v)?)?;
+    Ok(d)
+}
+
+/// `(rows, cols, 3)` array-like data as points, refusing other shapes and non-finite values.
+fn grid_points(array: &Bound<'_, PyAny>, what: &str) -> PyResult<(usize, usize, Vec<DVec3>)> {
+    let numpy = array.py().import("numpy")?;
+    let array = numpy.call_method1("asarray", (array, "float64"))?;
+    let array: PyReadonlyArray3<f64> = array.extract().map_err(|_| {
+        MeshError::new_err(format!(
+            "{what} must have shape (rows, cols, 3), got {}",
+            array
+                .getattr("shape")
+                .map_or_else(|_| "no shape".to_owned(), |s| s.to_string())
+        ))
+    })?;
+    let shape = array.shape();
+    let (rows, cols) = (shape[0], shape[1]);
+    if shape[2] != 3 {
+        return Err(MeshError::new_err(format!(
+            "{what} must have shape (rows, cols, 3), got ({rows}, {cols}, {})",
+            shape[2]
+        )));
+    }
+    let a = array.as_array();
+    let mut points = Vec::with_capacity(rows * cols);
+    for i in 0..rows {
+        for j in 0..cols {
+            let p = DVec3::new(a[[i, j, 0]], a[[i, j, 1]], a[[i, j, 2]]);
+            if !p.is_finite() {
+                return Err(MeshError::new_err(format!(
+                    "{what}[{i}, {j}] = {p} is not finite"
+                )));
+            }
+            points.push(p);
+        }
+    }
+    Ok((rows, cols, points))
+}
+
+/// The quad grid of a `Mesh`, a mesh file (OBJ, PLY or JSON), or arrays.
+fn grid_of(vertices: &Bound<'_, PyAny>, normals: Option<&Bound<'_, PyAny>>) -> PyResult<QuadGrid> {
+    if let Ok(mesh) = vertices.cast::<Mesh>() {
+        return Ok(mesh.get().geometry.grid().clone());
+    }
+    if let Ok(path) = vertices.extract::<PathBuf>() {
+        return read_mesh(&path).map_err(io_error);
+    }
+    let (rows, cols, points) = grid_points(vertices, "vertices")?;
+    let normals = match normals {
+        Some(n) => {
+            let (r, c, n) = grid_points(n, "normals")?;
+            if (r, c) != (rows, cols) {
+                return Err(MeshError::new_err(format!(
+                    "normals have shape ({r}, {c}, 3) but vertices ({rows}, {cols}, 3)"
+                )));
+            }
+            n
+        }
+        None => Vec::new(),
+    };
+    Ok(QuadGrid::new(rows, cols, points, normals))
+}
+
+/// Measures a quad mesh independently of how it was made (§2.2, §2.3), as
+/// `monge check`: face planarity, circularity (or, for `kind="conical"`, the
+/// conical condition at every vertex), row and column planarity, and with
+/// normals torsion and normal length; each `{"value": v, "at": (i, j)}`,
+/// lengths relative to the bounding-box diagonal `scale`.
+///
+/// `vertices` is a `Mesh`, a mesh file path, or an array (rows, cols, 3).
+#[pyfunction]
+#[pyo3(signature = (vertices, kind = None, normals = None))]
+pub fn check<'py>(
+    py: Python<'py>,
+    vertices: &Bound<'py, PyAny>,
+    kind: Option<&str>,
+    normals: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let default = match vertices.cast::<Mesh>() {
+        Ok(m) if matches!(m.get().geometry, Geometry::Conical(_)) => MeshKind::Conical,
+        _ => MeshKind::Circular,
+    };
+    let kind = parse_kind(kind, default)?;
+    let grid = grid_of(vertices, normals)?;
+    let (m, max_error) = measurements(&grid, kind);
+    let d = pythonize(py, &m)?.cast_into::<PyDict>()?;
+    if kind == MeshKind::Conical {
+        let conical = d.get_item("circularity")?;
+        d.del_item("circularity")?;
+        d.set_item("conical", conical)?;
+    }
+    d.set_item("max_error", max_error)?;
+    d.set_item("rows", grid.rows)?;
+    d.set_item("cols", grid.cols)?;
+    Ok(d.into_any())
+}
+
+/// The smooth C¹ surface (§4.4): the cyclidic net of Dupin cyclide patches on
+/// the circular mesh of a design (or on a circular `Mesh`), as `monge smooth`.
+///
+/// Returns `patches`, an array (rows − 1, cols − 1, K, K, 3) of each patch
+/// sampled on a K × K grid; `lines`, every curvature line as a chain of
+/// circular arcs (`center`, `radius`, `normal`, `start`, `end`, `sweep_deg`);
+/// and `nurbs`, the whole net as one exact degree-2 NURBS surface
+/// (`control_points` (R, C, 3), `weights` (R, C), `knots_u`, `knots_v`).
+#[pyfunction]
+#[pyo3(signature = (design, samples = 9, allow_folded = false))]
+pub fn smooth<'py>(
+    py: Python<'py>,
+    design: &Bound<'py, PyAny>,
+    samples: usize,
+    allow_folded: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (grid, context) =
+        if let Ok(mesh) = design.cast::<Mesh>() {
+            match &mesh.get().geometry {
+                Geometry::Circular(g) => (g.clone(), None),
+                Geometry::Conical(_) => return Err(SmoothError::new_err(
+                    "a cyclidic net (§4.4) is built on a circular mesh with node axes, not on a \
+                     conical mesh: pass the design, or generate(design, kind=\"circular\")",
+                )),
+            }
+        } else {
+            let design = design.cast::<Design>()?.borrow();
+            let g = generate(&design.inner, &GenerateOptions::default())
+                .map_err(|e| generate_error(design.context(), &e))?;
+            (g.grid, design.source.clone())
+        };
+    if !(2..=1000).contains(&samples) {
+        return Err(SmoothError::new_err(format!(
+            "samples = {samples}: give K in 2..=1000 (K × K points a patch)"
+        )));
+    }
+    let options = CyclidicOptions {
+        allow_folded,
+        ..CyclidicOptions::default()
+    };
+    let net = py
+        .detach(|| CyclidicNet::from_normals(&grid, &options))
+        .map_err(|e| {
+            let context = context.map(|c| format!("{c}: the cyclidic net"));
+            SmoothError::new_err(text(context.as_deref(), e))
+        })?;
+    let (rows, cols) = (net.rows() - 1, net.cols() - 1);
+    let points: Vec<DVec3> = (0..rows)
+        .flat_map(|i| (0..cols).map(move |j| (i, j)))
+        .flat_map(|(i, j)| net.sample_patch(i, j, samples))
+        .collect();
+    let lines = PyList::empty(py);
+    for line in net.curvature_lines() {
+        let arcs = PyList::empty(py);
+        for a in &line.arcs {
+            let arc = PyDict::new(py);
+            arc.set_item("center", a.center.to_array())?;
+            arc.set_item("radius", a.radius)?;
+            arc.set_item("normal", a.normal.to_array())?;
+            arc.set_item("start", a.start.to_array())?;
+            arc.set_item("end", a.end.to_array())?;
+            arc.set_item("sweep_deg", a.sweep().to_degrees())?;
+            arcs.append(arc)?;
+        }
+        let l = PyDict::new(py);
+        l.set_item(
+            "family",
+            match line.family {
+                Family::U => "u",
+                Family::V => "v",
+            },
+        )?;
+        l.set_item("index", line.index)?;
+        l.set_item("arcs", arcs)?;
+        lines.append(l)?;
+    }
+    let s = net.nurbs();
+    let nurbs = PyDict::new(py);
+    nurbs.set_item("degree", monge_core::cyclidic::NURBS_DEGREE)?;
+    nurbs.set_item(
+        "control_points",
+        points_array(py, &s.control_points, &[s.rows, s.cols])?,
+    )?;
+    nurbs.set_item(
+        "weights",
+        PyArray1::from_slice(py, &s.weights).reshape([s.rows, s.cols])?,
+    )?;
+    nurbs.set_item("knots_u", &s.knots_u)?;
+    nurbs.set_item("knots_v", &s.knots_v)?;
+    let d = PyDict::new(py);
+    d.set_item(
+        "patches",
+        points_array(py, &points, &[rows, cols, samples, samples])?,
+    )?;
+    d.set_item("lines", lines)?;
+    d.set_item("nurbs", nurbs)?;
+    Ok(d)
+}
+
+/// Everything a fabricator needs (§6), as `monge fabricate`: the contents of its
+/// `schedule.json` (`summary`, `layers` (distances), `panels`, `beams`, `nodes`,
+/// lists of dicts), and `layer_vertices`, each layer's vertices (rows, cols, 3):
+/// node offsets of a circular mesh, face offsets of a conical one.
+/// `radius_tol` defaults to `tol`; `angle_tol_deg` is in degrees.
+#[pyfunction]
+#[pyo3(signature = (design, layers = vec![0.0], tol = 1e-9, radius_tol = None, angle_tol_deg = 1e-4))]
+pub fn fabricate<'py>(
+    py: Python<'py>,
+    design: &Design,
+    layers: Vec<f64>,
+    tol: f64,
+    radius_tol: Option<f64>,
+    angle_tol_deg: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let context = design.context();
+    let options = FabricationOptions {
+        layers,
+        tol,
+        radius_tol: radius_tol.unwrap_or(tol),
+        angle_tol: angle_tol_deg.to_radians(),
+    };
+    let f = py.detach(|| {
+        let grid = generate(&design.inner, &GenerateOptions::default())
+            .map_err(|e| generate_error(context, &e))?
+            .grid;
+        let conical = (design.inner.mesh == MeshKind::Conical).then(|| conical_dual(&grid));
+        let base = match &conical {
+            Some(c) => BaseMesh::Conical(c),
+            None => BaseMesh::Circular(&grid),
+        };
+        core_fabricate(base, &options).map_err(|e| FabricationError::new_err(text(context, e)))
+    })?;
+    let mut schedule = Vec::new();
+    write_schedule_json(&f, &mut schedule)
+        .map_err(|e| FabricationError::new_err(format!("cannot write the schedule: {e}")))?;
+    let d = py
+        .import("json")?
+        .call_method1("loads", (PyBytes::new(py, &schedule),))?
+        .cast_into::<PyDict>()?;
+    let meshes = PyList::empty(py);
+    for layer in &f.layers {
+        let g = &layer.grid;
+        meshes.append(points_array(py, &g.vertices, &[g.rows, g.cols])?)?;
+    }
+    d.set_item("layer_vertices", meshes)?;
+    Ok(d)
+}
+
+/// The design-space scan of §4.3 (Figure 14), as `monge scan`: the design
+/// generated at every value of `param` (`"theta"`, or a path such as
+/// `"guide_v.bspline.control_points[2][2]"`), in parallel on all cores with the
+/// GIL released. Returns columns: `value`, `status` (fair, folded,
+/// inadmissible, degenerate, invalid), `folded_faces`, `min_crossing_sine`,
+/// `area_min`, `area_max`, `area_mean`, `area_variance`, `max_edge`,
+/// `max_error` (NaN without a mesh), `error` (the generator's message or None).
+#[pyfunction]
+#[pyo3(signature = (design, values, param = "theta"))]
+pub fn scan<'py>(
+    py: Python<'py>,
+    design: &Design,
+    values: Vec<f64>,
+    param: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = py
+        .detach(|| {
+            core_scan(
+                &design.inner,
+                param,
+                &values,
+                &GenerateOptions::default(),
+                &|| {},
+            )
+        })
+        .map_err(|e| ScanError::new_err(text(design.context(), e)))?;
+    let column = |f: &dyn Fn(&monge_core::scan::ScanRow) -> f64| -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_iter(py, s.rows.iter().map(f))
+    };
+    let panel = |f: fn(&monge_core::scan::PanelStats) -> f64| {
+        column(&move |r| r.panels.as_ref().map_or(f64::NAN, f))
+    };
+    let d = PyDict::new(py);
+    d.set_item("parameter", &s.parameter)?;
+    d.set_item("value", column(&|r| r.value))?;
+    let status: Vec<&str> = s.rows.iter().map(|r| r.status.name()).collect();
+    d.set_item("status", status)?;
+    let folded: Vec<usize> = s.rows.iter().map(|r| r.folded_faces).collect();
+    d.set_item("folded_faces", PyArray1::from_vec(py, folded))?;
+    d.set_item("min_crossing_sine", column(&|r| r.min_crossing_sine))?;
+    d.set_item("area_min", panel(|p| p.area_min))?;
+    d.set_item("area_max", panel(|p| p.area_max))?;
+    d.set_item("area_mean", panel(|p| p.area_mean))?;
+    d.set_item("area_variance", panel(|p| p.area_variance))?;
+    d.set_item("max_edge", panel(|p| p.max_edge))?;
+    d.set_item("max_error", column(&|r| r.max_error))?;
+    let errors: Vec<Option<&str>> = s.rows.iter().map(|r| r.error.as_deref()).collect();
+    d.set_item("error", errors)?;
+    Ok(d)
+}
+
+/// Panel-size optimisation (§4.8, Figure 22), as `monge optimise-panels`:
+/// chooses where the `bspline` guides are sampled to make the panel areas as
+/// even as possible. Returns the optimised `design` (a `Design`), panel
+/// statistics `before` and `after`, its measured `max_error`, `folded_faces`,
+/// BOBYQA's `evaluations` and `status`.
+#[pyfunction]
+#[pyo3(signature = (design, max_gap_ratio = 8.0, max_evaluations = None))]
+pub fn optimise_panels<'py>(
+    py: Python<'py>,
+    design: &Design,
+    max_gap_ratio: f64,
+    max_evaluations: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let options = PanelOptions {
+        max_gap_ratio,
+        max_evaluations,
+    };
+    let r = py
+        .detach(|| core_optimise_panels(&design.inner, &GenerateOptions::default(), &options))
+        .map_err(|e| OptimiseError::new_err(text(design.context(), e)))?;
+    let d = PyDict::new(py);
+    let optimised = Design {
+        inner: r.design,
+        source: None,
+    };
+    d.set_item("design", Bound::new(py, optimised)?)?;
+    d.set_item("before", pythonize(py, &r.before)?)?;
+    d.set_item("after", pythonize(py, &r.after)?)?;
+    d.set_item("max_error", r.max_error)?;
+    d.set_item("folded_faces", r.folded_faces)?;
+    d.set_item("evaluations", r.evaluations)?;
+    d.set_item("status", r.status)?;
+    Ok(d)
+}
+
+/// Fits θ of chosen patches (and guide coordinates) of a multi-patch design
+/// (§4.7) so that a patch boundary reaches a target, with BOBYQA, as `monge
+/// fit`. `design` is a `.patches.json`/`.toml` path or a dict of that format.
+/// Returns the fitted `design` (a dict of the format), the fitted mesh's
+/// `vertices` and `normals` (rows, cols, 3), the distance to the target
+/// `before` and `after`, the fitted `values` (name, start, end, bounds),
+/// `evaluations` and `status`.
+#[pyfunction]
+pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    let (spec, context) = match design.extract::<PathBuf>() {
+        Ok(path) => (
+            read_multipatch(&path).map_err(io_error)?,
+            Some(path.display().to_string()),
+        ),
+        Err(_) => (
+            parse_multipatch(&dict_to_json(design)?, DesignFormat::Json).map_err(io_error)?,
+            None,
+        ),
+    };
+    let r = py
+        .detach(|| core_fit(&spec, &GenerateOptions::default()))
+        .map_err(|e| OptimiseError::new_err(text(context.as_deref(), e)))?;
+    let g = &r.mesh.grid;
+    let values = PyList::empty(py);
+    for (name, start, end, bounds) in &r.values {
+        let v = PyDict::new(py);
+        v.set_item("name", name)?;
+        v.set_item("start", start)?;
+        v.set_item("end", end)?;
+        v.set_item("bounds", bounds.to_vec())?;
+        values.append(v)?;
+    }
+    let d = PyDict::new(py);
+    d.set_item("design", json_to_python(py, &r.design)?)?;
+    d.set_item(
+        "vertices",
+        points_array(py, &g.vertices, &[g.rows, g.cols])?,
+    )?;
+    d.set_item("normals", points_array(py, &g.normals, &[g.rows, g.cols])?)?;
+    d.set_item("before", pythonize(py, &r.before)?)?;
+    d.set_item("after", pythonize(py, &r.after)?)?;
+    d.set_item("values", values)?;
+    d.set_item("evaluations", r.evaluations)?;
+    d.set_item("status", r.status)?;
+    Ok(d)
+}

@@ -1,0 +1,170 @@
+"""Errors: every exception class of monge, raised with the message that the
+`monge` command prints for the same input (after its `error: `)."""
+
+import json
+
+import numpy as np
+import pytest
+
+import monge
+from conftest import example
+
+DUPIN = example("fig12-dupin-theta30.json")
+
+
+def dupin(**changes):
+    d = json.loads(open(DUPIN).read())
+    d.update(changes)
+    return d
+
+
+def write(tmp_path, name, data):
+    path = tmp_path / name
+    path.write_text(data if isinstance(data, str) else json.dumps(data, indent=2))
+    return str(path)
+
+
+def test_hierarchy():
+    for cls in [monge.FileError, monge.DesignError, monge.DegenerateError, monge.MeshError,
+                monge.SmoothError, monge.FabricationError, monge.ScanError, monge.OptimiseError]:
+        assert issubclass(cls, monge.MongeError)
+    assert issubclass(monge.ThetaError, monge.DesignError)
+    assert issubclass(monge.MongeError, Exception)
+
+
+def test_missing_file_is_a_file_error(tmp_path, cli_error):
+    path = str(tmp_path / "missing.json")
+    with pytest.raises(monge.FileError) as e:
+        monge.Design.from_file(path)
+    assert str(e.value) == cli_error("info", path)
+
+
+def test_unknown_key_is_a_design_error_located_like_the_command(tmp_path, cli_error):
+    path = write(tmp_path, "typo.json", '{"thetadeg": 30,\n "guide_u": {}, "guide_v": {}}\n')
+    with pytest.raises(monge.DesignError) as e:
+        monge.Design.from_file(path)
+    assert str(e.value) == cli_error("info", path)
+    assert "unknown field `thetadeg`" in str(e.value) and ":1:" in str(e.value)
+
+
+def test_unknown_extension_is_a_design_error(tmp_path, cli_error):
+    path = write(tmp_path, "design.yaml", "theta_deg: 30\n")
+    with pytest.raises(monge.DesignError) as e:
+        monge.Design.from_file(path)
+    assert str(e.value) == cli_error("info", path)
+
+
+def test_from_dict_errors_name_the_key():
+    with pytest.raises(monge.DesignError, match="unknown field `thetadeg`"):
+        monge.Design.from_dict({"thetadeg": 30})
+    with pytest.raises(monge.DesignError, match="not JSON-like"):
+        monge.Design.from_dict(dupin(theta_deg=object()))
+    with pytest.raises(monge.DesignError, match="not JSON-like"):
+        monge.Design.from_dict(dupin(theta_deg=float("nan")))
+
+
+def test_invalid_guides_are_design_errors_with_the_commands_message(tmp_path, cli_error):
+    d = dupin()
+    d["guide_v"]["arc"]["normal"] = [-1, 0.2, 0]  # start tangents no longer at 90°
+    path = write(tmp_path, "skew.json", d)
+    with pytest.raises(monge.DesignError) as e:
+        monge.generate(monge.Design.from_file(path))
+    assert type(e.value) is monge.DesignError
+    assert str(e.value) == cli_error("generate", path, "-o", tmp_path / "out.obj")
+    assert str(e.value).startswith(path + ": the guides must meet at 90°")
+    with pytest.raises(monge.DesignError) as e:
+        monge.info(monge.Design.from_file(path))
+    assert str(e.value) == cli_error("info", path)
+    assert not (tmp_path / "out.obj").exists()
+
+
+def arbitrary(theta_deg):
+    d = json.loads(open(example("fig10-arbitrary.json")).read())
+    d["theta_deg"] = theta_deg
+    return d
+
+
+@pytest.mark.parametrize(
+    "design, error, fragment",
+    [
+        (dupin(theta_deg=90), monge.ThetaError, "is singular"),
+        # fig10 is in the arbitrary mode (§3.2): θ = 1° is below its admissible range
+        (arbitrary(1), monge.ThetaError, "is not admissible"),
+        (dupin(theta_deg=180), monge.DegenerateError, "cannot be built past face"),
+    ],
+)
+def test_generation_errors_have_the_commands_message(design, error, fragment, tmp_path, cli_error):
+    path = write(tmp_path, "design.json", design)
+    with pytest.raises(error) as e:
+        monge.generate(monge.Design.from_file(path))
+    assert str(e.value) == cli_error("generate", path, "-o", tmp_path / "out.obj")
+    assert fragment in str(e.value)
+
+
+def test_bad_arrays_and_mesh_files_are_mesh_errors(tmp_path, cli_error):
+    with pytest.raises(monge.MeshError, match=r"shape \(rows, cols, 3\), got \(3, 3, 2\)"):
+        monge.check(np.zeros((3, 3, 2)))
+    with pytest.raises(monge.MeshError, match=r"shape \(rows, cols, 3\), got \(9,\)"):
+        monge.check(np.zeros(9))
+    v = np.zeros((2, 2, 3))
+    v[1, 0, 2] = np.inf
+    with pytest.raises(monge.MeshError, match=r"vertices\[1, 0\] = .* is not finite"):
+        monge.check(v)
+    with pytest.raises(monge.MeshError, match=r"normals have shape \(2, 3, 3\)"):
+        monge.check(np.zeros((2, 2, 3)), normals=np.zeros((2, 3, 3)))
+    path = write(tmp_path, "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 x\n")
+    with pytest.raises(monge.MeshError) as e:
+        monge.check(path)
+    assert str(e.value) == cli_error("check", path)
+
+
+def test_offsets_must_be_finite():
+    mesh = monge.generate(monge.Design.from_file(DUPIN))
+    with pytest.raises(monge.DesignError, match="finite"):
+        mesh.offset(float("inf"))
+
+
+def test_smooth_errors(tmp_path, cli_error):
+    # θ = −150° folds this design (§5.2): the cyclidic net refuses folded quads
+    path = write(tmp_path, "folded.json", dupin(theta_deg=-150))
+    with pytest.raises(monge.SmoothError) as e:
+        monge.smooth(monge.Design.from_file(path))
+    assert str(e.value) == cli_error("smooth", path, "-o", tmp_path / "net.json")
+    with pytest.raises(monge.SmoothError, match="samples = 1"):
+        monge.smooth(monge.Design.from_file(DUPIN), samples=1)
+    conical = monge.generate(monge.Design.from_file(DUPIN), kind="conical")
+    with pytest.raises(monge.SmoothError, match="not on a conical mesh"):
+        monge.smooth(conical)
+
+
+def test_fabrication_errors():
+    design = monge.Design.from_file(DUPIN)
+    with pytest.raises(monge.FabricationError, match=r"^.*fig12-dupin-theta30.json: no layer"):
+        monge.fabricate(design, layers=[])
+    with pytest.raises(monge.FabricationError, match="tolerance `tol` is -1"):
+        monge.fabricate(design, tol=-1.0)
+
+
+def test_scan_errors(tmp_path, cli_error):
+    design = monge.Design.from_file(DUPIN)
+    with pytest.raises(monge.ScanError) as e:
+        monge.scan(design, [0.0, 1.0], param="guide_u.spline.degree")
+    expected = cli_error("scan", DUPIN, "--param", "guide_u.spline.degree", "--range", "0:1:1",
+                         "-o", tmp_path / "scan.csv")
+    assert str(e.value) == expected
+    assert not (tmp_path / "scan.csv").exists()
+
+
+def test_optimise_errors(tmp_path, cli_error):
+    with pytest.raises(monge.OptimiseError) as e:
+        monge.optimise_panels(monge.Design.from_file(DUPIN))
+    assert str(e.value) == cli_error("optimise-panels", DUPIN, "-o", tmp_path / "o.json")
+    assert "neither guide is a `bspline`" in str(e.value)
+    patches = json.loads(open(example("fig20-piecewise.patches.json")).read())
+    patches.pop("fit", None)
+    path = write(tmp_path, "nofit.patches.json", patches)
+    with pytest.raises(monge.OptimiseError) as e:
+        monge.fit(path)
+    assert str(e.value) == cli_error("fit", path, "-o", tmp_path / "f.json")
+    with pytest.raises(monge.OptimiseError):
+        monge.fit(patches)

@@ -1,0 +1,52 @@
+"""A Hops endpoint serving monge.generate (for Rhino 7 and 8 Grasshopper).
+
+    pip install monge[rhino] ghhops-server flask
+    python examples/grasshopper/hops_server.py          # http://127.0.0.1:5000/
+
+In Grasshopper, place a Hops component and set its path to
+http://127.0.0.1:5000/monge_generate: it takes two curves, θ and the number of
+samples, and returns the mesh, its Gauss map and the metrics (or the error).
+"""
+
+import sys
+
+import ghhops_server as hs
+from flask import Flask
+
+import monge
+import monge.grasshopper as mgh
+import monge.rhino
+
+app = Flask(__name__)
+hops = hs.Hops(app)
+
+
+@hops.component(
+    "/monge_generate",
+    name="monge generate",
+    nickname="monge",
+    description="Exact circular quad mesh with planar curvature lines from two planar guides and θ",
+    inputs=[
+        hs.HopsCurve("GuideU", "U", "First guide; starts at the common corner"),
+        hs.HopsCurve("GuideV", "V", "Second guide; starts at the same corner, at 90°"),
+        hs.HopsNumber("Theta", "θ", "θ in degrees (§3.1, §3.2)"),
+        hs.HopsInteger("Samples", "N", "Samples per guide"),
+    ],
+    outputs=[
+        hs.HopsMesh("Mesh", "M", "The quad mesh, node axes as vertex normals"),
+        hs.HopsMesh("Gauss", "G", "The Gauss map: node axes on the unit sphere"),
+        hs.HopsString("Metrics", "I", "Mode, admissible θ, folds, measured errors"),
+    ],
+)
+def monge_generate(guide_u, guide_v, theta, samples=21):
+    try:
+        r = mgh.solve(guide_u, guide_v, theta, samples)
+    except monge.MongeError as e:
+        return None, None, [f"error: {e}"]
+    mesh = r["mesh"]
+    return monge.rhino.rhino_mesh(mesh), monge.rhino.gauss_mesh(mesh), r["metrics"]
+
+
+if __name__ == "__main__":
+    port = int(sys.argv[1]) if len(sys.argv) > 1 else 5000
+    app.run(host="127.0.0.1", port=port)

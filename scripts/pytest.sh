@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The Python package's tests: builds the abi3 wheel of crates/monge-py with
+# maturin in a virtual environment (target/venv, created if missing), installs
+# it, and runs pytest over crates/monge-py/tests against the `monge` binary
+# built by cargo (the tests compare the package's output with the command's).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+target="$(cargo metadata --format-version 1 --no-deps | python3 -c 'import json,sys; print(json.load(sys.stdin)["target_directory"])')"
+venv="$target/venv"
+if [ ! -x "$venv/bin/python" ]; then
+  python3 -m venv "$venv"
+fi
+# Blender as a Python module (about 370 MB) for the Blender tests, first: it
+# pins numpy < 2, which then also satisfies the rest. The package index has it
+# for one CPython version at a time (3.11 for bpy 4.1–5.0).
+"$venv/bin/python" -m pip install --quiet bpy ||
+  echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
+"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask
+
+echo "== wheel (maturin build --release)"
+rm -rf "$target/wheels"
+(cd crates/monge-py && "$venv/bin/maturin" build --release --locked --out "$target/wheels")
+wheel="$(ls "$target"/wheels/monge-*.whl)"
+case "$(basename "$wheel")" in
+  *-cp39-abi3-*) echo "wheel: $(basename "$wheel") (abi3, CPython ≥ 3.9)" ;;
+  *) echo "error: $(basename "$wheel") is not an abi3 wheel for CPython ≥ 3.9" >&2; exit 2 ;;
+esac
+"$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps "$wheel"
+
+echo "== pytest"
+cargo build --quiet --locked -p monge-cli
+export MONGE_BIN="$target/debug/monge"
+# Run from outside the source tree so that the installed wheel is imported.
+cd "$target"
+"$venv/bin/python" -m pytest -q "$OLDPWD/crates/monge-py/tests" "$@"
