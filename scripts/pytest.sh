@@ -18,9 +18,12 @@ fi
   echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
 "$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask
 
-echo "== wheel (maturin build --release)"
+# A debug wheel by default: it reuses what `cargo test` just built, and the tests
+# are small (MONGE_WHEEL_PROFILE=--release builds the wheel that users get).
+profile="${MONGE_WHEEL_PROFILE:-}"
+echo "== wheel (maturin build ${profile:-(debug)})"
 rm -rf "$target/wheels"
-(cd crates/monge-py && "$venv/bin/maturin" build --release --locked --out "$target/wheels")
+(cd crates/monge-py && "$venv/bin/maturin" build $profile --locked --out "$target/wheels")
 wheel="$(ls "$target"/wheels/monge-*.whl)"
 case "$(basename "$wheel")" in
   *-cp39-abi3-*) echo "wheel: $(basename "$wheel") (abi3, CPython ≥ 3.9)" ;;

@@ -144,7 +144,9 @@ fn grid_of(vertices: &Bound<'_, PyAny>, normals: Option<&Bound<'_, PyAny>>) -> P
 /// `monge check`: face planarity, circularity (or, for `kind="conical"`, the
 /// conical condition at every vertex), row and column planarity, and with
 /// normals torsion and normal length; each `{"value": v, "at": (i, j)}`,
-/// lengths relative to the bounding-box diagonal `scale`.
+/// lengths relative to the bounding-box diagonal `scale`; and `folded_faces`
+/// (§5.2: crossed, non-convex or turned-over faces), `{"value": count, "at":
+/// first folded face or None}`, which must be 0.
 ///
 /// `vertices` is a `Mesh`, a mesh file path, or an array (rows, cols, 3).
 #[pyfunction]
@@ -168,6 +170,11 @@ pub fn check<'py>(
         d.del_item("circularity")?;
         d.set_item("conical", conical)?;
     }
+    let folded = PyDict::new(py);
+    folded.set_item("value", m.folded_faces)?;
+    folded.set_item("at", m.first_fold)?;
+    d.set_item("folded_faces", folded)?;
+    d.del_item("first_fold")?;
     d.set_item("max_error", max_error)?;
     d.set_item("rows", grid.rows)?;
     d.set_item("cols", grid.cols)?;

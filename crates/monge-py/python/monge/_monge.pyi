@@ -109,7 +109,7 @@ def check(
     kind: Optional[Kind] = None,
     normals: Optional[npt.ArrayLike] = None,
 ) -> Dict[str, Any]:
-    """Independent measurements of a quad mesh (§2.2, §2.3), as ``monge check``."""
+    """Independent measurements of a quad mesh (§2.2, §2.3) and its folded faces (§5.2), as ``monge check``."""
 
 def smooth(design: Union[Design, Mesh], samples: int = 9, allow_folded: bool = False) -> Dict[str, Any]:
     """The cyclidic net (§4.4): patches, curvature lines as arcs, one NURBS surface."""

@@ -50,8 +50,9 @@ def metrics_text(mesh, design):
         f"smallest crossing sine: {mesh.report['min_crossing_sine']:.3g}",
     ]
     for key, value in check(mesh).items():
-        if isinstance(value, dict):
-            lines.append(f"{key}: {value['value']:.2e} at {tuple(value['at'])}")
+        if key == "folded_faces" or not isinstance(value, dict):
+            continue  # the folds are the generator's report, above
+        lines.append(f"{key}: {value['value']:.2e} at {tuple(value['at'])}")
     return lines
 
 
