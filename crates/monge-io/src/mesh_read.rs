@@ -311,16 +311,18 @@ fn parse_obj(text: &str, file: &str) -> Result<RawMesh, IoError> {
             Some("v") => raw.vertices.push(parse_xyz(&mut tokens).map_err(syntax)?),
             Some("vn") => raw.normals.push(parse_xyz(&mut tokens).map_err(syntax)?),
             Some("f") => {
-                let corners: Vec<&str> = tokens.collect();
-                if corners.len() != 4 {
-                    return Err(syntax(format!(
-                        "a face with {} corners; a quad grid has faces with 4",
-                        corners.len()
-                    )));
-                }
                 let mut face = [0; 4];
-                for (slot, corner) in face.iter_mut().zip(corners) {
-                    *slot = obj_corner(corner, raw.vertices.len()).map_err(syntax)?;
+                let mut corners = 0;
+                for corner in tokens {
+                    if let Some(slot) = face.get_mut(corners) {
+                        *slot = obj_corner(corner, raw.vertices.len()).map_err(syntax)?;
+                    }
+                    corners += 1;
+                }
+                if corners != 4 {
+                    return Err(syntax(format!(
+                        "a face with {corners} corners; a quad grid has faces with 4"
+                    )));
                 }
                 raw.faces.push(face);
             }
