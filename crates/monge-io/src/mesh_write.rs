@@ -196,7 +196,7 @@ pub fn write_ply<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
 /// monge_io::write_ply_binary(&grid, false, &mut out).unwrap();
 /// let body = out.len() - 4 * 3 * 8 - (1 + 4 * 4);
 /// assert!(out[..body].ends_with(b"end_header\n"));
-/// assert_eq!(out[body + 3 * 8..body + 4 * 8], 1.0f64.to_le_bytes()); // vertex 1's y
+/// assert_eq!(out[body + 4 * 8..body + 5 * 8], 1.0f64.to_le_bytes()); // vertex 1's y
 /// ```
 pub fn write_ply_binary<W: Write + ?Sized>(
     grid: &QuadGrid,
