@@ -56,7 +56,8 @@ pub enum Command {
             "Generate the mesh of a design and write it as OBJ, PLY or JSON.\n\n\
              Reads DESIGN (`.json` or `.toml`), validates it (guides planar, starting at the same \
              point, meeting at 90°, θ admissible), builds the mesh exactly (§3) and writes it to OUT \
-             in the format of OUT's extension (`.obj`, `.ply` or `.json`), atomically: on any error \
+             in the format of OUT's extension (`.obj`, `.ply` or `.json`; `--format ply-binary` \
+             or `ply-f32` for binary PLY with double or float coordinates), atomically: on any error \
              no file is created and an existing OUT is left untouched. JSON output has, besides \
              `rows`, `cols`, `vertices` and `normals`, the keys `theta_deg`, `mode` and `report` \
              (folded faces, first fold, smallest crossing sine). A one-paragraph summary (grid \
@@ -403,6 +404,10 @@ pub enum FormatArg {
     Obj,
     /// ASCII PLY.
     Ply,
+    /// Binary little-endian PLY, `double` coordinates (exact; `.ply`).
+    PlyBinary,
+    /// Binary little-endian PLY, `float` coordinates (f32, for viewers; `.ply`).
+    PlyF32,
     /// JSON (`rows`, `cols`, `vertices`, `normals`).
     Json,
     /// Binary glTF, for viewers (f32 coordinates; not read back by `check`).
@@ -419,8 +424,9 @@ pub fn output_format(format: Option<FormatArg>, out: &Path) -> anyhow::Result<Me
         return Ok(MeshFormat::from_path(out)?);
     };
     match MeshFormat::from_path(out) {
-        Ok(by_extension) if by_extension != format => anyhow::bail!(
-            "--format {f} but OUT `{}` ends in `.{}`: name it `.{f}`, or leave --format out",
+        Ok(by_extension) if by_extension.extension() != format.extension() => anyhow::bail!(
+            "--format {} but OUT `{}` ends in `.{}`: name it `.{f}`, or leave --format out",
+            format.name(),
             out.display(),
             by_extension.extension(),
             f = format.extension()
@@ -434,7 +440,7 @@ pub fn output_format(format: Option<FormatArg>, out: &Path) -> anyhow::Result<Me
 pub enum ReadFormatArg {
     /// Wavefront OBJ.
     Obj,
-    /// ASCII PLY.
+    /// PLY, ASCII or binary little-endian.
     Ply,
     /// JSON (`rows`, `cols`, `vertices`, `normals`).
     Json,
@@ -455,6 +461,8 @@ impl From<FormatArg> for MeshFormat {
         match f {
             FormatArg::Obj => MeshFormat::Obj,
             FormatArg::Ply => MeshFormat::Ply,
+            FormatArg::PlyBinary => MeshFormat::PlyBinary,
+            FormatArg::PlyF32 => MeshFormat::PlyF32,
             FormatArg::Json => MeshFormat::Json,
             FormatArg::Glb => MeshFormat::Glb,
         }

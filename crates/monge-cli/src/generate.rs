@@ -1,5 +1,6 @@
 //! `monge generate`: design file → mesh file.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -74,17 +75,23 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
 }
 
 /// One mesh to write: the design's mesh or one of its offsets.
-struct Layer {
+struct Layer<'a> {
     /// The offset distance (0 for the mesh itself).
     offset: f64,
-    grid: QuadGrid,
+    /// Borrowed for the mesh itself (no copy of a large grid), owned for an offset.
+    grid: Cow<'a, QuadGrid>,
     /// Keys of the JSON output that describe this layer.
     extra: Map<String, Value>,
 }
 
-impl Layer {
+impl<'a> Layer<'a> {
     /// The layer at distance `offset`, of `kind`, with its face normals if any.
-    fn new(offset: f64, grid: QuadGrid, kind: &str, face_normals: Option<&[DVec3]>) -> Layer {
+    fn new(
+        offset: f64,
+        grid: Cow<'a, QuadGrid>,
+        kind: &str,
+        face_normals: Option<&[DVec3]>,
+    ) -> Layer<'a> {
         let mut extra = Map::new();
         extra.insert("kind".into(), json!(kind));
         extra.insert("offset".into(), json!(offset));
@@ -101,19 +108,24 @@ impl Layer {
 }
 
 /// The design's mesh (circular, or its conical dual) and its offsets (§2.2, §2.3).
-fn layers(g: &Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer> {
+fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer<'a>> {
     let layer = Layer::new;
     let distances = std::iter::once(0.0).chain(offsets.iter().copied());
     match kind {
         MeshKind::Circular => distances
-            .map(|d| layer(d, vertex_offset(&g.grid, d), "circular", None))
+            .map(|d| layer(d, node_offset(&g.grid, d), "circular", None))
             .collect(),
         MeshKind::Conical => {
             let conical = conical_dual(&g.grid);
             distances
                 .map(|d| {
                     let o = face_offset(&conical, d);
-                    layer(d, o.grid, "conical", Some(&conical.face_normals))
+                    layer(
+                        d,
+                        Cow::Owned(o.grid),
+                        "conical",
+                        Some(&conical.face_normals),
+                    )
                 })
                 .collect()
         }
@@ -162,7 +174,7 @@ fn run_developable(
     let generation = start.elapsed().as_secs_f64();
     let layers: Vec<Layer> = std::iter::once(0.0)
         .chain(args.offsets.iter().copied())
-        .map(|d| Layer::new(d, vertex_offset(&mesh.grid, d), "developable", None))
+        .map(|d| Layer::new(d, node_offset(&mesh.grid, d), "developable", None))
         .collect();
     let mut extra = Map::new();
     extra.insert("alpha_deg".into(), json!(mesh.alpha_deg));
@@ -183,6 +195,15 @@ fn run_developable(
     ));
     eprint(&far_from_origin_warning(&g.vertices).unwrap_or_default());
     Ok(Outcome::Success)
+}
+
+/// The node offset of `grid` at distance `d` (§2.2); the grid itself, not a copy, at 0.
+fn node_offset(grid: &QuadGrid, d: f64) -> Cow<'_, QuadGrid> {
+    if d == 0.0 {
+        Cow::Borrowed(grid)
+    } else {
+        Cow::Owned(vertex_offset(grid, d))
+    }
 }
 
 /// `dir/stem.offset+D.ext` (or `-D`) for OUT = `dir/stem.ext`.

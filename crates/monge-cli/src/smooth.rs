@@ -136,7 +136,8 @@ fn estimate(output: &SmoothOutput, rows: usize, cols: usize, k: usize) -> (Strin
         SmoothOutput::Mesh(format) => {
             let (dr, dc) = (fr * (k - 1) + 1, fc * (k - 1) + 1);
             let per_vertex = match format {
-                MeshFormat::Glb => 40.0,
+                MeshFormat::Glb | MeshFormat::PlyF32 => 40.0,
+                MeshFormat::PlyBinary => 70.0,
                 MeshFormat::Ply => 150.0,
                 MeshFormat::Obj | MeshFormat::Json => 190.0,
             };

@@ -52,6 +52,62 @@ fn required_examples_generate_to_every_format_and_pass_check() {
 }
 
 #[test]
+fn binary_ply_generates_and_passes_check_and_a_wrong_extension_is_refused() {
+    let dir = TempDir::new().unwrap();
+    let design = example("fig13-freeform.json");
+    let (ascii, binary) = (dir.path().join("a.ply"), dir.path().join("b.ply"));
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&ascii)
+        .assert()
+        .success();
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&binary)
+        .args(["--format", "ply-binary"])
+        .assert()
+        .success();
+    let bytes = fs::read(&binary).unwrap();
+    assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\n"));
+    assert!(bytes.len() < fs::metadata(&ascii).unwrap().len() as usize);
+    monge()
+        .arg("check")
+        .arg(&binary)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("PASS: every metric"));
+    // From standard input as well.
+    monge()
+        .args(["check", "-", "--format", "ply"])
+        .write_stdin(bytes)
+        .assert()
+        .success();
+    // f32 to standard output.
+    let out = monge()
+        .arg("generate")
+        .arg(&design)
+        .args(["-o", "-", "--format", "ply-f32"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(out.stdout.windows(17).any(|w| w == b"property float x\n"));
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(dir.path().join("c.obj"))
+        .args(["--format", "ply-binary"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--format ply-binary but OUT"))
+        .stderr(predicate::str::contains("name it `.ply`"));
+}
+
+#[test]
 fn every_other_example_either_passes_check_or_fails_cleanly() {
     let dir = TempDir::new().unwrap();
     for entry in fs::read_dir(examples()).unwrap() {

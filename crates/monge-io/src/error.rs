@@ -126,6 +126,17 @@ pub enum IoError {
         message: String,
     },
 
+    /// The binary body of a PLY file cannot be understood.
+    #[error("{file}: byte {offset} (in the binary body): {message}")]
+    Binary {
+        /// The file name.
+        file: String,
+        /// 0-based byte offset in the file.
+        offset: usize,
+        /// What is wrong.
+        message: String,
+    },
+
     /// A count in a mesh file does not match the grid shape.
     #[error("{file}: {what}: expected {expected}, found {found}")]
     CountMismatch {

@@ -38,6 +38,7 @@ mod mesh_write;
 mod multipatch;
 mod schedule;
 mod svg;
+mod text;
 
 use std::io;
 use std::path::Path;
@@ -55,7 +56,8 @@ pub use iges::{read_iges_surfaces, write_iges, IgesSurface};
 pub use kind::FileKind;
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
-    write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, MeshFormat, MESH_JSON_KEYS,
+    write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, write_ply_binary, MeshFormat,
+    MESH_JSON_KEYS,
 };
 pub use multipatch::{
     parse_multipatch, read_multipatch, read_planes, write_multipatch, write_quad_mesh,
@@ -69,7 +71,12 @@ pub use svg::write_overview_svg;
 
 /// The whole file as text; [`IoError::NotFound`] or [`IoError::Read`] naming it.
 fn read_to_string(path: &Path) -> Result<String, IoError> {
-    std::fs::read_to_string(path).map_err(|source| match source.kind() {
+    std::fs::read_to_string(path).map_err(|source| read_error(path, source))
+}
+
+/// [`IoError::NotFound`] or [`IoError::Read`] naming `path`.
+fn read_error(path: &Path, source: io::Error) -> IoError {
+    match source.kind() {
         io::ErrorKind::NotFound => IoError::NotFound {
             path: path.to_owned(),
         },
@@ -77,7 +84,7 @@ fn read_to_string(path: &Path) -> Result<String, IoError> {
             path: path.to_owned(),
             source,
         },
-    })
+    }
 }
 
 /// The path as shown in error messages.

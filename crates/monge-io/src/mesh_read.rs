@@ -1,5 +1,6 @@
-//! Mesh readers: the JSON, OBJ and ASCII PLY files written by this crate, and
-//! OBJ/PLY quad grids from elsewhere whose vertices are in row-major order.
+//! Mesh readers: the JSON, OBJ and PLY (ASCII or binary little-endian) files
+//! written by this crate, and OBJ/PLY quad grids from elsewhere whose vertices
+//! are in row-major order.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -18,8 +19,9 @@ use crate::path_name;
 ///
 /// * JSON: `rows`, `cols`, `vertices` and optional `normals`; other keys are ignored.
 /// * OBJ: `v`, optional `vn` (one per vertex, in vertex order) and quad `f` lines.
-/// * PLY (ASCII): a `vertex` element with `x y z` and optional `nx ny nz`, and a
-///   `face` element with `vertex_indices` (or `vertex_index`).
+/// * PLY (ASCII or `binary_little_endian`, any PLY scalar types): a `vertex`
+///   element with `x y z` and optional `nx ny nz`, and a `face` element with
+///   `vertex_indices` (or `vertex_index`).
 ///
 /// For OBJ and PLY the grid shape comes from the comment `monge quad grid
 /// rows=R cols=C` if present, else from the first face, which must be
@@ -32,8 +34,8 @@ pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
     if format == MeshFormat::Glb {
         return Err(not_readable(&path_name(path)));
     }
-    let text = crate::read_to_string(path)?;
-    parse_mesh(&text, format, &path_name(path))
+    let bytes = std::fs::read(path).map_err(|source| crate::read_error(path, source))?;
+    parse_mesh(&bytes, format, &path_name(path))
 }
 
 /// Reads a quad grid in `format` from a reader such as standard input (see [`read_mesh`]).
@@ -48,21 +50,29 @@ pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
 /// ```
 pub fn read_mesh_from(mut reader: impl Read, format: MeshFormat) -> Result<QuadGrid, IoError> {
     const NAME: &str = "<stdin>";
-    let mut text = String::new();
+    let mut bytes = Vec::new();
     reader
-        .read_to_string(&mut text)
+        .read_to_end(&mut bytes)
         .map_err(|source| IoError::Read {
             path: PathBuf::from(NAME),
             source,
         })?;
-    parse_mesh(&text, format, NAME)
+    parse_mesh(&bytes, format, NAME)
 }
 
-fn parse_mesh(text: &str, format: MeshFormat, file: &str) -> Result<QuadGrid, IoError> {
+fn parse_mesh(bytes: &[u8], format: MeshFormat, file: &str) -> Result<QuadGrid, IoError> {
+    let text = || {
+        std::str::from_utf8(bytes).map_err(|e| IoError::Read {
+            path: PathBuf::from(file),
+            source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
+        })
+    };
     match format {
-        MeshFormat::Json => parse_json(text, file),
-        MeshFormat::Obj => parse_obj(text, file)?.into_grid(file),
-        MeshFormat::Ply => parse_ply(text, file)?.into_grid(file),
+        MeshFormat::Json => parse_json(text()?, file),
+        MeshFormat::Obj => parse_obj(text()?, file)?.into_grid(file),
+        MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
+            parse_ply(bytes, file)?.into_grid(file)
+        }
         MeshFormat::Glb => Err(not_readable(file)),
     }
 }
@@ -301,16 +311,18 @@ fn parse_obj(text: &str, file: &str) -> Result<RawMesh, IoError> {
             Some("v") => raw.vertices.push(parse_xyz(&mut tokens).map_err(syntax)?),
             Some("vn") => raw.normals.push(parse_xyz(&mut tokens).map_err(syntax)?),
             Some("f") => {
-                let corners: Vec<&str> = tokens.collect();
-                if corners.len() != 4 {
-                    return Err(syntax(format!(
-                        "a face with {} corners; a quad grid has faces with 4",
-                        corners.len()
-                    )));
-                }
                 let mut face = [0; 4];
-                for (slot, corner) in face.iter_mut().zip(corners) {
-                    *slot = obj_corner(corner, raw.vertices.len()).map_err(syntax)?;
+                let mut corners = 0;
+                for corner in tokens {
+                    if let Some(slot) = face.get_mut(corners) {
+                        *slot = obj_corner(corner, raw.vertices.len()).map_err(syntax)?;
+                    }
+                    corners += 1;
+                }
+                if corners != 4 {
+                    return Err(syntax(format!(
+                        "a face with {corners} corners; a quad grid has faces with 4"
+                    )));
                 }
                 raw.faces.push(face);
             }
@@ -345,50 +357,143 @@ fn obj_corner(corner: &str, count: usize) -> Result<usize, String> {
     Ok(v)
 }
 
+/// A PLY scalar type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    /// The type named `name` (both the original and the sized names).
+    fn from_name(name: &str) -> Option<Scalar> {
+        Some(match name {
+            "char" | "int8" => Scalar::I8,
+            "uchar" | "uint8" => Scalar::U8,
+            "short" | "int16" => Scalar::I16,
+            "ushort" | "uint16" => Scalar::U16,
+            "int" | "int32" => Scalar::I32,
+            "uint" | "uint32" => Scalar::U32,
+            "float" | "float32" => Scalar::F32,
+            "double" | "float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+
+    /// The little-endian value at the start of `b` (at least [`Scalar::size`] bytes), exactly.
+    fn read_le(self, b: &[u8]) -> f64 {
+        match self {
+            Scalar::I8 => f64::from(b[0] as i8),
+            Scalar::U8 => f64::from(b[0]),
+            Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
+            Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
+            Scalar::I32 => f64::from(i32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::U32 => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::F32 => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::F64 => f64::from_le_bytes(b[..8].try_into().expect("8 bytes")),
+        }
+    }
+}
+
+/// A PLY property: its name, and its type (a list's length type and item type).
+struct Property {
+    name: String,
+    list: Option<Scalar>,
+    scalar: Scalar,
+}
+
 /// A PLY element declared in the header.
 struct Element {
     name: String,
     count: usize,
-    /// Property names; `true` for list properties.
-    properties: Vec<(String, bool)>,
+    properties: Vec<Property>,
 }
 
-fn parse_ply(text: &str, file: &str) -> Result<RawMesh, IoError> {
-    let mut raw = RawMesh::default();
-    let mut lines = text.lines().enumerate();
+/// The body encodings of PLY that can be read.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Encoding {
+    Ascii,
+    BinaryLittleEndian,
+}
+
+/// A PLY header: the encoding, the elements, the grid shape from the comment,
+/// the number of header lines and bytes.
+struct PlyHeader {
+    encoding: Encoding,
+    elements: Vec<Element>,
+    shape: Option<(usize, usize)>,
+    lines: usize,
+    bytes: usize,
+}
+
+fn parse_ply_header(bytes: &[u8], file: &str) -> Result<PlyHeader, IoError> {
     let syntax_at = |number: usize, message: String| IoError::Syntax {
         file: file.to_owned(),
         line: number + 1,
         message,
     };
-    if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
-        return Err(syntax_at(0, "expected `ply` on the first line".to_owned()));
-    }
-    let mut elements: Vec<Element> = Vec::new();
+    let mut header = PlyHeader {
+        encoding: Encoding::Ascii,
+        elements: Vec::new(),
+        shape: None,
+        lines: 0,
+        bytes: 0,
+    };
     let mut number = 0;
     loop {
-        let Some((n, line)) = lines.next() else {
+        let rest = &bytes[header.bytes..];
+        let Some(end) = rest.iter().position(|&b| b == b'\n') else {
             return Err(syntax_at(
-                number + 1,
+                number,
                 "the header has no `end_header`".to_owned(),
             ));
         };
-        number = n;
+        let line = std::str::from_utf8(&rest[..end])
+            .map_err(|_| syntax_at(number, "the header is not text".to_owned()))?;
+        header.bytes += end + 1;
+        header.lines += 1;
+        let n = number;
+        number += 1;
         let syntax = |message: String| syntax_at(n, message);
+        if n == 0 {
+            if line.trim() != "ply" {
+                return Err(syntax("expected `ply` on the first line".to_owned()));
+            }
+            continue;
+        }
         let mut tokens = line.split_whitespace();
         match tokens.next() {
             Some("format") => {
-                let format = tokens.next().unwrap_or("");
-                if format != "ascii" {
-                    return Err(syntax(format!(
-                        "only ASCII PLY can be read, this file is `{format}`"
-                    )));
-                }
+                header.encoding = match tokens.next().unwrap_or("") {
+                    "ascii" => Encoding::Ascii,
+                    "binary_little_endian" => Encoding::BinaryLittleEndian,
+                    other => {
+                        return Err(syntax(format!(
+                            "only ASCII and binary_little_endian PLY can be read, this file is \
+                             `{other}`; convert it with e.g. `plyfile` or MeshLab"
+                        )))
+                    }
+                };
             }
             Some("comment") => {
                 let comment = line.trim_start().strip_prefix("comment").unwrap_or("");
                 if let Some(shape) = parse_shape(comment, &syntax)? {
-                    raw.shape = Some(shape);
+                    header.shape = Some(shape);
                 }
             }
             Some("element") => {
@@ -397,112 +502,277 @@ fn parse_ply(text: &str, file: &str) -> Result<RawMesh, IoError> {
                     .next()
                     .and_then(|c| c.parse().ok())
                     .ok_or_else(|| syntax(format!("expected `element {name} COUNT`")))?;
-                elements.push(Element {
+                header.elements.push(Element {
                     name,
                     count,
                     properties: Vec::new(),
                 });
             }
             Some("property") => {
-                let element = elements
+                let element = header
+                    .elements
                     .last_mut()
                     .ok_or_else(|| syntax("a property before any element".to_owned()))?;
                 let words: Vec<&str> = tokens.collect();
-                let (name, list) = match words.as_slice() {
-                    ["list", _, _, name] => (name, true),
-                    [_, name] => (name, false),
+                let scalar = |t: &str| {
+                    Scalar::from_name(t).ok_or_else(|| {
+                        syntax(format!(
+                            "unknown PLY type `{t}` in `{}`; the types are char, uchar, short, \
+                             ushort, int, uint, float and double",
+                            line.trim()
+                        ))
+                    })
+                };
+                let property = match words.as_slice() {
+                    ["list", len, item, name] => Property {
+                        name: (*name).to_owned(),
+                        list: Some(scalar(len)?),
+                        scalar: scalar(item)?,
+                    },
+                    [t, name] => Property {
+                        name: (*name).to_owned(),
+                        list: None,
+                        scalar: scalar(t)?,
+                    },
                     _ => return Err(syntax(format!("cannot read `{}`", line.trim()))),
                 };
-                element.properties.push(((*name).to_owned(), list));
+                element.properties.push(property);
             }
-            Some("end_header") => break,
+            Some("end_header") => return Ok(header),
             _ => {}
         }
     }
-    for element in &elements {
-        let find = |name: &str| element.properties.iter().position(|(p, _)| p == name);
-        let xyz = [find("x"), find("y"), find("z")];
-        let nxyz = [find("nx"), find("ny"), find("nz")];
-        let indices = find("vertex_indices").or_else(|| find("vertex_index"));
-        for _ in 0..element.count {
-            let Some((n, line)) = lines.next() else {
-                return Err(syntax_at(
-                    number + 1,
-                    format!(
-                        "the file ends before all {} `{}` lines",
-                        element.count, element.name
-                    ),
-                ));
-            };
-            number = n;
-            let syntax = |message: String| syntax_at(n, message);
-            let values = ply_values(line, &element.properties).map_err(syntax)?;
-            if element.name == "vertex" {
-                let get = |slots: [Option<usize>; 3]| -> Result<Option<DVec3>, String> {
-                    let [Some(a), Some(b), Some(c)] = slots else {
-                        return Ok(None);
-                    };
-                    let mut p = [0.0; 3];
-                    for (x, k) in p.iter_mut().zip([a, b, c]) {
-                        *x = parse_f64(values[k][0])?;
-                    }
-                    Ok(Some(DVec3::from_array(p)))
-                };
-                let p = get(xyz)
-                    .map_err(&syntax)?
-                    .ok_or_else(|| syntax("the vertex element has no x, y and z".to_owned()))?;
-                raw.vertices.push(p);
-                if let Some(normal) = get(nxyz).map_err(&syntax)? {
-                    raw.normals.push(normal);
-                }
-            } else if element.name == "face" {
-                let k = indices
-                    .ok_or_else(|| syntax("the face element has no vertex_indices".to_owned()))?;
-                let corners = &values[k][1..];
-                if corners.len() != 4 {
-                    return Err(syntax(format!(
-                        "a face with {} corners; a quad grid has faces with 4",
-                        corners.len()
-                    )));
-                }
-                let mut face = [0; 4];
-                for (slot, c) in face.iter_mut().zip(corners) {
-                    *slot = c
-                        .parse()
-                        .map_err(|_| syntax(format!("expected a vertex index, found `{c}`")))?;
-                }
-                raw.faces.push(face);
-            }
+}
+
+/// Where the vertex coordinates, normals and face corners are among an element's properties.
+struct Slots {
+    xyz: Option<[usize; 3]>,
+    normal: Option<[usize; 3]>,
+    indices: Option<usize>,
+}
+
+impl Slots {
+    fn of(element: &Element) -> Slots {
+        let find = |name: &str| element.properties.iter().position(|p| p.name == name);
+        let three = |a, b, c| Some([find(a)?, find(b)?, find(c)?]);
+        Slots {
+            xyz: three("x", "y", "z"),
+            normal: three("nx", "ny", "nz"),
+            indices: find("vertex_indices").or_else(|| find("vertex_index")),
         }
+    }
+
+    /// Adds one `element` record to `raw`: property `k`'s values (a list's
+    /// items after its length) are `values[ranges[k].0..ranges[k].1]`.
+    fn add(
+        &self,
+        element: &Element,
+        values: &[f64],
+        ranges: &[(usize, usize)],
+        raw: &mut RawMesh,
+    ) -> Result<(), String> {
+        let values = |k: usize| &values[ranges[k].0..ranges[k].1];
+        let finite = |x: f64| {
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(format!("`{x}` is not a finite number"))
+            }
+        };
+        let point = |[a, b, c]: [usize; 3]| -> Result<DVec3, String> {
+            Ok(DVec3::new(
+                finite(values(a)[0])?,
+                finite(values(b)[0])?,
+                finite(values(c)[0])?,
+            ))
+        };
+        if element.name == "vertex" {
+            let xyz = self
+                .xyz
+                .ok_or_else(|| "the vertex element has no x, y and z".to_owned())?;
+            raw.vertices.push(point(xyz)?);
+            if let Some(normal) = self.normal {
+                raw.normals.push(point(normal)?);
+            }
+        } else if element.name == "face" {
+            let k = self
+                .indices
+                .ok_or_else(|| "the face element has no vertex_indices".to_owned())?;
+            let corners = values(k);
+            if corners.len() != 4 {
+                return Err(format!(
+                    "a face with {} corners; a quad grid has faces with 4",
+                    corners.len()
+                ));
+            }
+            let mut face = [0; 4];
+            for (slot, &c) in face.iter_mut().zip(corners) {
+                if c < 0.0 || c.fract() != 0.0 {
+                    return Err(format!("expected a vertex index, found `{c}`"));
+                }
+                *slot = c as usize;
+            }
+            raw.faces.push(face);
+        }
+        Ok(())
+    }
+}
+
+fn parse_ply(bytes: &[u8], file: &str) -> Result<RawMesh, IoError> {
+    let header = parse_ply_header(bytes, file)?;
+    let mut raw = RawMesh {
+        shape: header.shape,
+        ..RawMesh::default()
+    };
+    let body = &bytes[header.bytes..];
+    match header.encoding {
+        Encoding::Ascii => {
+            let text = std::str::from_utf8(body).map_err(|e| IoError::Syntax {
+                file: file.to_owned(),
+                line: header.lines + 1,
+                message: format!("an ASCII PLY body that is not text: {e}"),
+            })?;
+            parse_ply_ascii(text, &header, file, &mut raw)?;
+        }
+        Encoding::BinaryLittleEndian => parse_ply_binary(body, &header, file, &mut raw)?,
     }
     Ok(raw)
 }
 
-/// The tokens of each property of one element line (a list property's
-/// tokens include its length first).
-fn ply_values<'a>(
-    line: &'a str,
-    properties: &[(String, bool)],
-) -> Result<Vec<Vec<&'a str>>, String> {
+fn parse_ply_ascii(
+    text: &str,
+    header: &PlyHeader,
+    file: &str,
+    raw: &mut RawMesh,
+) -> Result<(), IoError> {
+    let mut lines = text.lines().enumerate().map(|(n, l)| (n + header.lines, l));
+    // 0-based number of the last line read.
+    let mut number = header.lines - 1;
+    let mut values: Vec<f64> = Vec::new();
+    let mut ranges: Vec<(usize, usize)> = Vec::new();
+    for element in &header.elements {
+        let slots = Slots::of(element);
+        for _ in 0..element.count {
+            let Some((n, line)) = lines.next() else {
+                return Err(IoError::Syntax {
+                    file: file.to_owned(),
+                    line: number + 2,
+                    message: format!(
+                        "the file ends before all {} `{}` lines",
+                        element.count, element.name
+                    ),
+                });
+            };
+            number = n;
+            let syntax = |message: String| IoError::Syntax {
+                file: file.to_owned(),
+                line: n + 1,
+                message,
+            };
+            ply_values(line, &element.properties, &mut values, &mut ranges).map_err(syntax)?;
+            slots.add(element, &values, &ranges, raw).map_err(syntax)?;
+        }
+    }
+    Ok(())
+}
+
+/// The values of each property of one ASCII element line into `values`, and
+/// into `ranges` where each property's values are (a list's items, after its length).
+fn ply_values(
+    line: &str,
+    properties: &[Property],
+    values: &mut Vec<f64>,
+    ranges: &mut Vec<(usize, usize)>,
+) -> Result<(), String> {
+    values.clear();
+    ranges.clear();
     let mut tokens = line.split_whitespace();
     let mut next = || {
         tokens
             .next()
             .ok_or_else(|| "too few values on the line".to_owned())
     };
-    let mut values = Vec::with_capacity(properties.len());
-    for (_, list) in properties {
+    for property in properties {
         let first = next()?;
-        let mut v = vec![first];
-        if *list {
+        let start = values.len();
+        if property.list.is_some() {
             let len: usize = first
                 .parse()
                 .map_err(|_| format!("expected a list length, found `{first}`"))?;
             for _ in 0..len {
-                v.push(next()?);
+                values.push(parse_number(next()?)?);
             }
+        } else {
+            values.push(parse_number(first)?);
         }
-        values.push(v);
+        ranges.push((start, values.len()));
     }
-    Ok(values)
+    Ok(())
+}
+
+/// A number (not necessarily finite: the caller says which must be).
+fn parse_number(token: &str) -> Result<f64, String> {
+    token
+        .parse::<f64>()
+        .map_err(|_| format!("expected a number, found `{token}`"))
+}
+
+fn parse_ply_binary(
+    body: &[u8],
+    header: &PlyHeader,
+    file: &str,
+    raw: &mut RawMesh,
+) -> Result<(), IoError> {
+    let mut at = 0;
+    let error = |offset: usize, message: String| IoError::Binary {
+        file: file.to_owned(),
+        offset: header.bytes + offset,
+        message,
+    };
+    let mut values: Vec<f64> = Vec::new();
+    let mut ranges: Vec<(usize, usize)> = Vec::new();
+    for element in &header.elements {
+        let slots = Slots::of(element);
+        for record in 0..element.count {
+            let start = at;
+            let ends = |at: usize| {
+                error(
+                    at,
+                    format!(
+                        "the file ends in `{}` record {record} of {}",
+                        element.name, element.count
+                    ),
+                )
+            };
+            let read = |scalar: Scalar, at: &mut usize| -> Result<f64, IoError> {
+                let b = body
+                    .get(*at..*at + scalar.size())
+                    .ok_or_else(|| ends(*at))?;
+                *at += scalar.size();
+                Ok(scalar.read_le(b))
+            };
+            values.clear();
+            ranges.clear();
+            for property in &element.properties {
+                let first = values.len();
+                match property.list {
+                    Some(len_type) => {
+                        let len = read(len_type, &mut at)?;
+                        if len < 0.0 {
+                            return Err(error(at, format!("a list of length {len}")));
+                        }
+                        for _ in 0..len as usize {
+                            values.push(read(property.scalar, &mut at)?);
+                        }
+                    }
+                    None => values.push(read(property.scalar, &mut at)?),
+                }
+                ranges.push((first, values.len()));
+            }
+            slots
+                .add(element, &values, &ranges, raw)
+                .map_err(|message| error(start, message))?;
+        }
+    }
+    Ok(())
 }

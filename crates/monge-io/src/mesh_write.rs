@@ -1,7 +1,7 @@
 //! Mesh formats and writers for a [`QuadGrid`]: OBJ, ASCII PLY and JSON.
 //!
 //! All three write every coordinate with the shortest decimal that parses
-//! back to the same `f64` (`ryu`), vertex `(i, j)` as vertex number
+//! back to the same `f64` (`zmij`), vertex `(i, j)` as vertex number
 //! `i * cols + j`, and face `(i, j)` as the quad
 //! `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`, reversed when the node axes point
 //! the other way, so that every face turns counter-clockwise about its normals
@@ -17,6 +17,7 @@ use serde_json::{Map, Value};
 use crate::atomic::{is_stdio, write_output};
 use crate::design::{extension, unknown_extension};
 use crate::error::IoError;
+use crate::text::emit;
 
 const ACCEPTED: &str = "`.obj`, `.ply`, `.json` or `.glb` (glTF, written only)";
 
@@ -30,6 +31,12 @@ pub enum MeshFormat {
     Obj,
     /// ASCII PLY with `double` coordinates (`.ply`).
     Ply,
+    /// Binary little-endian PLY with `double` coordinates (`.ply`; format
+    /// name `ply-binary`): exact, a third of the size of ASCII.
+    PlyBinary,
+    /// Binary little-endian PLY with `float` (f32) coordinates (`.ply`;
+    /// format name `ply-f32`): for viewers, about 1e-7 of the model size.
+    PlyF32,
     /// `{"rows", "cols", "vertices", "normals"}` JSON (`.json`).
     Json,
     /// Binary glTF (`.glb`), for viewers: `f32` positions, so written but never
@@ -59,11 +66,13 @@ impl MeshFormat {
             .ok_or_else(|| unknown_extension(path, ACCEPTED))
     }
 
-    /// The format named by an extension or format name such as `obj`, `.PLY` or `json`.
+    /// The format named by an extension or format name such as `obj`, `.PLY`,
+    /// `json` or `ply-binary` (`.ply` alone is ASCII PLY).
     ///
     /// ```
     /// use monge_io::MeshFormat;
     /// assert_eq!(MeshFormat::from_extension(".PLY"), Some(MeshFormat::Ply));
+    /// assert_eq!(MeshFormat::from_extension("ply-f32"), Some(MeshFormat::PlyF32));
     /// assert_eq!(MeshFormat::from_extension("stl"), None);
     /// ```
     pub fn from_extension(ext: &str) -> Option<MeshFormat> {
@@ -71,20 +80,31 @@ impl MeshFormat {
         [
             MeshFormat::Obj,
             MeshFormat::Ply,
+            MeshFormat::PlyBinary,
+            MeshFormat::PlyF32,
             MeshFormat::Json,
             MeshFormat::Glb,
         ]
         .into_iter()
-        .find(|f| f.extension().eq_ignore_ascii_case(ext))
+        .find(|f| f.extension().eq_ignore_ascii_case(ext) || f.name().eq_ignore_ascii_case(ext))
     }
 
     /// The usual extension, without the dot: `obj`, `ply`, `json` or `glb`.
     pub fn extension(self) -> &'static str {
         match self {
             MeshFormat::Obj => "obj",
-            MeshFormat::Ply => "ply",
+            MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => "ply",
             MeshFormat::Json => "json",
             MeshFormat::Glb => "glb",
+        }
+    }
+
+    /// The format's name: its extension, or `ply-binary`, `ply-f32` for binary PLY.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::PlyBinary => "ply-binary",
+            MeshFormat::PlyF32 => "ply-f32",
+            other => other.extension(),
         }
     }
 }
@@ -120,6 +140,8 @@ pub fn write_mesh_to<W: Write + ?Sized>(
     match format {
         MeshFormat::Obj => write_obj(grid, w),
         MeshFormat::Ply => write_ply(grid, w),
+        MeshFormat::PlyBinary => write_ply_binary(grid, false, w),
+        MeshFormat::PlyF32 => write_ply_binary(grid, true, w),
         MeshFormat::Json => write_mesh_json(grid, &Map::new(), w),
         MeshFormat::Glb => crate::write_grid_glb(grid, w),
     }
@@ -144,31 +166,8 @@ pub fn write_mesh_to<W: Write + ?Sized>(
 /// ```
 pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
     check_grid(grid)?;
-    writeln!(w, "# monge quad grid rows={} cols={}", grid.rows, grid.cols)?;
-    emit(w, |line| {
-        for (tag, points) in [("v", &grid.vertices), ("vn", &grid.normals)] {
-            for p in points {
-                line.push_str(tag);
-                line.push(b' ');
-                line.xyz(*p);
-                line.end()?;
-            }
-        }
-        let with_normals = !grid.normals.is_empty();
-        for corners in grid.oriented_faces() {
-            line.push_str("f");
-            for c in corners {
-                line.push(b' ');
-                line.int(c + 1);
-                if with_normals {
-                    line.push_str("//");
-                    line.int(c + 1);
-                }
-            }
-            line.end()?;
-        }
-        Ok(())
-    })
+    let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
+    grid_quads(grid, &comment).obj(w)
 }
 
 /// Writes a grid as ASCII PLY.
@@ -178,42 +177,182 @@ pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
 /// comment `comment monge quad grid rows=R cols=C`. Fails like [`write_obj`].
 pub fn write_ply<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
     check_grid(grid)?;
-    let with_normals = !grid.normals.is_empty();
-    write!(
-        w,
-        "ply\nformat ascii 1.0\ncomment monge quad grid rows={} cols={}\n\
-         element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
-        grid.rows,
-        grid.cols,
-        grid.vertices.len()
-    )?;
-    if with_normals {
-        w.write_all(b"property double nx\nproperty double ny\nproperty double nz\n")?;
+    let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
+    grid_quads(grid, &comment).ply(w)
+}
+
+/// Writes a grid as binary little-endian PLY, with `double` coordinates, or
+/// `float` ones if `f32`.
+///
+/// The same elements, properties, comment and faces as [`write_ply`], in
+/// `format binary_little_endian 1.0`; face indices are `int` (so at most
+/// 2³¹ − 1 vertices). Fails like [`write_obj`].
+///
+/// ```
+/// # use glam::DVec3;
+/// # use monge_core::QuadGrid;
+/// let grid = QuadGrid::new(2, 2, vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::ONE], vec![]);
+/// let mut out = Vec::new();
+/// monge_io::write_ply_binary(&grid, false, &mut out).unwrap();
+/// let body = out.len() - 4 * 3 * 8 - (1 + 4 * 4);
+/// assert!(out[..body].ends_with(b"end_header\n"));
+/// assert_eq!(out[body + 4 * 8..body + 5 * 8], 1.0f64.to_le_bytes()); // vertex 1's y
+/// ```
+pub fn write_ply_binary<W: Write + ?Sized>(
+    grid: &QuadGrid,
+    f32: bool,
+    w: &mut W,
+) -> io::Result<()> {
+    check_grid(grid)?;
+    let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
+    grid_quads(grid, &comment).ply_binary(f32, w)
+}
+
+/// A quad mesh on its way to an OBJ or PLY file: vertices, normals (none,
+/// or one per vertex), faces (0-based, already oriented), a header comment.
+pub(crate) struct Quads<'a, F> {
+    pub(crate) vertices: &'a [DVec3],
+    pub(crate) normals: &'a [DVec3],
+    pub(crate) faces: F,
+    pub(crate) face_count: usize,
+    pub(crate) comment: &'a str,
+}
+
+/// A grid's vertices, normals and [`QuadGrid::oriented_faces`], with the
+/// comment `monge quad grid rows=R cols=C`.
+fn grid_quads<'a>(
+    grid: &'a QuadGrid,
+    comment: &'a str,
+) -> Quads<'a, impl Iterator<Item = [usize; 4]> + 'a> {
+    Quads {
+        vertices: &grid.vertices,
+        normals: &grid.normals,
+        faces: grid.oriented_faces(),
+        face_count: grid.face_count(),
+        comment,
     }
-    writeln!(
-        w,
-        "element face {}\nproperty list uchar int vertex_indices\nend_header",
-        grid.face_count()
-    )?;
-    emit(w, |line| {
-        for (k, p) in grid.vertices.iter().enumerate() {
-            line.xyz(*p);
-            if with_normals {
-                line.push(b' ');
-                line.xyz(grid.normals[k]);
+}
+
+impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
+    /// OBJ: `# comment`, `v`, `vn`, then `f a//a …` (`f a …` without normals), 1-based.
+    pub(crate) fn obj<W: Write + ?Sized>(self, w: &mut W) -> io::Result<()> {
+        writeln!(w, "# {}", self.comment)?;
+        let with_normals = !self.normals.is_empty();
+        emit(w, |out| {
+            for (tag, points) in [("v ", self.vertices), ("vn ", self.normals)] {
+                for p in points {
+                    out.str(tag);
+                    out.xyz(*p, b' ');
+                    out.end()?;
+                }
             }
-            line.end()?;
-        }
-        for corners in grid.oriented_faces() {
-            line.push(b'4');
-            for c in corners {
-                line.push(b' ');
-                line.int(c);
+            for corners in self.faces {
+                out.push(b'f');
+                for c in corners {
+                    out.push(b' ');
+                    out.int(c + 1);
+                    if with_normals {
+                        out.str("//");
+                        out.int(c + 1);
+                    }
+                }
+                out.end()?;
             }
-            line.end()?;
+            Ok(())
+        })
+    }
+
+    /// ASCII PLY.
+    pub(crate) fn ply<W: Write + ?Sized>(self, w: &mut W) -> io::Result<()> {
+        self.ply_header("ascii", "double", w)?;
+        emit(w, |out| {
+            for (k, p) in self.vertices.iter().enumerate() {
+                out.xyz(*p, b' ');
+                if let Some(n) = self.normals.get(k) {
+                    out.push(b' ');
+                    out.xyz(*n, b' ');
+                }
+                out.end()?;
+            }
+            for corners in self.faces {
+                out.push(b'4');
+                for c in corners {
+                    out.push(b' ');
+                    out.int(c);
+                }
+                out.end()?;
+            }
+            Ok(())
+        })
+    }
+
+    /// Binary little-endian PLY, coordinates as `double` (or `float` if `f32`).
+    pub(crate) fn ply_binary<W: Write + ?Sized>(self, f32: bool, w: &mut W) -> io::Result<()> {
+        if i32::try_from(self.vertices.len()).is_err() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "{} vertices do not fit PLY's `int` vertex indices (at most 2147483647)",
+                    self.vertices.len()
+                ),
+            ));
         }
-        Ok(())
-    })
+        self.ply_header(
+            "binary_little_endian",
+            if f32 { "float" } else { "double" },
+            w,
+        )?;
+        emit(w, |out| {
+            for (k, p) in self.vertices.iter().enumerate() {
+                let normal = self.normals.get(k).copied();
+                for x in std::iter::once(*p).chain(normal).flat_map(|q| q.to_array()) {
+                    if f32 {
+                        out.bytes(&(x as f32).to_le_bytes());
+                    } else {
+                        out.bytes(&x.to_le_bytes());
+                    }
+                }
+                out.maybe_flush()?;
+            }
+            for corners in self.faces {
+                out.push(4);
+                for c in corners {
+                    // In range: checked above.
+                    out.bytes(&(c as i32).to_le_bytes());
+                }
+                out.maybe_flush()?;
+            }
+            Ok(())
+        })
+    }
+
+    /// The PLY header: `format FORMAT 1.0`, the comment, coordinates of type `scalar`.
+    fn ply_header<W: Write + ?Sized>(
+        &self,
+        format: &str,
+        scalar: &str,
+        w: &mut W,
+    ) -> io::Result<()> {
+        write!(
+            w,
+            "ply\nformat {format} 1.0\ncomment {}\nelement vertex {}\n",
+            self.comment,
+            self.vertices.len()
+        )?;
+        let names: &[&str] = if self.normals.is_empty() {
+            &["x", "y", "z"]
+        } else {
+            &["x", "y", "z", "nx", "ny", "nz"]
+        };
+        for name in names {
+            writeln!(w, "property {scalar} {name}")?;
+        }
+        writeln!(
+            w,
+            "element face {}\nproperty list uchar int vertex_indices\nend_header",
+            self.face_count
+        )
+    }
 }
 
 /// Writes a grid as JSON: `{"rows": R, "cols": C, …extra, "vertices": [[x, y, z], …], "normals": [[x, y, z], …]}`.
@@ -258,27 +397,23 @@ pub fn write_mesh_json<W: Write + ?Sized>(
         w.write_all(b":")?;
         serde_json::to_writer(&mut *w, value)?;
     }
-    emit(w, |line| {
+    emit(w, |out| {
         for (key, points) in [("vertices", &grid.vertices), ("normals", &grid.normals)] {
             if key == "normals" && points.is_empty() {
                 continue;
             }
-            line.push_str(",\"");
-            line.push_str(key);
-            line.push_str("\":[");
+            out.str(",\"");
+            out.str(key);
+            out.str("\":[");
             for (k, p) in points.iter().enumerate() {
-                line.push_str(if k == 0 { "\n[" } else { ",\n[" });
-                line.float(p.x);
-                line.push(b',');
-                line.float(p.y);
-                line.push(b',');
-                line.float(p.z);
-                line.push(b']');
-                line.maybe_flush()?;
+                out.str(if k == 0 { "\n[" } else { ",\n[" });
+                out.xyz(*p, b',');
+                out.push(b']');
+                out.maybe_flush()?;
             }
-            line.push_str("\n]");
+            out.str("\n]");
         }
-        line.push_str("}\n");
+        out.str("}\n");
         Ok(())
     })
 }
@@ -310,93 +445,4 @@ fn check_grid(grid: &QuadGrid) -> io::Result<()> {
         }
     }
     Ok(())
-}
-
-/// Bytes collected before a [`Line`] passes them on.
-const CHUNK: usize = 1 << 16;
-
-/// Runs `body`, which formats the grid into a [`Line`] writing to `w`.
-fn emit<W: Write + ?Sized>(
-    w: &mut W,
-    body: impl FnOnce(&mut Line<'_>) -> io::Result<()>,
-) -> io::Result<()> {
-    let mut out = |buf: &mut Vec<u8>| {
-        w.write_all(buf)?;
-        buf.clear();
-        Ok(())
-    };
-    let mut line = Line::new(&mut out);
-    body(&mut line)?;
-    line.flush()
-}
-
-/// Where a [`Line`] passes its full buffer (which it leaves empty).
-type Out<'a> = dyn FnMut(&mut Vec<u8>) -> io::Result<()> + 'a;
-
-/// An output buffer for lines: numbers are formatted without allocating, and
-/// the bytes are passed on in chunks. Call [`Line::flush`] at the end.
-struct Line<'a> {
-    buf: Vec<u8>,
-    float: ryu::Buffer,
-    int: itoa::Buffer,
-    out: &'a mut Out<'a>,
-}
-
-impl<'a> Line<'a> {
-    fn new(out: &'a mut Out<'a>) -> Self {
-        Line {
-            buf: Vec::with_capacity(CHUNK + 256),
-            float: ryu::Buffer::new(),
-            int: itoa::Buffer::new(),
-            out,
-        }
-    }
-
-    fn push(&mut self, b: u8) {
-        self.buf.push(b);
-    }
-
-    fn push_str(&mut self, s: &str) {
-        self.buf.extend_from_slice(s.as_bytes());
-    }
-
-    fn float(&mut self, x: f64) {
-        self.buf
-            .extend_from_slice(self.float.format_finite(x).as_bytes());
-    }
-
-    fn int(&mut self, n: usize) {
-        self.buf.extend_from_slice(self.int.format(n).as_bytes());
-    }
-
-    /// Appends `x y z`.
-    fn xyz(&mut self, p: DVec3) {
-        self.float(p.x);
-        self.push(b' ');
-        self.float(p.y);
-        self.push(b' ');
-        self.float(p.z);
-    }
-
-    /// Ends the line (passing the buffer on once it is full).
-    fn end(&mut self) -> io::Result<()> {
-        self.buf.push(b'\n');
-        self.maybe_flush()
-    }
-
-    /// Passes the buffer on if it is full.
-    fn maybe_flush(&mut self) -> io::Result<()> {
-        if self.buf.len() >= CHUNK {
-            self.flush()?;
-        }
-        Ok(())
-    }
-
-    /// Passes on whatever is buffered.
-    fn flush(&mut self) -> io::Result<()> {
-        if self.buf.is_empty() {
-            return Ok(());
-        }
-        (self.out)(&mut self.buf)
-    }
 }

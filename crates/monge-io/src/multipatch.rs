@@ -11,7 +11,7 @@ use crate::atomic::{write_atomic, write_output};
 use crate::design::{parse_as, DesignFormat};
 use crate::error::IoError;
 use crate::kind::{expect_kind, FileKind};
-use crate::mesh_write::MeshFormat;
+use crate::mesh_write::{MeshFormat, Quads};
 use crate::path_name;
 
 /// Reads a multi-patch design file (§4.7), JSON or TOML by its extension.
@@ -121,58 +121,23 @@ pub fn write_quad_mesh_to<W: Write + ?Sized>(
             "the mesh has a non-finite coordinate",
         ));
     }
-    let mut buf = ryu::Buffer::new();
-    let mut xyz = |w: &mut W, tag: &str, p: glam::DVec3| -> io::Result<()> {
-        write!(w, "{tag}")?;
-        for x in p.to_array() {
-            write!(w, " {}", buf.format_finite(x))?;
-        }
-        writeln!(w)
+    let comment = format!(
+        "monge quad mesh vertices={} quads={}",
+        mesh.vertices.len(),
+        mesh.quads.len()
+    );
+    let quads = Quads {
+        vertices: &mesh.vertices,
+        normals: &mesh.normals,
+        faces: mesh.quads.iter().copied(),
+        face_count: mesh.quads.len(),
+        comment: &comment,
     };
     match format {
-        MeshFormat::Obj => {
-            writeln!(
-                w,
-                "# monge quad mesh vertices={} quads={}",
-                mesh.vertices.len(),
-                mesh.quads.len()
-            )?;
-            for p in &mesh.vertices {
-                xyz(w, "v", *p)?;
-            }
-            for n in &mesh.normals {
-                xyz(w, "vn", *n)?;
-            }
-            for q in &mesh.quads {
-                let [a, b, c, d] = q.map(|k| k + 1);
-                writeln!(w, "f {a}//{a} {b}//{b} {c}//{c} {d}//{d}")?;
-            }
-            Ok(())
-        }
-        MeshFormat::Ply => {
-            write!(
-                w,
-                "ply\nformat ascii 1.0\ncomment monge quad mesh\nelement vertex {}\n\
-                 property double x\nproperty double y\nproperty double z\n\
-                 property double nx\nproperty double ny\nproperty double nz\n\
-                 element face {}\nproperty list uchar int vertex_indices\nend_header\n",
-                mesh.vertices.len(),
-                mesh.quads.len()
-            )?;
-            for (p, n) in mesh.vertices.iter().zip(&mesh.normals) {
-                let v: Vec<String> = p
-                    .to_array()
-                    .into_iter()
-                    .chain(n.to_array())
-                    .map(|x| buf.format_finite(x).to_owned())
-                    .collect();
-                writeln!(w, "{}", v.join(" "))?;
-            }
-            for [a, b, c, d] in &mesh.quads {
-                writeln!(w, "4 {a} {b} {c} {d}")?;
-            }
-            Ok(())
-        }
+        MeshFormat::Obj => quads.obj(w),
+        MeshFormat::Ply => quads.ply(w),
+        MeshFormat::PlyBinary => quads.ply_binary(false, w),
+        MeshFormat::PlyF32 => quads.ply_binary(true, w),
         MeshFormat::Json => {
             let arr =
                 |v: &[glam::DVec3]| -> Vec<[f64; 3]> { v.iter().map(|p| p.to_array()).collect() };

@@ -292,10 +292,17 @@ fn ply_from_elsewhere_with_extra_properties() {
 #[test]
 fn ply_errors() {
     let header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\nproperty double z\n";
-    let err = ply("ply\nformat binary_little_endian 1.0\nend_header\n").unwrap_err();
+    let err = ply("ply\nformat binary_big_endian 1.0\nend_header\n").unwrap_err();
     assert_eq!(
         err.to_string(),
-        "<stdin>:2: only ASCII PLY can be read, this file is `binary_little_endian`"
+        "<stdin>:2: only ASCII and binary_little_endian PLY can be read, this file is \
+         `binary_big_endian`; convert it with e.g. `plyfile` or MeshLab"
+    );
+    let err = ply(&format!("{header}property quad w\nend_header\n")).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("<stdin>:7: unknown PLY type `quad` in `property quad w`"),
+        "{err}"
     );
     assert_eq!(
         ply("solid x\n").unwrap_err().to_string(),
@@ -369,4 +376,59 @@ fn a_failing_reader_is_a_read_error() {
     assert_eq!(err.to_string(), "cannot read `<stdin>`: pipe closed");
     let err = read_mesh_from(&[0xff, 0xfe][..], MeshFormat::Obj).unwrap_err();
     assert!(matches!(err, IoError::Read { .. }), "{err:?}");
+}
+
+/// A binary little-endian PLY: the header, then the body's bytes.
+fn binary_ply(header: &str, body: &[u8]) -> Result<monge_core::QuadGrid, IoError> {
+    let mut bytes =
+        format!("ply\nformat binary_little_endian 1.0\n{header}end_header\n").into_bytes();
+    bytes.extend_from_slice(body);
+    read_mesh_from(bytes.as_slice(), MeshFormat::Ply)
+}
+
+#[test]
+fn binary_ply_of_any_scalar_types_and_its_errors() {
+    // float x, short y, double z, and a uchar-counted list of uint.
+    let header = "comment monge quad grid rows=2 cols=2\nelement vertex 4\nproperty float x\n\
+                  property short y\nproperty double z\nelement face 1\n\
+                  property list uchar uint vertex_indices\n";
+    let mut body = Vec::new();
+    for (x, y, z) in [
+        (0.5f32, -1i16, 1e-300f64),
+        (1.5, 2, 0.0),
+        (2.5, 3, -0.0),
+        (3.5, 4, 7.0),
+    ] {
+        body.extend(x.to_le_bytes());
+        body.extend(y.to_le_bytes());
+        body.extend(z.to_le_bytes());
+    }
+    body.push(4);
+    for c in [0u32, 2, 3, 1] {
+        body.extend(c.to_le_bytes());
+    }
+    let grid = binary_ply(header, &body).unwrap();
+    assert_eq!((grid.rows, grid.cols), (2, 2));
+    assert_eq!(grid.vertices[0].to_array(), [0.5, -1.0, 1e-300]);
+    assert_eq!(grid.vertices[2].z.to_bits(), (-0.0f64).to_bits());
+
+    let header_len =
+        "ply\nformat binary_little_endian 1.0\n".len() + header.len() + "end_header\n".len();
+    let err = binary_ply(header, &body[..body.len() - 2]).unwrap_err();
+    assert!(matches!(err, IoError::Binary { .. }), "{err:?}");
+    // The fourth corner of the face (4 bytes from the end) is cut short.
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "<stdin>: byte {} (in the binary body): the file ends in `face` record 0 of 1",
+            header_len + body.len() - 4
+        )
+    );
+    let mut nan = body.clone();
+    nan[6..14].copy_from_slice(&f64::NAN.to_le_bytes());
+    let err = binary_ply(header, &nan).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        format!("<stdin>: byte {header_len} (in the binary body): `NaN` is not a finite number")
+    );
 }

@@ -395,3 +395,155 @@ fn glb_reads_back_in_a_gltf_reader_and_is_never_read_as_a_mesh() {
     );
     assert!(monge_io::read_mesh_from(&bytes[..], MeshFormat::Glb).is_err());
 }
+
+#[test]
+fn binary_ply_reads_back_identically_with_ply_rs_and_monge() {
+    use ply_rs_bw::{parser::Parser, ply::DefaultElement, ply::Property};
+    for (format, f32) in [(MeshFormat::PlyBinary, false), (MeshFormat::PlyF32, true)] {
+        for normals in [false, true] {
+            let mut grid = random_grid(5, 4, normals, 23);
+            if f32 {
+                // f32 cannot hold random f64 bit patterns: ordinary coordinates.
+                for p in &mut grid.vertices {
+                    *p = DVec3::new(p.x % 1e3, p.y % 1e3, p.z % 1e3);
+                }
+            }
+            let mut bytes = Vec::new();
+            write_mesh_to(&grid, format, &mut bytes).unwrap();
+            let ply = Parser::<DefaultElement>::new()
+                .read_ply(&mut bytes.as_slice())
+                .unwrap();
+            assert_eq!(
+                ply.header.encoding,
+                ply_rs_bw::ply::Encoding::BinaryLittleEndian
+            );
+            // What each coordinate must read back as: the f64, or its f32 rounding.
+            let expected = |x: f64| if f32 { x as f32 as f64 } else { x };
+            let value = |p: &Property| match (p, f32) {
+                (Property::Double(x), false) => *x,
+                (Property::Float(x), true) => f64::from(*x),
+                (other, _) => panic!("unexpected {other:?}"),
+            };
+            let vertices = &ply.payload["vertex"];
+            assert_eq!(vertices.len(), 20);
+            for (k, e) in vertices.iter().enumerate() {
+                let keys: &[(&str, &str, &str, &[DVec3])] = if normals {
+                    &[
+                        ("x", "y", "z", &grid.vertices),
+                        ("nx", "ny", "nz", &grid.normals),
+                    ]
+                } else {
+                    &[("x", "y", "z", &grid.vertices)]
+                };
+                assert_eq!(e.contains_key("nx"), normals);
+                for (x, y, z, points) in keys {
+                    let read = [value(&e[*x]), value(&e[*y]), value(&e[*z])];
+                    let want = points[k].to_array().map(expected);
+                    assert_eq!(read.map(f64::to_bits), want.map(f64::to_bits), "vertex {k}");
+                }
+            }
+            let faces = &ply.payload["face"];
+            let text_faces = Parser::<DefaultElement>::new()
+                .read_ply(&mut to_string(&grid, MeshFormat::Ply).as_bytes())
+                .unwrap();
+            assert_eq!(faces, &text_faces.payload["face"], "the ASCII PLY's faces");
+
+            // monge reads it back (as `check` does), f32 rounded exactly to f64.
+            let read = read_mesh_from(bytes.as_slice(), MeshFormat::Ply).unwrap();
+            let mut want = grid.clone();
+            for p in want.vertices.iter_mut().chain(&mut want.normals) {
+                *p = DVec3::from_array(p.to_array().map(expected));
+            }
+            assert_bits_eq(&read, &want);
+        }
+    }
+}
+
+#[test]
+fn binary_ply_format_names_and_files() {
+    assert_eq!(
+        MeshFormat::from_extension("ply-binary"),
+        Some(MeshFormat::PlyBinary)
+    );
+    assert_eq!(MeshFormat::PlyF32.name(), "ply-f32");
+    assert_eq!(MeshFormat::PlyF32.extension(), "ply");
+    let dir = tempfile::tempdir().unwrap();
+    let grid = random_grid(3, 3, true, 9);
+    let path = dir.path().join("mesh.ply");
+    write_mesh(&grid, &path, Some(MeshFormat::PlyBinary)).unwrap();
+    // A third of the ASCII size or less: 48 bytes a vertex, 17 a face.
+    let size = std::fs::metadata(&path).unwrap().len() as usize;
+    assert!(size < to_string(&grid, MeshFormat::Ply).len());
+    assert_bits_eq(&read_mesh(&path).unwrap(), &grid);
+}
+
+/// Every text format's numbers read back bit for bit by Python's `float()`,
+/// an independent correctly rounding reader: random bit patterns (subnormals,
+/// huge, tiny, negative zero included).
+#[test]
+fn python_float_reads_every_written_f64_exactly() {
+    let ok = std::process::Command::new("python3")
+        .args(["-c", "print(1)"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        eprintln!("SKIPPED python_float_reads_every_written_f64_exactly: no python3");
+        return;
+    }
+    let mut grid = random_grid(40, 50, true, 0x5eed);
+    grid.vertices[0] = DVec3::new(-0.0, 5e-324, f64::MAX);
+    grid.vertices[1] = DVec3::new(f64::MIN_POSITIVE, 1e-7, 1e16);
+    // Every number token of the text, as Python reads it, as the hex of its bits.
+    const SCRIPT: &str = r#"
+import re, struct, sys
+text = sys.stdin.read()
+if text.startswith("{"):
+    text = text[text.index('"vertices"'):]
+elif text.startswith("ply"):
+    text = text[text.index("end_header") + 10:]
+nums = re.findall(r"-?[0-9][0-9.e+-]*", text)
+print("\n".join(struct.pack(">d", float(t)).hex() for t in nums if "." in t or "e" in t))
+"#;
+    for format in FORMATS {
+        let text = to_string(&grid, format);
+        let mut child = std::process::Command::new("python3")
+            .args(["-c", SCRIPT])
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(text.as_bytes())
+            .unwrap();
+        let out = child.wait_with_output().unwrap();
+        assert!(out.status.success());
+        let read: Vec<u64> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|h| u64::from_str_radix(h, 16).unwrap())
+            .collect();
+        let want: Vec<u64> = match format {
+            // OBJ and JSON list all vertices, then all normals; PLY puts
+            // each normal after its vertex.
+            MeshFormat::Ply => grid
+                .vertices
+                .iter()
+                .zip(&grid.normals)
+                .flat_map(|(p, n)| p.to_array().into_iter().chain(n.to_array()))
+                .map(f64::to_bits)
+                .collect(),
+            _ => grid
+                .vertices
+                .iter()
+                .chain(&grid.normals)
+                .flat_map(|p| p.to_array())
+                .map(f64::to_bits)
+                .collect(),
+        };
+        assert_eq!(read.len(), want.len(), "{format:?}");
+        assert_eq!(read, want, "{format:?}");
+    }
+}

@@ -104,9 +104,10 @@ pub fn io_error(e: IoError) -> PyErr {
         | IoError::Write { .. }
         | IoError::NoDirectory { .. }
         | IoError::OutputIsInput { .. } => FileError::new_err(message),
-        IoError::Syntax { .. } | IoError::CountMismatch { .. } | IoError::NotAGrid { .. } => {
-            MeshError::new_err(message)
-        }
+        IoError::Syntax { .. }
+        | IoError::CountMismatch { .. }
+        | IoError::NotAGrid { .. }
+        | IoError::Binary { .. } => MeshError::new_err(message),
         IoError::UnknownExtension { .. }
         | IoError::NeedFormat { .. }
         | IoError::Parse { .. }

@@ -1,0 +1,120 @@
+//! A streaming text (and byte) output shared by the writers: numbers are
+//! formatted without allocating, floats as the shortest decimal that parses
+//! back to the same `f64` (`zmij`), and bytes are passed on in large chunks.
+
+use std::io::{self, Write};
+
+use glam::DVec3;
+
+/// Bytes collected before an [`Out`] passes them on.
+const CHUNK: usize = 1 << 16;
+
+/// Runs `body`, which formats into an [`Out`] writing to `w`, then flushes it.
+pub(crate) fn emit<W: Write + ?Sized>(
+    w: &mut W,
+    body: impl FnOnce(&mut Out<'_, W>) -> io::Result<()>,
+) -> io::Result<()> {
+    let mut out = Out {
+        buf: Vec::with_capacity(CHUNK + 1024),
+        float: zmij::Buffer::new(),
+        int: itoa::Buffer::new(),
+        w,
+    };
+    body(&mut out)?;
+    out.flush()
+}
+
+/// An output buffer: append text and bytes, then [`Out::end`] a line (or call
+/// [`Out::maybe_flush`]) so that full chunks go on to the writer.
+pub(crate) struct Out<'w, W: Write + ?Sized> {
+    buf: Vec<u8>,
+    float: zmij::Buffer,
+    int: itoa::Buffer,
+    w: &'w mut W,
+}
+
+impl<W: Write + ?Sized> Out<'_, W> {
+    /// Appends one byte.
+    pub(crate) fn push(&mut self, b: u8) {
+        self.buf.push(b);
+    }
+
+    /// Appends bytes as they are.
+    pub(crate) fn bytes(&mut self, b: &[u8]) {
+        self.buf.extend_from_slice(b);
+    }
+
+    /// Appends a string.
+    pub(crate) fn str(&mut self, s: &str) {
+        self.buf.extend_from_slice(s.as_bytes());
+    }
+
+    /// Appends the shortest decimal that parses back to `x` (finite:
+    /// callers check; a non-finite value would be written as a number).
+    pub(crate) fn float(&mut self, x: f64) {
+        self.buf
+            .extend_from_slice(self.float.format_finite(x).as_bytes());
+    }
+
+    /// Appends a whole number.
+    pub(crate) fn int(&mut self, n: impl itoa::Integer) {
+        self.buf.extend_from_slice(self.int.format(n).as_bytes());
+    }
+
+    /// Appends `x y z` (floats separated by `sep`).
+    pub(crate) fn xyz(&mut self, p: DVec3, sep: u8) {
+        self.float(p.x);
+        self.push(sep);
+        self.float(p.y);
+        self.push(sep);
+        self.float(p.z);
+    }
+
+    /// Ends the line (passing the buffer on once it is full).
+    pub(crate) fn end(&mut self) -> io::Result<()> {
+        self.buf.push(b'\n');
+        self.maybe_flush()
+    }
+
+    /// Passes the buffer on if it is full.
+    pub(crate) fn maybe_flush(&mut self) -> io::Result<()> {
+        if self.buf.len() >= CHUNK {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    /// Passes on whatever is buffered.
+    fn flush(&mut self) -> io::Result<()> {
+        if !self.buf.is_empty() {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn floats_are_shortest_and_conventional() {
+        let mut v = Vec::new();
+        emit(&mut v, |o| {
+            for x in [0.1, -0.0, 1e-7, 1e16, 2.5, 1.0, 5e-324] {
+                o.float(x);
+                o.push(b' ');
+            }
+            o.int(42u32);
+            o.end()
+        })
+        .unwrap();
+        // Exponents as every float reader takes them (C's strtod, Python's
+        // float(), JSON); zmij writes `e+` for positive exponents.
+        assert_eq!(
+            String::from_utf8(v).unwrap(),
+            "0.1 -0.0 1e-7 1e+16 2.5 1.0 5e-324 42\n"
+        );
+    }
+}
