@@ -1,9 +1,10 @@
 //! The properties the fuzz targets check (see `fuzz/README.md`).
 //!
 //! Every input either gives a typed error or an `Ok` whose every number is
-//! finite and whose mesh is exact (§2.2: measured independently by
-//! [`measure`], ≤ [`EXACT`] of the model size); a panic, an abort, a NaN in
-//! an `Ok`, or an allocation beyond libFuzzer's `-malloc_limit_mb` is a crash.
+//! finite (and whose measurement by [`measure`] is not NaN); a panic, an
+//! abort, a NaN in an `Ok`, or an allocation beyond libFuzzer's
+//! `-malloc_limit_mb` is a crash. Exactness (§2.2) is not asserted here: the
+//! property tests of monge-core prove it on random designs.
 
 use glam::DVec3;
 use monge_core::conical::conical_dual;
@@ -22,9 +23,6 @@ use monge_io::{
 /// stays fast: 48 bytes a vertex, about 2 MB).
 pub const MAX_VERTICES: usize = 40_000;
 
-/// Largest measured error of an `Ok` mesh, relative to its size.
-pub const EXACT: f64 = 1e-9;
-
 fn options() -> GenerateOptions {
     GenerateOptions {
         max_vertices: MAX_VERTICES,
@@ -38,20 +36,15 @@ fn assert_finite(what: &str, points: &[DVec3]) {
     }
 }
 
-/// A generated grid: finite, within the grid limit, and exact.
-fn assert_grid(what: &str, grid: &QuadGrid, exact: bool) {
+/// A generated grid: the right shape, finite, measurable.
+fn assert_grid(what: &str, grid: &QuadGrid) {
     assert_eq!(grid.vertices.len(), grid.rows * grid.cols, "{what}: shape");
     assert_finite(what, &grid.vertices);
     assert_finite(what, &grid.normals);
-    let m = measure(grid);
-    assert!(!m.max_error().is_nan(), "{what}: measured error is NaN");
-    if exact {
-        assert!(
-            m.max_error() <= EXACT,
-            "{what}: measured error {:e} > {EXACT:e}: {m:?}",
-            m.max_error()
-        );
-    }
+    assert!(
+        !measure(grid).max_error().is_nan(),
+        "{what}: measured error is NaN"
+    );
 }
 
 /// A design file of any kind in `format`: parsed, then generated as the command
@@ -68,7 +61,7 @@ pub fn design(data: &[u8], format: DesignFormat) {
             let Ok(mp) = build(&d, &options()) else {
                 return;
             };
-            assert_grid("multi-patch", &mp.grid, false);
+            assert_grid("multi-patch", &mp.grid);
             if let Ok(isos) = isometries(&d.symmetry) {
                 if isos.len() * mp.grid.vertices.len() <= MAX_VERTICES {
                     let a = assemble(std::slice::from_ref(&mp.grid), &isos);
@@ -86,7 +79,7 @@ pub fn design(data: &[u8], format: DesignFormat) {
             Ok(AnyDesign::Surface(d)) => surface(&d),
             Ok(AnyDesign::Developable(d)) => {
                 if let Ok(mesh) = developable(&d.developable) {
-                    assert_grid("developable", &mesh.grid, false);
+                    assert_grid("developable", &mesh.grid);
                 }
             }
             Err(_) => {}
@@ -99,7 +92,7 @@ fn surface(d: &monge_core::Design) {
     let Ok(g) = generate(d, &options()) else {
         return;
     };
-    assert_grid("generated", &g.grid, false);
+    assert_grid("generated", &g.grid);
     if d.mesh == MeshKind::Conical && g.grid.rows >= 3 && g.grid.cols >= 3 {
         let c = conical_dual(&g.grid);
         assert_finite("conical", &c.grid.vertices);
@@ -125,7 +118,10 @@ pub fn iges(data: &[u8]) {
         for s in &surfaces {
             assert_finite("IGES control points", &s.control_points);
             let numbers = s.knots_u.iter().chain(&s.knots_v).chain(&s.weights);
-            assert!(numbers.copied().all(f64::is_finite), "IGES: non-finite knot or weight");
+            assert!(
+                numbers.copied().all(f64::is_finite),
+                "IGES: non-finite knot or weight"
+            );
         }
     }
 }
