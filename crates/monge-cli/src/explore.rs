@@ -4,9 +4,10 @@
 //!
 //! The computation stays here, in Rust: the page posts its design to
 //! `POST /api/generate` and draws the mesh it gets back. The server is
-//! [`tiny_http`]: small, synchronous, no async runtime — a few worker threads
-//! answer one designer's requests, each in well under a millisecond plus the
-//! generation itself. The page's files (HTML, CSS, and the JS bundled with
+//! [`crate::http`]: small, synchronous, bounded (connections, time to send a
+//! request, requests computed at a time) — four workers answer one designer's
+//! requests, each in well under a millisecond plus the generation itself. It
+//! answers only its own page ([`guard`]: `Host` and `Origin` checked). The page's files (HTML, CSS, and the JS bundled with
 //! three.js by `npm run build` in `web/`) are embedded in the binary from
 //! `crates/monge-cli/web-dist/` (a committed copy of `web/dist`), so a copied or
 //! installed `monge` serves its page; `--web-dir` serves another directory instead.
@@ -25,11 +26,9 @@
 //!   exactly as `monge generate` writes it.
 
 use std::fs;
-use std::io::Read;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener};
 use std::path::{Component, Path, PathBuf};
-use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, bail, Context};
 use glam::DVec3;
@@ -41,9 +40,9 @@ use monge_core::{generate, inspect, Design, GenerateError, GenerateOptions, Mesh
 use monge_io::{parse_design, write_mesh_json, write_mesh_to, DesignFormat, MeshFormat};
 use serde_json::{json, Map, Value};
 use socket2::{Domain, Protocol, Socket, Type};
-use tiny_http::{Header, Method, Request, Response, Server};
 
 use crate::generate::{mode_name, near_singular, range_text};
+use crate::http;
 use crate::output::{num, print};
 use crate::Outcome;
 
@@ -53,8 +52,17 @@ pub const MAX_BODY: usize = 1 << 20;
 /// Default largest grid (`rows · cols` vertices) of one request: 500 × 500.
 pub const MAX_VERTICES: usize = 250_000;
 
-/// Worker threads answering requests.
-const WORKERS: usize = 4;
+/// The server's bounds: 256 connections, 4 requests computed at a time, 10 s
+/// to send a request, 60 s idle between requests, 30 s to take an answer.
+const LIMITS: http::Limits = http::Limits {
+    max_connections: 256,
+    workers: 4,
+    request_timeout: Duration::from_secs(10),
+    idle_timeout: Duration::from_secs(60),
+    write_timeout: Duration::from_secs(30),
+    max_header: 16 << 10,
+    max_body: MAX_BODY,
+};
 
 /// Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2).
 const LOW_CROSSING_SINE: f64 = 1e-3;
@@ -80,8 +88,12 @@ pub struct ExploreArgs {
     /// TCP port; 0 picks a free one (the address is printed).
     #[arg(long, default_value_t = 8642)]
     pub port: u16,
-    /// Address to listen on. Anyone who can reach it can make the server
-    /// compute: keep the default (this machine only) unless you mean it.
+    /// Address to listen on. The default, 127.0.0.1, is reachable from this
+    /// machine only. Another address (e.g. 0.0.0.0: every network interface)
+    /// exposes the explorer, its API and its start design to everyone who can
+    /// reach this machine on the network, who can then make it compute (no
+    /// password, no encryption); requests must still name the server by an IP
+    /// address or `localhost` in `Host`. Keep the default unless you mean it.
     #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
     pub host: IpAddr,
     /// Serve the page's files from DIR (e.g. `web/dist`, built by `npm ci && npm run build`
@@ -112,6 +124,8 @@ struct Shared {
     page: Page,
     /// The grid limit.
     options: GenerateOptions,
+    /// Where the server listens.
+    address: SocketAddr,
 }
 
 /// Runs `monge explore`: serves until the process is stopped.
@@ -123,13 +137,9 @@ pub fn run(args: &ExploreArgs) -> anyhow::Result<Outcome> {
         }
         None => DEFAULT_DESIGN.to_owned(),
     };
-    let server = listen(SocketAddr::new(args.host, args.port))
-        .and_then(|listener| Server::from_listener(listener, None))
+    let listener = listen(SocketAddr::new(args.host, args.port))
         .map_err(|e| anyhow!("cannot listen on {}:{}: {e}", args.host, args.port))?;
-    let address = server
-        .server_addr()
-        .to_ip()
-        .ok_or_else(|| anyhow!("the server has no IP address"))?;
+    let address = listener.local_addr().context("the server has no address")?;
     let page = match &args.web_dir {
         Some(dir) if !dir.join("index.html").is_file() => bail!(
             "--web-dir `{}` has no index.html: build the page with `npm ci && npm run build` in \
@@ -143,38 +153,26 @@ pub fn run(args: &ExploreArgs) -> anyhow::Result<Outcome> {
     print(&format!(
         "monge explore: open http://{address}/ (Ctrl-C to stop)\n"
     ))?;
-    let shared = Arc::new(Shared {
+    let shared = Shared {
         design,
         page,
         options: GenerateOptions {
             max_vertices: args.max_vertices,
         },
-    });
-    let server = Arc::new(server);
-    let workers: Vec<_> = (0..WORKERS)
-        .map(|_| {
-            let (server, shared) = (Arc::clone(&server), Arc::clone(&shared));
-            std::thread::spawn(move || {
-                while let Ok(request) = server.recv() {
-                    answer(request, &shared);
-                }
-            })
-        })
-        .collect();
-    for worker in workers {
-        // A worker only ends when the server fails; its panic was already reported.
-        let _ = worker.join();
-    }
+        address,
+    };
+    http::serve(listener, LIMITS, move |request| answer(request, &shared))
+        .with_context(|| format!("the server on {address} stopped"))?;
     Ok(Outcome::Success)
 }
 
 /// A TCP listener on `address` whose connections send without delay.
 ///
-/// tiny_http writes a response's headers and body in separate writes; with
-/// Nagle's algorithm the body then waits for the browser's delayed ACK of the
-/// headers (measured: 44 ms for every small POST answer in Chromium). Linux
-/// passes `TCP_NODELAY` on from the listener to the connections it accepts.
-fn listen(address: SocketAddr) -> Result<TcpListener, Box<dyn std::error::Error + Send + Sync>> {
+/// Answers are written in one piece, but small answers still go out at once
+/// with `TCP_NODELAY` (measured with Nagle's algorithm and separate writes:
+/// 44 ms for every small POST answer in Chromium). Linux passes `TCP_NODELAY`
+/// on from the listener to the connections it accepts.
+fn listen(address: SocketAddr) -> Result<TcpListener, std::io::Error> {
     let socket = Socket::new(
         Domain::for_address(address),
         Type::STREAM,
@@ -213,74 +211,88 @@ impl Reply {
     }
 }
 
-/// Answers one request; a panic in a handler becomes a 500, never a dead worker.
-fn answer(mut request: Request, shared: &Shared) {
-    let reply = match read_body(&mut request) {
-        Ok(body) => {
-            let (method, url) = (request.method().clone(), request.url().to_owned());
-            std::panic::catch_unwind(|| route(&method, &url, &body, shared)).unwrap_or_else(|_| {
-                Reply::error(
-                    500,
-                    "internal error while answering the request (see the server's log)",
-                )
-            })
-        }
+/// Answers one request, once [`guard`] lets it through.
+fn answer(request: &http::Request, shared: &Shared) -> http::Response {
+    let reply = match guard(request, shared.address) {
+        Ok(()) => route(&request.method, &request.target, &request.body, shared),
         Err(reply) => reply,
     };
-    let mut response = Response::from_data(reply.body).with_status_code(reply.status);
-    let mut headers = vec![
-        ("Content-Type", reply.content_type.to_owned()),
-        ("Cache-Control", "no-store".to_owned()),
-    ];
+    let mut headers = Vec::new();
     if let Some(name) = reply.download {
         headers.push((
             "Content-Disposition",
             format!("attachment; filename=\"{name}\""),
         ));
     }
-    for (name, value) in headers {
-        if let Ok(h) = Header::from_bytes(name.as_bytes(), value.as_bytes()) {
-            response.add_header(h);
-        }
+    http::Response {
+        status: reply.status,
+        content_type: reply.content_type,
+        headers,
+        body: reply.body,
     }
-    // The client may have gone away: nothing to do about it.
-    let _ = request.respond(response);
 }
 
-/// The request body, at most [`MAX_BODY`] bytes, or the 4xx reply.
-fn read_body(request: &mut Request) -> Result<Vec<u8>, Reply> {
-    let too_large = || {
-        Reply::error(
-            413,
+/// Only the explorer's own page may use the server: a request whose `Host` is
+/// not this server by an IP address or `localhost` (a page of another site
+/// whose name was made to resolve to 127.0.0.1: DNS rebinding) is refused with
+/// 403, and so is a `POST` whose `Origin` is another site (any page can send a
+/// simple cross-origin `POST`). A request without `Origin` (not from a browser,
+/// or a same-origin `GET`) passes.
+fn guard(request: &http::Request, address: SocketAddr) -> Result<(), Reply> {
+    let header = |name| request.header(name).map_err(|m| Reply::error(400, m));
+    let host = header("host")?.unwrap_or("");
+    if !is_own_host(host, address) {
+        return Err(Reply::error(
+            403,
             format!(
-                "the request body is larger than {} bytes: designs are small, send one design",
-                MAX_BODY
+                "Host `{host}` is not this server: open http://{address}/ (or \
+                 http://localhost:{}/) itself",
+                address.port()
             ),
-        )
+        ));
+    }
+    if request.method != "GET" && request.method != "HEAD" {
+        if let Some(origin) = header("origin")? {
+            let own = origin
+                .strip_prefix("http://")
+                .is_some_and(|host| is_own_host(host, address));
+            if !own {
+                return Err(Reply::error(
+                    403,
+                    format!(
+                        "a page of `{origin}` may not use this server: only the explorer's \
+                         own page at http://{address}/ may"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether `host` (a `Host` header, `NAME:PORT`) names this server: `localhost`
+/// or an IP address (a name other than `localhost` can be made to resolve to any
+/// address; an IP address cannot), with this server's port.
+fn is_own_host(host: &str, address: SocketAddr) -> bool {
+    let Some((name, port)) = host.rsplit_once(':') else {
+        return false;
     };
-    if request.body_length().is_some_and(|n| n > MAX_BODY) {
-        return Err(too_large());
-    }
-    let mut body = Vec::new();
-    request
-        .as_reader()
-        .take(MAX_BODY as u64 + 1)
-        .read_to_end(&mut body)
-        .map_err(|e| Reply::error(400, format!("cannot read the request body: {e}")))?;
-    if body.len() > MAX_BODY {
-        return Err(too_large());
-    }
-    Ok(body)
+    let name = name
+        .strip_prefix('[')
+        .and_then(|n| n.strip_suffix(']'))
+        .unwrap_or(name);
+    port.parse() == Ok(address.port())
+        && (name.eq_ignore_ascii_case("localhost") || name.parse::<IpAddr>().is_ok())
 }
 
 /// Dispatches a request by method and path.
-fn route(method: &Method, url: &str, body: &[u8], shared: &Shared) -> Reply {
+fn route(method: &str, url: &str, body: &[u8], shared: &Shared) -> Reply {
     let (path, query) = url.split_once('?').unwrap_or((url, ""));
     let query = Query::parse(query);
     match (method, path) {
-        (Method::Post, "/api/generate") => api_generate(body, &query, shared),
-        (Method::Post, "/api/export") => api_export(body, &query, shared),
-        (Method::Get, "/api/design") => Reply {
+        ("POST", "/api/generate") => api_generate(body, &query, shared),
+        ("POST", "/api/export") => api_export(body, &query, shared),
+        ("GET", "/api/design") => Reply {
             status: 200,
             content_type: "application/json",
             body: shared.design.clone().into_bytes(),
@@ -289,7 +301,7 @@ fn route(method: &Method, url: &str, body: &[u8], shared: &Shared) -> Reply {
         (_, "/api/generate" | "/api/export" | "/api/design") => {
             Reply::error(405, format!("{method} is not allowed on {path}"))
         }
-        (Method::Get, _) => static_file(&shared.page, path),
+        ("GET", _) => static_file(&shared.page, path),
         _ => Reply::error(404, format!("no route {method} {path}")),
     }
 }

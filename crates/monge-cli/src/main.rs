@@ -15,6 +15,7 @@ mod cli;
 mod explore;
 mod fabricate;
 mod generate;
+mod http;
 mod info;
 mod optimise_panels;
 mod output;

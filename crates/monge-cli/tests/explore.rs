@@ -59,28 +59,32 @@ impl Server {
         }
     }
 
-    /// Sends one HTTP/1.0 request (so the answer is not chunked); returns the
+    /// Sends one HTTP/1.0 request (the server closes after it); returns the
     /// status and the body.
     fn request(&self, method: &str, path: &str, body: &[u8]) -> (u16, Vec<u8>) {
-        let mut stream = TcpStream::connect(&self.address).unwrap();
-        write!(
-            stream,
-            "{method} {path} HTTP/1.0\r\nHost: {}\r\nContent-Length: {}\r\n\r\n",
-            self.address,
-            body.len()
+        self.raw(
+            &format!("{method} {path} HTTP/1.0\r\nHost: {}", self.address),
+            body,
         )
-        .unwrap();
+    }
+
+    /// Sends `head` (request line and headers, no blank line) with `body` over a
+    /// new connection and reads the answer to its end: status and body.
+    fn raw(&self, head: &str, body: &[u8]) -> (u16, Vec<u8>) {
+        let mut stream = TcpStream::connect(&self.address).unwrap();
+        write!(stream, "{head}\r\nContent-Length: {}\r\n\r\n", body.len()).unwrap();
         // A server that refuses early may close before reading everything.
         let _ = stream.write_all(body);
         let mut answer = Vec::new();
         stream.read_to_end(&mut answer).unwrap();
-        let split = answer
-            .windows(4)
-            .position(|w| w == b"\r\n\r\n")
-            .expect("an HTTP answer");
-        let head = String::from_utf8_lossy(&answer[..split]).into_owned();
-        let status = head.split(' ').nth(1).unwrap().parse().unwrap();
-        (status, answer[split + 4..].to_vec())
+        split_answer(&answer)
+    }
+
+    /// The server's resident memory, in kB (Linux).
+    fn rss_kb(&self) -> u64 {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).unwrap();
+        let line = status.lines().find(|l| l.starts_with("VmRSS:")).unwrap();
+        line.split_whitespace().nth(1).unwrap().parse().unwrap()
     }
 
     /// POSTs `body` to `path` and parses the JSON answer.
@@ -90,6 +94,17 @@ impl Server {
             .unwrap_or_else(|e| panic!("not JSON ({e}): {}", String::from_utf8_lossy(&body)));
         (status, value)
     }
+}
+
+/// Status and body of a whole HTTP answer.
+fn split_answer(answer: &[u8]) -> (u16, Vec<u8>) {
+    let split = answer
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .unwrap_or_else(|| panic!("not an HTTP answer: {:?}", String::from_utf8_lossy(answer)));
+    let head = String::from_utf8_lossy(&answer[..split]).into_owned();
+    let status = head.split(' ').nth(1).unwrap().parse().unwrap();
+    (status, answer[split + 4..].to_vec())
 }
 
 impl Drop for Server {
@@ -341,4 +356,227 @@ fn a_web_dir_without_a_page_is_refused() {
         .assert()
         .code(2)
         .stderr(predicates::str::contains("has no index.html"));
+}
+
+#[test]
+fn only_its_own_page_may_use_the_server() {
+    let server = Server::start(&[]);
+    let port = server.address.rsplit(':').next().unwrap().to_owned();
+    let design = std::fs::read(example("fig12-torus.json")).unwrap();
+    // DNS rebinding: a page of evil.example whose name now resolves to 127.0.0.1.
+    for host in [
+        format!("evil.example:{port}"),
+        "127.0.0.1:1".into(),
+        String::new(),
+    ] {
+        let (status, body) = server.raw(&format!("GET / HTTP/1.0\r\nHost: {host}"), b"");
+        assert_eq!(status, 403, "Host `{host}`");
+        assert!(String::from_utf8_lossy(&body).contains("is not this server"));
+    }
+    for host in [format!("localhost:{port}"), server.address.clone()] {
+        let (status, _) = server.raw(&format!("GET / HTTP/1.0\r\nHost: {host}"), b"");
+        assert_eq!(status, 200, "Host `{host}`");
+    }
+    // A simple cross-origin POST from a page of another site.
+    let post = |origin: &str| {
+        let head = format!(
+            "POST /api/generate HTTP/1.0\r\nHost: {}\r\nOrigin: {origin}\r\nContent-Type: text/plain",
+            server.address
+        );
+        server.raw(&head, &design)
+    };
+    for origin in [
+        "https://evil.example",
+        "null",
+        "http://evil.example:1",
+        "https://127.0.0.1:1",
+    ] {
+        let (status, body) = post(origin);
+        assert_eq!(status, 403, "Origin `{origin}`");
+        assert!(String::from_utf8_lossy(&body).contains("may not use this server"));
+    }
+    for origin in [
+        format!("http://localhost:{port}"),
+        format!("http://{}", server.address),
+    ] {
+        assert_eq!(post(&origin).0, 200, "Origin `{origin}`");
+    }
+    // Without Origin (curl, scripts): allowed.
+    assert_eq!(server.request("POST", "/api/generate", &design).0, 200);
+}
+
+#[test]
+fn slow_clients_get_408_and_do_not_hold_the_workers() {
+    let server = Server::start(&[]);
+    // 100 clients sending their request one byte a second (bounded: 20 s at most).
+    let mut slow: Vec<TcpStream> = (0..100)
+        .map(|_| TcpStream::connect(&server.address).unwrap())
+        .collect();
+    let line = b"POST /api/generate HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+    let start = std::time::Instant::now();
+    for s in &mut slow {
+        s.write_all(&line[..1]).unwrap();
+        s.set_read_timeout(Some(std::time::Duration::from_millis(1)))
+            .unwrap();
+    }
+    // Meanwhile the page is answered.
+    let design = std::fs::read(example("fig13-freeform.json")).unwrap();
+    for _ in 0..8 {
+        let (status, _) = server.request("POST", "/api/generate", &design);
+        assert_eq!(status, 200);
+    }
+    let answered_after = start.elapsed();
+    assert!(
+        answered_after.as_secs() < 10,
+        "answered only after {answered_after:?}"
+    );
+    let mut refused = vec![None; slow.len()];
+    for second in 1..20 {
+        std::thread::sleep(std::time::Duration::from_secs(1));
+        for (k, s) in slow.iter_mut().enumerate() {
+            if refused[k].is_some() {
+                continue;
+            }
+            let mut answer = Vec::new();
+            match s.read_to_end(&mut answer) {
+                Ok(_) => refused[k] = Some(split_answer(&answer).0),
+                Err(_) => {
+                    let _ = s.write_all(&line[second..=second]);
+                }
+            }
+        }
+        if refused.iter().all(Option::is_some) {
+            break;
+        }
+    }
+    let elapsed = start.elapsed();
+    assert!(refused.iter().all(|r| *r == Some(408)), "{refused:?}");
+    assert!(elapsed.as_secs() <= 15, "closed after {elapsed:?}");
+    assert_eq!(server.request("GET", "/api/design", b"").0, 200);
+}
+
+#[test]
+fn a_thousand_concurrent_connections_are_answered_or_refused() {
+    let server = Server::start(&[]);
+    let head = format!(
+        "GET /api/design HTTP/1.0\r\nHost: {}\r\n\r\n",
+        server.address
+    );
+    let mut streams: Vec<TcpStream> = (0..1000)
+        .map(|_| {
+            let mut s = TcpStream::connect(&server.address).unwrap();
+            // A refused connection may be closed already.
+            let _ = s.write_all(head.as_bytes());
+            s
+        })
+        .collect();
+    let (mut ok, mut busy, mut reset) = (0, 0, 0);
+    for s in &mut streams {
+        let mut answer = Vec::new();
+        match s.read_to_end(&mut answer) {
+            Ok(_) if split_answer(&answer).0 == 200 => ok += 1,
+            Ok(_) if split_answer(&answer).0 == 503 => busy += 1,
+            Ok(_) => panic!("{}", String::from_utf8_lossy(&answer)),
+            Err(_) => reset += 1,
+        }
+    }
+    eprintln!("1000 concurrent connections: {ok} answered, {busy} refused with 503, {reset} reset");
+    assert_eq!(ok + busy + reset, 1000);
+    assert!(ok >= 256, "{ok} answered");
+    assert_eq!(server.request("GET", "/api/design", b"").0, 200);
+}
+
+/// A kept-alive HTTP/1.1 connection.
+struct Connection(BufReader<TcpStream>);
+
+impl Connection {
+    fn open(address: &str) -> Connection {
+        Connection(BufReader::new(TcpStream::connect(address).unwrap()))
+    }
+
+    /// Sends a request and reads its answer (by Content-Length): status, body.
+    fn send(&mut self, method: &str, path: &str, body: &[u8]) -> (u16, Vec<u8>) {
+        let s = self.0.get_mut();
+        let head = format!(
+            "{method} {path} HTTP/1.1\r\nHost: {}\r\nContent-Length: {}\r\n\r\n",
+            s.peer_addr().unwrap(),
+            body.len()
+        );
+        s.write_all(&[head.as_bytes(), body].concat()).unwrap();
+        let (mut status, mut length, mut line) = (0, 0, String::new());
+        loop {
+            line.clear();
+            self.0.read_line(&mut line).unwrap();
+            let l = line.trim_end().to_ascii_lowercase();
+            if l.is_empty() {
+                break;
+            } else if let Some(n) = l.strip_prefix("content-length:") {
+                length = n.trim().parse().unwrap();
+            } else if l.starts_with("http/1.1 ") {
+                status = l[9..12].parse().unwrap();
+            }
+        }
+        let mut body = vec![0; length];
+        self.0.read_exact(&mut body).unwrap();
+        (status, body)
+    }
+}
+
+#[test]
+fn latency_under_8_clients_and_memory_over_10000_requests() {
+    let server = Server::start(&[]);
+    let address = server.address.clone();
+    let design = Connection::open(&address).send("GET", "/api/design", b"").1;
+    // p50/p99 of the page's request at 100 × 100 faces, 8 clients at once.
+    let before = server.rss_kb();
+    let mut latencies: Vec<f64> = std::thread::scope(|scope| {
+        let clients: Vec<_> = (0..8)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut c = Connection::open(&address);
+                    (0..25)
+                        .map(|_| {
+                            let t = std::time::Instant::now();
+                            let (status, _) = c.send("POST", "/api/generate?arrays=f32", &design);
+                            assert_eq!(status, 200);
+                            t.elapsed().as_secs_f64() * 1e3
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        clients
+            .into_iter()
+            .flat_map(|c| c.join().unwrap())
+            .collect()
+    });
+    latencies.sort_by(f64::total_cmp);
+    let at = |q: f64| latencies[((latencies.len() - 1) as f64 * q).round() as usize];
+    // 10 000 requests in all: the start design, and a small design every tenth, 4 clients.
+    let tiny = std::fs::read(example("fig12-torus.json")).unwrap();
+    std::thread::scope(|scope| {
+        for _ in 0..4 {
+            scope.spawn(|| {
+                let mut c = Connection::open(&address);
+                for k in 0..(10_000 - 200) / 4 {
+                    let (status, _) = match k % 10 {
+                        0 => c.send("POST", "/api/generate?metrics=later", &tiny),
+                        _ => c.send("GET", "/api/design", b""),
+                    };
+                    assert_eq!(status, 200);
+                }
+            });
+        }
+    });
+    let after = server.rss_kb();
+    eprintln!(
+        "/api/generate at 100 × 100 faces, 8 clients × 25 requests: p50 {:.1} ms, p99 {:.1} ms; \
+         RSS before {} kB, after 10 000 requests {} kB",
+        at(0.5),
+        at(0.99),
+        before,
+        after
+    );
+    // No leak: the memory of 10 000 requests is given back (64 MB of slack for the allocator).
+    assert!(after < before + 64 * 1024, "RSS {before} kB → {after} kB");
 }

@@ -224,17 +224,37 @@ pub enum AnyDesign {
 pub fn read_any_design(path: &Path) -> Result<AnyDesign, IoError> {
     let format = DesignFormat::from_path(path)?;
     let text = crate::read_to_string(path)?;
-    let file = path_name(path);
+    parse_any_design_named(&text, format, &path_name(path))
+}
+
+/// Parses the text of a design file of either kind (§3, §3.3), as
+/// [`read_any_design`] does; errors name the file `<input>`.
+///
+/// ```
+/// use monge_io::{parse_any_design, AnyDesign, DesignFormat};
+/// let d = parse_any_design(r#"{"developable": {"projection": {"points": [[0,0,0],[1,0,0],[2,1,0]],
+///     "alpha_deg": 30}, "heights": [2, 3]}}"#, DesignFormat::Json).unwrap();
+/// assert!(matches!(d, AnyDesign::Developable(_)));
+/// ```
+pub fn parse_any_design(text: &str, format: DesignFormat) -> Result<AnyDesign, IoError> {
+    parse_any_design_named(text, format, NO_FILE)
+}
+
+fn parse_any_design_named(
+    text: &str,
+    format: DesignFormat,
+    file: &str,
+) -> Result<AnyDesign, IoError> {
     expect_kind(
-        &text,
+        text,
         format,
-        &file,
+        file,
         &[FileKind::Design, FileKind::Developable],
     )?;
-    if FileKind::of_text(&text, format) == Some(FileKind::Developable) {
-        parse_as(&text, format, &file).map(AnyDesign::Developable)
+    if FileKind::of_text(text, format) == Some(FileKind::Developable) {
+        parse_as(text, format, file).map(AnyDesign::Developable)
     } else {
-        parse_design_named(&text, format, &file).map(|d| AnyDesign::Surface(Box::new(d)))
+        parse_design_named(text, format, file).map(|d| AnyDesign::Surface(Box::new(d)))
     }
 }
 

@@ -45,8 +45,8 @@ use std::path::Path;
 
 pub use atomic::{check_output, is_stdio, write_atomic, write_output};
 pub use design::{
-    parse_design, read_any_design, read_design, write_design, write_design_to, AnyDesign,
-    DesignFormat,
+    parse_any_design, parse_design, read_any_design, read_design, write_design, write_design_to,
+    AnyDesign, DesignFormat,
 };
 pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
@@ -60,8 +60,8 @@ pub use mesh_write::{
     MESH_JSON_KEYS,
 };
 pub use multipatch::{
-    parse_multipatch, read_multipatch, read_planes, write_multipatch, write_quad_mesh,
-    write_quad_mesh_to,
+    parse_multipatch, parse_planes, read_multipatch, read_planes, write_multipatch,
+    write_quad_mesh, write_quad_mesh_to,
 };
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,

@@ -56,9 +56,22 @@ fn parse_multipatch_named(
 pub fn read_planes(path: &Path) -> Result<BoundarySpec, IoError> {
     let format = DesignFormat::from_path(path)?;
     let text = crate::read_to_string(path)?;
-    let file = path_name(path);
-    expect_kind(&text, format, &file, &[FileKind::Planes])?;
-    parse_as(&text, format, &file)
+    parse_planes_named(&text, format, &path_name(path))
+}
+
+/// Parses the text of a planes file (§4.5), as [`read_planes`] does; errors
+/// name the file `<input>`.
+pub fn parse_planes(text: &str, format: DesignFormat) -> Result<BoundarySpec, IoError> {
+    parse_planes_named(text, format, "<input>")
+}
+
+fn parse_planes_named(
+    text: &str,
+    format: DesignFormat,
+    file: &str,
+) -> Result<BoundarySpec, IoError> {
+    expect_kind(text, format, file, &[FileKind::Planes])?;
+    parse_as(text, format, file)
 }
 
 /// Writes a multi-patch design (§4.7), pretty JSON or TOML by the path's extension, atomically.
