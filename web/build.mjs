@@ -1,20 +1,48 @@
-// Builds web/dist: index.html and style.css from src/, and app.js bundled with
-// the parts of three.js it uses (from node_modules) and minified by esbuild
-// (deterministic: the same sources give the same bytes, which .ci/run checks
-// against the copy embedded in the `monge` binary, crates/monge-cli/web-dist).
+// Builds web/dist, a static page that works from any file server:
+//
+// 1. the module: crates/monge-wasm compiled to wasm32-unknown-unknown (release)
+//    and bound with `wasm-bindgen --target web` (the version pinned in its
+//    Cargo.toml) into web/wasm/; paths are remapped so the bytes do not depend
+//    on where the repository or the cargo home is;
+// 2. index.html, style.css, default-design.json from src/, the module's
+//    monge_wasm_bg.wasm, and app.js bundled with the parts of three.js it uses
+//    and the module's glue, minified by esbuild.
+//
+// Deterministic: the same sources and toolchain give the same bytes, which
+// .ci/run checks against the copy embedded in the `monge` binary
+// (crates/monge-cli/web-dist).
 import { buildSync } from 'esbuild';
+import { execFileSync } from 'node:child_process';
 import { cpSync, mkdirSync, rmSync } from 'node:fs';
-import { dirname, join } from 'node:path';
+import { homedir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const here = dirname(fileURLToPath(import.meta.url));
+const repo = resolve(here, '..');
 const dist = join(here, 'dist');
+const wasmOut = join(here, 'wasm');
+
+const cargoHome = process.env.CARGO_HOME ?? join(homedir(), '.cargo');
+const target = JSON.parse(execFileSync('cargo', ['metadata', '--format-version', '1', '--no-deps'], { cwd: repo })).target_directory;
+execFileSync('cargo', ['build', '--release', '--locked', '-p', 'monge-wasm', '--target', 'wasm32-unknown-unknown'], {
+  cwd: repo,
+  stdio: 'inherit',
+  env: {
+    ...process.env,
+    CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS: `--remap-path-prefix=${repo}=monge --remap-path-prefix=${cargoHome}=cargo`,
+  },
+});
+rmSync(wasmOut, { recursive: true, force: true });
+execFileSync('wasm-bindgen', ['--target', 'web', '--no-typescript', '--out-dir', wasmOut,
+  join(target, 'wasm32-unknown-unknown', 'release', 'monge_wasm.wasm')], { stdio: 'inherit' });
 
 rmSync(dist, { recursive: true, force: true });
 mkdirSync(dist, { recursive: true });
-for (const file of ['index.html', 'style.css']) {
+for (const file of ['index.html', 'style.css', 'default-design.json']) {
   cpSync(join(here, 'src', file), join(dist, file));
 }
+cpSync(join(wasmOut, 'monge_wasm_bg.wasm'), join(dist, 'monge_wasm_bg.wasm'));
 buildSync({
   entryPoints: [join(here, 'src', 'app.js')],
   outfile: join(dist, 'app.js'),

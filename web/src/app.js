@@ -1,22 +1,30 @@
-// The page of `monge explore`: holds a design, posts it to the local server on
-// every change and draws the mesh that comes back (three.js).
+// The explorer page: holds a design, generates its mesh in the page itself
+// (monge-core compiled to WebAssembly, crates/monge-wasm) on every change and
+// draws it (three.js). It needs no server: `monge explore` serves it, and so
+// does any static file server.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import init, { generate, info, parseDesign } from '../wasm/monge_wasm.js';
 
 const $ = (id) => document.getElementById(id);
 
 /** Everything the page knows; `window.explorer` exposes it to the e2e test. */
 const state = {
   design: null,      // the design, in the monge design-file format
-  mesh: null,        // the last good answer of /api/generate, arrays decoded
+  mesh: null,        // the header of the mesh shown (see Mesh.header in crates/monge-wasm)
   offset: 0,
-  inflight: 0,       // requests on their way
-  queued: null,      // the latest change waiting for it: { t0, dragging }
   latencies: [],     // ms from input event to the frame that shows its mesh
-  generations: 0,    // answers drawn so far
-  stale: false,      // the design changed and the server refused it
+  blocked: [],       // ms each change spent in the module and uploading (main thread)
+  generations: 0,    // meshes drawn so far
+  stale: false,      // the design changed and monge refused it
   fast: false,       // drawn in drag quality (see `quality`)
 };
+/** The wasm mesh shown (for metrics and exports); freed when replaced. */
+let current = null;
+/** Largest grid generated (rows × cols vertices), as `monge explore`'s default. */
+const MAX_VERTICES = 250000;
+/** Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2). */
+const LOW_CROSSING_SINE = 1e-3;
 
 // ---------------------------------------------------------------- the scene
 const view = $('view');
@@ -155,27 +163,33 @@ function setPolyline(line, flat) {
 }
 
 /**
- * Draws an answer of /api/generate; `t0` is the time of the input that caused
- * it (null for the full-quality answer after a drag), `fast` the drag quality.
+ * Draws a wasm `mesh` (which becomes `current`); `t0` is the time of the input
+ * that caused it (null: none to time), `fast` the drag quality (no metrics yet).
  */
-function showMesh(answer, t0, fast = false) {
+function showMesh(mesh, t0, fast = false) {
   const first = state.mesh === null;
-  state.mesh = answer;
+  if (current) current.free();
+  current = mesh;
+  const header = JSON.parse(mesh.header());
+  state.mesh = header;
   state.stale = false;
-  const circular = answer.kind === 'circular';
+  const circular = header.kind === 'circular';
   // A circular mesh's normals are its node axes (the Gauss map); a conical
-  // mesh's vertex normals are left to three.js.
-  setGrid(surface, wire, answer.rows, answer.cols, answer.vertices, circular ? answer.gauss.normals : null);
+  // mesh's vertex normals are left to three.js. The arrays are views into the
+  // module's memory, copied into three.js's buffers at once.
+  setGrid(surface, wire, header.rows, header.cols, mesh.positions(), circular ? mesh.normals() : null);
   surfaceMaterial.color.set(0xb0c4de);
-  setGrid(gaussSurface, gaussWire, answer.gauss.rows, answer.gauss.cols, answer.gauss.normals, answer.gauss.normals);
-  setPolyline(guideLines.u, answer.guides.u.points);
-  setPolyline(guideLines.v, answer.guides.v.points);
-  showMarkers(answer);
+  setGrid(gaussSurface, gaussWire, header.gauss.rows, header.gauss.cols, mesh.normals(), mesh.normals());
+  setPolyline(guideLines.u, mesh.guidePoints(true));
+  setPolyline(guideLines.v, mesh.guidePoints(false));
+  showMarkers(header);
   if (first) fitView();
-  if (!fast) showHandles(); // a drag moves the handles itself
-  if (answer.metrics) showMetrics(answer);
-  $('metrics').classList.toggle('pending', !answer.metrics);
-  showThetaRange(answer);
+  if (!fast) {
+    showHandles(); // a drag moves the handles itself
+    showMetrics(header, mesh);
+  }
+  $('metrics').classList.toggle('pending', fast);
+  showThetaRange(header);
   $('error').hidden = true;
   state.generations += 1;
   if (t0 !== null) pendingLatency = t0;
@@ -183,25 +197,39 @@ function showMesh(answer, t0, fast = false) {
   redraw();
 }
 
-/** Red and orange marks where the mesh folds or nearly pinches (§5.2). */
-function showMarkers(answer) {
+/** Red and orange marks where the mesh folds or nearly pinches (§5.2), and the warnings. */
+function showMarkers(header) {
   markers.clear();
   const size = meshSize();
-  for (const m of answer.markers) {
+  const r = header.report;
+  const warnings = [];
+  const marks = [];
+  if (Math.abs(header.theta_deg - 90) < 1) {
+    warnings.push(`θ = ${header.theta_deg}° is at or near the singular θ = +90°, where every Gauss circle passes through the corner normal: expect a degenerate mesh.`);
+  }
+  if (r.first_fold) {
+    warnings.push(`The mesh folds over itself / pinches (§5.2) in ${r.folded_faces} faces, first at face (${r.first_fold.join(', ')}) (marked in red).`);
+    marks.push({ kind: 'fold', face: r.first_fold });
+  }
+  if (r.min_crossing_sine < LOW_CROSSING_SINE) {
+    warnings.push(`Low crossing sine ${r.min_crossing_sine.toExponential(1)} at face (${r.min_crossing_face.join(', ')}): the mesh nearly pinches there (§5.2) (marked in orange).`);
+    marks.push({ kind: 'pinch', face: r.min_crossing_face });
+  }
+  for (const m of marks) {
     const color = m.kind === 'fold' ? 0xff0000 : 0xff8800;
     const dot = new THREE.Mesh(new THREE.SphereGeometry(0.02 * size, 16, 8), new THREE.MeshBasicMaterial({ color, depthTest: false }));
-    dot.position.fromArray(m.at);
+    dot.position.fromArray(current.faceCentre(...m.face));
     dot.renderOrder = 2;
     markers.add(dot);
-    if (m.kind === 'fold' && answer.kind === 'circular') markers.add(faceHighlight(answer, m.face, color));
+    if (m.kind === 'fold' && header.kind === 'circular') markers.add(faceHighlight(header, m.face, color));
   }
-  const warnings = $('warnings');
-  warnings.replaceChildren(...answer.warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
+  $('warnings').replaceChildren(...warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
 }
 
 /** Face (i, j) of the drawn grid, filled with `color` on top of the surface. */
-function faceHighlight(answer, [i, j], color) {
-  const v = (a, b) => Array.from(answer.vertices.subarray(3 * (a * answer.cols + b), 3 * (a * answer.cols + b) + 3));
+function faceHighlight(header, [i, j], color) {
+  const drawn = surface.geometry.getAttribute('position').array;
+  const v = (a, b) => Array.from(drawn.subarray(3 * (a * header.cols + b), 3 * (a * header.cols + b) + 3));
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array([...v(i, j), ...v(i + 1, j), ...v(i + 1, j + 1), ...v(i, j + 1)]), 3));
   geometry.setIndex([0, 1, 2, 0, 2, 3]);
@@ -305,134 +333,61 @@ for (const type of ['pointerup', 'pointercancel']) {
   });
 }
 
-// ------------------------------------------------------------ requests
-/** Requests on their way at once: a new input need not wait for the last answer. */
-const MAX_INFLIGHT = 2;
+// ------------------------------------------------------------ computing
 /**
- * During a drag the page asks synchronously, in the input's own task, so the
- * answer is drawn in the frame right after the input: an answer that comes
- * back asynchronously misses that frame and waits for the next one, 16.7 ms
- * later (measured in headless Chromium at 100 × 100 faces: median 26 ms from
- * input to drawn frame asynchronously, 14 ms synchronously). The page is
- * blocked while it waits, so once an answer takes longer than SYNC_LIMIT_MS
- * (large grids, a slow machine) the next ones are asked asynchronously.
+ * The design changed at time `t0` (null: no input to time): generate its mesh
+ * now, in the input's own task, so it is drawn in the very next frame.
+ * `dragging`: θ or a control point is being dragged, so the mesh is drawn in
+ * drag quality without its metrics, then in full with them once the drag has
+ * rested for SETTLE_MS. `name` names the design's file in messages.
  */
-const SYNC_LIMIT_MS = 25;
-let syncMs = 0;   // how long the last request of a drag took
-let sentSeq = 0;  // requests sent so far
-let shownSeq = 0; // the request whose answer is shown (older answers are dropped)
-let lastSentDragging = false;
-
-/**
- * The design changed at time `t0` (null: no input to time): regenerate, the
- * latest change wins. `dragging`: θ or a control point is being dragged, so
- * the answer comes without metrics and is drawn in drag quality, then again in
- * full once the drag has rested for SETTLE_MS.
- */
-function change(t0, dragging = false) {
-  state.queued = { t0, dragging };
+function change(t0, dragging = false, name = '<input>') {
   clearTimeout(settleTimer);
   settleTimer = null;
-  if (state.inflight < MAX_INFLIGHT) pump();
-}
-
-async function pump() {
-  const job = state.queued;
-  state.queued = null;
-  const seq = ++sentSeq;
-  lastSentDragging = job.dragging;
-  state.inflight += 1;
+  const start = performance.now();
   try {
-    const body = JSON.stringify(state.design);
-    const start = performance.now();
-    const answer = job.dragging && syncMs < SYNC_LIMIT_MS
-      ? generateMeshSync('&metrics=later', body)
-      : await generateMesh(job.dragging ? '&metrics=later' : '', body);
-    if (job.dragging) syncMs = performance.now() - start;
-    if (seq > shownSeq) {
-      shownSeq = seq;
-      showMesh(answer, job.t0, job.dragging);
-    }
+    showMesh(generateMesh(JSON.stringify(state.design), name), t0, dragging);
   } catch (error) {
-    if (seq > shownSeq) {
-      shownSeq = seq;
-      showError(error, job.dragging);
-    }
-  } finally {
-    state.inflight -= 1;
-    if (state.queued) pump();
-    else if (state.inflight === 0 && lastSentDragging) {
-      settleTimer = setTimeout(() => {
-        settleTimer = null;
-        change(null);
-      }, SETTLE_MS);
-    }
+    showError(error, dragging);
+  }
+  state.blocked.push(performance.now() - start);
+  if (dragging) {
+    settleTimer = setTimeout(() => {
+      settleTimer = null;
+      if (!state.stale) settle();
+    }, SETTLE_MS);
   }
 }
 
-/** Throws an Error with the message of a refusal (`{"error": …}`). */
-async function refusal(response) {
-  const answer = await response.json().catch(() => ({ error: `the server answered ${response.status} without JSON` }));
-  throw Object.assign(new Error(answer.error), { answer });
+/** After a drag: the metrics, and the mesh in full quality. */
+function settle() {
+  showHandles();
+  showMetrics(state.mesh, current);
+  $('metrics').classList.remove('pending');
+  quality(false);
+  redraw();
 }
 
-/**
- * POSTs a design (text) to /api/generate with `query` added; the answer with
- * its arrays as Float32Arrays, or throws with the server's message. The body
- * is a u32 header length, the JSON header, then the f32 arrays it counts.
- */
-async function generateMesh(query, body) {
-  const response = await fetch(`/api/generate?arrays=f32&offset=${state.offset}${query}`, { method: 'POST', body });
-  if (!response.ok) await refusal(response);
-  return decodeAnswer(await response.arrayBuffer());
+/** The wasm mesh of a design (JSON text) at the page's offset; throws the CLI's message. */
+function generateMesh(text, name) {
+  const start = performance.now();
+  const mesh = generate(text, name, state.offset, MAX_VERTICES);
+  generateMs = performance.now() - start;
+  return mesh;
 }
+let generateMs = 0; // how long the last generation took
 
-/**
- * `generateMesh`, synchronously (XMLHttpRequest), for drags: the answer is
- * drawn in the frame that follows the input instead of one or two frames later.
- */
-function generateMeshSync(query, body) {
-  const xhr = new XMLHttpRequest();
-  xhr.open('POST', `/api/generate?arrays=f32&offset=${state.offset}${query}`, false);
-  xhr.overrideMimeType('text/plain; charset=x-user-defined'); // bytes as they come
-  xhr.send(body);
-  const text = xhr.responseText;
-  const bytes = new Uint8Array(text.length);
-  for (let k = 0; k < text.length; k++) bytes[k] = text.charCodeAt(k);
-  if (xhr.status !== 200) {
-    let answer;
-    try {
-      answer = JSON.parse(new TextDecoder().decode(bytes));
-    } catch {
-      answer = { error: `the server answered ${xhr.status} without JSON` };
-    }
-    throw Object.assign(new Error(answer.error), { answer });
-  }
-  return decodeAnswer(bytes.buffer);
-}
-
-/** The answer in `buffer`: a u32 header length, the JSON header, then the f32 arrays it counts. */
-function decodeAnswer(buffer) {
-  const length = new DataView(buffer).getUint32(0, true);
-  const answer = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
-  let at = 4 + length;
-  const take = ({ f32 }) => {
-    const array = new Float32Array(buffer, at, f32);
-    at += 4 * f32;
-    return array;
-  };
-  answer.vertices = take(answer.vertices);
-  answer.gauss.normals = take(answer.gauss.normals);
-  for (const g of ['u', 'v']) answer.guides[g].points = take(answer.guides[g].points);
-  return answer;
-}
-
-/** Shows a refusal: the server's message, the mesh greyed as no longer current. */
+/** Shows a refusal: monge's message, the mesh greyed as no longer current. */
 function showError(error, fast = false) {
   const box = $('error');
   box.textContent = error.message;
   box.hidden = false;
-  if (error.answer && error.answer.theta_range) showThetaRange(error.answer);
+  // The admissible θ, when the guides themselves are valid.
+  try {
+    showThetaRange(JSON.parse(info(JSON.stringify(state.design), '<input>', MAX_VERTICES)));
+  } catch {
+    // the guides are invalid: the message says why
+  }
   state.stale = true;
   surfaceMaterial.color.set(0xcccccc);
   quality(fast);
@@ -442,8 +397,11 @@ function showError(error, fast = false) {
 // ------------------------------------------------------------ controls
 const fmt = (x, digits = 3) => (x === null || x === undefined ? '—' : Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
 
-function showMetrics(answer) {
-  const m = answer.metrics;
+/** The metrics table of the mesh with `header`, measured now in the module. */
+function showMetrics(answer, mesh) {
+  const start = performance.now();
+  const m = JSON.parse(mesh.metrics());
+  const metricsMs = performance.now() - start;
   const worst = (w) => (w ? `${fmt(w.value)} at (${w.at.join(', ')})` : '—');
   const rows = [
     ['grid', `${answer.rows} × ${answer.cols} vertices, ${m.faces} faces`],
@@ -455,7 +413,7 @@ function showMetrics(answer) {
     ['max error (relative)', fmt(m.max_error)],
     ['panel area', `${fmt(m.panel_area.min)} … ${fmt(m.panel_area.max)}`],
     ['edge length', `${fmt(m.edge_length.min)} … ${fmt(m.edge_length.max)}`],
-    ['server', `${fmt(answer.timing_ms.generate, 2)} + ${fmt(answer.timing_ms.measure_and_encode, 2)} ms`],
+    ['in the page (wasm)', `generate ${fmt(generateMs, 2)} ms, metrics ${fmt(metricsMs, 2)} ms`],
   ];
   $('metrics').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');
@@ -538,10 +496,9 @@ $('save').addEventListener('click', () => {
   download(new Blob([`${JSON.stringify(state.design, null, 2)}\n`], { type: 'application/json' }), 'design.json');
 });
 for (const format of ['obj', 'json']) {
-  $(`export-${format}`).addEventListener('click', async () => {
-    const response = await fetch(`/api/export?format=${format}&offset=${state.offset}`, { method: 'POST', body: JSON.stringify(state.design) });
-    if (response.ok) download(await response.blob(), `mesh.${format}`);
-    else await refusal(response).catch(showError);
+  // The file `monge generate` writes, written by the same code in the module.
+  $(`export-${format}`).addEventListener('click', () => {
+    if (current && !state.stale) download(new Blob([current.export(format)]), `mesh.${format}`);
   });
 }
 $('load-button').addEventListener('click', () => $('load').click());
@@ -549,24 +506,34 @@ $('load').addEventListener('change', async (event) => {
   const file = event.target.files[0];
   event.target.value = '';
   if (!file) return;
-  const format = file.name.toLowerCase().endsWith('.toml') ? '&format=toml' : '';
   try {
     const t0 = performance.now();
-    const answer = await generateMesh(`&name=${encodeURIComponent(file.name)}${format}`, await file.text());
-    state.design = answer.design;
+    const text = parseDesign(await file.text(), file.name, file.name.toLowerCase().endsWith('.toml'));
+    const mesh = generateMesh(text, file.name);
+    state.design = JSON.parse(text);
     syncControls();
     state.mesh = null; // fit the view to the new design
-    shownSeq = ++sentSeq; // answers to earlier requests are out of date
-    showMesh(answer, t0);
+    showMesh(mesh, t0);
   } catch (error) {
     showError(error); // the current design stays
   }
 });
 
 // ---------------------------------------------------------------- start
+/**
+ * The design to start from: the one `monge explore DESIGN` serves at
+ * api/design, else (any static server) the built-in default-design.json.
+ */
+async function startDesign() {
+  const given = await fetch('api/design').catch(() => null);
+  if (given && given.ok && (given.headers.get('content-type') || '').startsWith('application/json')) return given.json();
+  return (await fetch('default-design.json')).json();
+}
+
 async function start() {
   resize();
-  state.design = await (await fetch('/api/design')).json();
+  await init({ module_or_path: new URL('monge_wasm_bg.wasm', import.meta.url) });
+  state.design = await startDesign();
   syncControls();
   change(performance.now());
 }
@@ -579,7 +546,10 @@ window.explorer = {
     const rect = renderer.domElement.getBoundingClientRect();
     return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
   },
-  vertices: () => Array.from(state.mesh.vertices),
-  idle: () => state.inflight === 0 && state.queued === null && pendingLatency === null && settleTimer === null,
+  /** The shown mesh's vertices, f64, as `monge generate` writes them. */
+  vertices: () => Array.from(current.vertices()),
+  /** The mesh file `monge generate` writes (`obj` or `json`), as text. */
+  exported: (format) => new TextDecoder().decode(current.export(format)),
+  idle: () => pendingLatency === null && settleTimer === null,
 };
 start();

@@ -2,13 +2,16 @@
 //! that regenerates the mesh while a designer drags θ and the guides' control
 //! points (§1, §5.1: real-time exploration of the design space).
 //!
-//! The computation stays here, in Rust: the page posts its design to
-//! `POST /api/generate` and draws the mesh it gets back. The server is
+//! The page computes the mesh itself, with monge-core compiled to WebAssembly
+//! (`crates/monge-wasm`), and works from any static file server; this server
+//! serves it, hands it the design given on the command line (`GET
+//! /api/design`), and answers the same computations over HTTP for other
+//! clients (`POST /api/generate`, `POST /api/export`). The server is
 //! [`crate::http`]: small, synchronous, bounded (connections, time to send a
-//! request, requests computed at a time) — four workers answer one designer's
-//! requests, each in well under a millisecond plus the generation itself. It
-//! answers only its own page ([`guard`]: `Host` and `Origin` checked). The page's files (HTML, CSS, and the JS bundled with
-//! three.js by `npm run build` in `web/`) are embedded in the binary from
+//! request, requests computed at a time). It answers only its own page
+//! ([`guard`]: `Host` and `Origin` checked). The page's
+//! files (HTML, CSS, the module `monge_wasm_bg.wasm`, and the JS bundled with
+//! three.js and the module's glue by `npm run build` in `web/`) are embedded in the binary from
 //! `crates/monge-cli/web-dist/` (a committed copy of `web/dist`), so a copied or
 //! installed `monge` serves its page; `--web-dir` serves another directory instead.
 //!
@@ -34,9 +37,9 @@ use anyhow::{anyhow, bail, Context};
 use glam::DVec3;
 use include_dir::{include_dir, Dir};
 use monge_core::conical::conical_dual;
-use monge_core::measure::{conical_error, measure};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate, inspect, Design, GenerateError, GenerateOptions, MeshKind, QuadGrid};
+use monge_io::generated::{json_extras, kind_name, layer_extras, metrics_json, report_json};
 use monge_io::{parse_design, write_mesh_json, write_mesh_to, DesignFormat, MeshFormat};
 use serde_json::{json, Map, Value};
 use socket2::{Domain, Protocol, Socket, Type};
@@ -67,16 +70,10 @@ const LIMITS: http::Limits = http::Limits {
 /// Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2).
 const LOW_CROSSING_SINE: f64 = 1e-3;
 
-/// The design shown when `monge explore` is given none: the `monge bench`
-/// design at 100 × 100 faces (two cubic B-splines, characteristic case, θ = 30°).
-const DEFAULT_DESIGN: &str = r#"{
-  "theta_deg": 30.0,
-  "guide_u": { "bspline": { "degree": 3, "samples": 101,
-    "control_points": [[0, 0, 0], [4, 0, 0], [8, 0, 2.5], [12, 0, 1.0], [16, 0, 3.5]] } },
-  "guide_v": { "bspline": { "degree": 3, "samples": 101,
-    "control_points": [[0, 0, 0], [0, 3, 0], [0, 6, -1.5], [0, 10, 1.0]] } }
-}
-"#;
+/// The design shown when `monge explore` is given none: the page's own default
+/// (`web/src/default-design.json`), the `monge bench` design at 100 × 100 faces
+/// (two cubic B-splines, characteristic case, θ = 30°).
+const DEFAULT_DESIGN: &str = include_str!("../web-dist/default-design.json");
 
 /// Arguments of `monge explore`.
 #[derive(Debug, clap::Args)]
@@ -532,36 +529,10 @@ fn api_export(body: &[u8], query: &Query, shared: &Shared) -> Reply {
 
 /// The extra keys `monge generate` writes into JSON meshes.
 fn export_extras(b: &Built) -> Map<String, Value> {
-    let mut extra = Map::new();
-    extra.insert("theta_deg".into(), json!(b.generated.info.theta_deg));
-    extra.insert("mode".into(), json!(mode_name(b.generated.info.mode)));
-    extra.insert("report".into(), report_json(&b.generated));
-    extra.insert("kind".into(), json!(kind_name(b.design.mesh)));
-    extra.insert("offset".into(), json!(b.offset));
-    if let Some(n) = &b.face_normals {
-        let n: Vec<[f64; 3]> = n.iter().map(|v| v.to_array()).collect();
-        extra.insert("face_normals".into(), json!(n));
-    }
+    let mut extra = json_extras(&b.generated);
+    let kind = kind_name(b.design.mesh);
+    extra.extend(layer_extras(b.offset, kind, b.face_normals.as_deref()));
     extra
-}
-
-/// `"circular"` or `"conical"`.
-fn kind_name(kind: MeshKind) -> &'static str {
-    match kind {
-        MeshKind::Circular => "circular",
-        MeshKind::Conical => "conical",
-    }
-}
-
-/// The Combescure report (§5.2) as `monge generate` writes it.
-fn report_json(g: &monge_core::Generated) -> Value {
-    let r = &g.report;
-    json!({
-        "folded_faces": r.folded_faces,
-        "first_fold": r.first_fold.map(|(i, j)| [i, j]),
-        "min_crossing_sine": r.min_crossing.sine,
-        "min_crossing_face": [r.min_crossing.face.0, r.min_crossing.face.1],
-    })
 }
 
 /// The answer of `POST /api/generate`:
@@ -576,8 +547,8 @@ fn report_json(g: &monge_core::Generated) -> Value {
 /// * `report` (folds and pinches, §5.2) and `markers`: the centres of the first
 ///   folded face and of the face with the smallest crossing sine, when worth a warning;
 /// * `warnings`: sentences for the designer;
-/// * `metrics`: [`measure`] of the mesh, plus `conical` (conical meshes),
-///   `max_error`, `faces`, `panel_area` and `edge_length` (`min`, `max`);
+/// * `metrics`: [`metrics_json`] of the mesh (`measure`, plus `conical` for conical meshes,
+///   `max_error`, `faces`, `panel_area` and `edge_length`);
 ///   `null` unless `with_metrics` (most of the answer's time: 2.5 ms of 3 at
 ///   100 × 100 faces);
 /// * `timing_ms` and `design` (the parsed design, re-encoded).
@@ -629,7 +600,7 @@ fn mesh_json(b: &Built, with_metrics: bool, mut flat: impl FnMut(&[DVec3]) -> Va
         markers.push(json!({ "kind": "pinch", "face": [face.0, face.1], "at": face_centre(face) }));
     }
     let metrics = if with_metrics {
-        metrics_json(b)
+        metrics_json(&b.mesh, b.design.mesh)
     } else {
         Value::Null
     };
@@ -649,54 +620,13 @@ fn mesh_json(b: &Built, with_metrics: bool, mut flat: impl FnMut(&[DVec3]) -> Va
             "max_deg": g.info.theta_range.max_deg,
             "text": range_text(g.info.mode, &g.info.theta_range),
         },
-        "report": report_json(g),
+        "report": report_json(&g.report),
         "markers": markers,
         "warnings": warnings,
         "metrics": metrics,
         "timing_ms": { "generate": b.generate_ms, "measure_and_encode": measure_ms },
         "design": b.design,
     })
-}
-
-/// The `metrics` of [`mesh_json`].
-fn metrics_json(b: &Built) -> Value {
-    let measured = measure(&b.mesh);
-    let mut metrics = serde_json::to_value(&measured).unwrap_or(Value::Null);
-    let m = &mut metrics;
-    m["max_error"] = json!(measured.max_error());
-    if b.design.mesh == MeshKind::Conical {
-        let conical = conical_error(&b.mesh);
-        m["max_error"] = json!(measured.max_error_conical(conical));
-        m["conical"] = json!(conical);
-    }
-    m["faces"] = json!(b.mesh.face_count());
-    let (area, edge) = panel_stats(&b.mesh);
-    m["panel_area"] = json!({ "min": area.0, "max": area.1 });
-    m["edge_length"] = json!({ "min": edge.0, "max": edge.1 });
-    metrics
-}
-
-/// Smallest and largest panel area ([`QuadGrid::face_area`]) and edge length of a grid; zeros for an empty grid.
-fn panel_stats(grid: &QuadGrid) -> ((f64, f64), (f64, f64)) {
-    let extend = |(lo, hi): (f64, f64), x: f64| (lo.min(x), hi.max(x));
-    let empty = (f64::INFINITY, f64::NEG_INFINITY);
-    let (mut area, mut edge) = (empty, empty);
-    for i in 0..grid.rows {
-        for j in 0..grid.cols {
-            let p = grid.vertex(i, j);
-            if j + 1 < grid.cols {
-                edge = extend(edge, p.distance(grid.vertex(i, j + 1)));
-            }
-            if i + 1 < grid.rows {
-                edge = extend(edge, p.distance(grid.vertex(i + 1, j)));
-            }
-            if i + 1 < grid.rows && j + 1 < grid.cols {
-                area = extend(area, grid.face_area(i, j));
-            }
-        }
-    }
-    let finite = |(lo, hi): (f64, f64)| if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
-    (finite(area), finite(edge))
 }
 
 /// The page's answer: a little-endian `u32` byte length, the JSON `header`,
@@ -755,6 +685,7 @@ fn content_type(file: &Path) -> &'static str {
         Some("js" | "mjs") => "text/javascript; charset=utf-8",
         Some("css") => "text/css; charset=utf-8",
         Some("json") => "application/json",
+        Some("wasm") => "application/wasm",
         Some("png") => "image/png",
         Some("svg") => "image/svg+xml",
         _ => "application/octet-stream",
@@ -803,13 +734,5 @@ mod tests {
             assert_eq!(static_file(&page, "/../Cargo.toml").status, 404);
             assert_eq!(static_file(&page, "/missing.js").status, 404);
         }
-    }
-
-    #[test]
-    fn panel_stats_of_a_unit_square_grid() {
-        let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
-        let (area, edge) = panel_stats(&QuadGrid::new(2, 2, v, vec![]));
-        assert_eq!(area, (1.0, 1.0));
-        assert_eq!(edge, (1.0, 1.0));
     }
 }

@@ -1,17 +1,15 @@
 //! `monge generate`: design file → mesh file.
 
-use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context};
-use glam::DVec3;
 use monge_core::combescure::CombescureReport;
-use monge_core::conical::conical_dual;
 use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::gauss_map::ThetaRange;
-use monge_core::offset::{face_offset, vertex_offset};
-use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode, QuadGrid};
+use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode};
+pub use monge_io::generated::mode_name;
+use monge_io::generated::{json_extras, layers, node_offset, Layer};
 use monge_io::{
     check_output, is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output,
     AnyDesign, MeshFormat,
@@ -72,64 +70,6 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         ));
     }
     Ok(Outcome::Success)
-}
-
-/// One mesh to write: the design's mesh or one of its offsets.
-struct Layer<'a> {
-    /// The offset distance (0 for the mesh itself).
-    offset: f64,
-    /// Borrowed for the mesh itself (no copy of a large grid), owned for an offset.
-    grid: Cow<'a, QuadGrid>,
-    /// Keys of the JSON output that describe this layer.
-    extra: Map<String, Value>,
-}
-
-impl<'a> Layer<'a> {
-    /// The layer at distance `offset`, of `kind`, with its face normals if any.
-    fn new(
-        offset: f64,
-        grid: Cow<'a, QuadGrid>,
-        kind: &str,
-        face_normals: Option<&[DVec3]>,
-    ) -> Layer<'a> {
-        let mut extra = Map::new();
-        extra.insert("kind".into(), json!(kind));
-        extra.insert("offset".into(), json!(offset));
-        if let Some(n) = face_normals {
-            let n: Vec<[f64; 3]> = n.iter().map(|v| v.to_array()).collect();
-            extra.insert("face_normals".into(), json!(n));
-        }
-        Layer {
-            offset,
-            grid,
-            extra,
-        }
-    }
-}
-
-/// The design's mesh (circular, or its conical dual) and its offsets (§2.2, §2.3).
-fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer<'a>> {
-    let layer = Layer::new;
-    let distances = std::iter::once(0.0).chain(offsets.iter().copied());
-    match kind {
-        MeshKind::Circular => distances
-            .map(|d| layer(d, node_offset(&g.grid, d), "circular", None))
-            .collect(),
-        MeshKind::Conical => {
-            let conical = conical_dual(&g.grid);
-            distances
-                .map(|d| {
-                    let o = face_offset(&conical, d);
-                    layer(
-                        d,
-                        Cow::Owned(o.grid),
-                        "conical",
-                        Some(&conical.face_normals),
-                    )
-                })
-                .collect()
-        }
-    }
 }
 
 /// Writes the layers: the first to OUT, each offset next to it, JSON with `extra`
@@ -197,15 +137,6 @@ fn run_developable(
     Ok(Outcome::Success)
 }
 
-/// The node offset of `grid` at distance `d` (§2.2); the grid itself, not a copy, at 0.
-fn node_offset(grid: &QuadGrid, d: f64) -> Cow<'_, QuadGrid> {
-    if d == 0.0 {
-        Cow::Borrowed(grid)
-    } else {
-        Cow::Owned(vertex_offset(grid, d))
-    }
-}
-
 /// `dir/stem.offset+D.ext` (or `-D`) for OUT = `dir/stem.ext`.
 fn offset_path(out: &Path, d: f64) -> PathBuf {
     let stem = out.file_stem().unwrap_or_default().to_string_lossy();
@@ -216,25 +147,7 @@ fn offset_path(out: &Path, d: f64) -> PathBuf {
     out.with_file_name(name)
 }
 
-/// `"characteristic"` or `"arbitrary"`.
-pub fn mode_name(mode: Mode) -> &'static str {
-    match mode {
-        Mode::Characteristic => "characteristic",
-        Mode::Arbitrary => "arbitrary",
-    }
-}
-
-/// The extra keys of the JSON output: `theta_deg`, `mode`, `report`.
-fn json_extras(g: &Generated) -> Map<String, Value> {
-    let report = report_json(&Pinching::from(&g.report));
-    let mut extra = Map::new();
-    extra.insert("theta_deg".into(), json!(g.info.theta_deg));
-    extra.insert("mode".into(), json!(mode_name(g.info.mode)));
-    extra.insert("report".into(), report);
-    extra
-}
-
-/// What the summary and the JSON output say about folds and pinches (§5.2),
+/// What the summary says about folds and pinches (§5.2),
 /// taken from a [`CombescureReport`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Pinching {
@@ -257,16 +170,6 @@ impl From<&CombescureReport> for Pinching {
             min_face: r.min_crossing.face,
         }
     }
-}
-
-/// The Combescure report as JSON (§5.2).
-fn report_json(r: &Pinching) -> Value {
-    json!({
-        "folded_faces": r.folded_faces,
-        "first_fold": r.first_fold.map(|(i, j)| [i, j]),
-        "min_crossing_sine": r.min_sine,
-        "min_crossing_face": [r.min_face.0, r.min_face.1],
-    })
 }
 
 /// Below this |θ| in degrees, the lower end of an admissible range is 0 up to
@@ -400,16 +303,6 @@ mod tests {
         let w = warnings(90.0, &report(0, 0.5));
         assert_eq!(w.len(), 1);
         assert!(w[0].contains("singular θ = +90°"), "{}", w[0]);
-    }
-
-    #[test]
-    fn report_json_names_every_field() {
-        let v = report_json(&report(2, 0.25));
-        assert_eq!(v["folded_faces"], 2);
-        assert_eq!(v["first_fold"], json!([5, 6]));
-        assert_eq!(v["min_crossing_sine"], 0.25);
-        assert_eq!(v["min_crossing_face"], json!([3, 4]));
-        assert_eq!(report_json(&report(0, 1.0))["first_fold"], Value::Null);
     }
 
     #[test]

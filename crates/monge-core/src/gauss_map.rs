@@ -125,8 +125,8 @@ impl ThetaRange {
     /// The range for the Gauss circles `{N · n_u = c_u}` and `{N · n_v = c_v}` (§3.2).
     pub fn new(c_u: f64, c_v: f64) -> Self {
         ThetaRange {
-            min_deg: 2.0 * c_v.abs().atan().to_degrees(),
-            max_deg: 180.0 - 2.0 * c_u.abs().atan().to_degrees(),
+            min_deg: 2.0 * libm::atan(c_v.abs()).to_degrees(),
+            max_deg: 180.0 - 2.0 * libm::atan(c_u.abs()).to_degrees(),
         }
     }
 
@@ -193,7 +193,8 @@ pub struct Inadmissible {
 pub fn pencil_axes(frame: &StartFrame, theta_deg: f64) -> Result<PencilAxes, Inadmissible> {
     let theta_deg = normalize_theta_deg(theta_deg);
     let (c_u, c_v) = (frame.c_u(), frame.c_v());
-    let (s, c) = (theta_deg.to_radians() / 2.0).sin_cos();
+    let half = theta_deg.to_radians() / 2.0;
+    let (s, c) = (libm::sin(half), libm::cos(half));
     let delta2 = c_u * c_u / (1.0 - c_u * c_u * c_v * c_v);
     let e = s * s - c_v * c_v * c * c;
     let d = c * c - delta2 * e;

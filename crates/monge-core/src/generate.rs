@@ -267,8 +267,8 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
         });
     }
     let cos = guide_u.tangent.dot(guide_v.tangent);
-    if cos.is_nan() || cos.abs() > tol.angle.sin() {
-        let angle_deg = cos.clamp(-1.0, 1.0).acos().to_degrees();
+    if cos.is_nan() || cos.abs() > libm::sin(tol.angle) {
+        let angle_deg = libm::acos(cos.clamp(-1.0, 1.0)).to_degrees();
         return Err(GenerateError::NotOrthogonal {
             angle_deg,
             off_deg: (angle_deg - 90.0).abs(),

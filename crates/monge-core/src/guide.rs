@@ -634,7 +634,7 @@ fn sample_arc(a: &ArcSpec, name: GuideName, tol: &Tolerances) -> Result<Sampled,
     let r = start - v(&a.center);
     let r_unit = unit(r).ok_or(GuideError::ArcZeroRadius { guide: name })?;
     // Deviation from 90° of the angle between the normal and the radius.
-    let off = n.dot(r_unit).abs().min(1.0).asin();
+    let off = libm::asin(n.dot(r_unit).abs().min(1.0));
     if !within(off, tol.angle) {
         return Err(GuideError::ArcNotOrthogonal {
             guide: name,
@@ -650,8 +650,8 @@ fn sample_arc(a: &ArcSpec, name: GuideName, tol: &Tolerances) -> Result<Sampled,
     let points = (0..a.samples)
         .map(|k| {
             let phi = step * k as f64;
-            let half = (0.5 * phi).sin();
-            start + phi.sin() * side - (2.0 * half * half) * r_perp
+            let half = libm::sin(0.5 * phi);
+            start + libm::sin(phi) * side - (2.0 * half * half) * r_perp
         })
         .collect();
     let tangent = side * a.angle_deg.signum();
@@ -930,7 +930,7 @@ fn fit(points: &[DVec3], size: f64) -> Fit {
     let mean = points.iter().map(|&p| p - mid).sum::<DVec3>() / points.len() as f64;
     let centroid = mid + mean;
     // A power of two, so scaling is exact and keeps the sums in range.
-    let scale = 2f64.powi(-(size.log2().floor() as i32));
+    let scale = libm::ldexp(1.0, -(libm::log2(size).floor() as i32));
     let mut a: Vec<[f64; 3]> = points
         .iter()
         .map(|&p| ((p - centroid) * scale).to_array())
@@ -950,8 +950,8 @@ fn fit(points: &[DVec3], size: f64) -> Fit {
             }
             rotated = true;
             let zeta = (beta - alpha) / (2.0 * gamma);
-            let t = zeta.signum() / (zeta.abs() + zeta.hypot(1.0));
-            let c = 1.0 / t.hypot(1.0);
+            let t = zeta.signum() / (zeta.abs() + libm::hypot(zeta, 1.0));
+            let c = 1.0 / libm::hypot(t, 1.0);
             let s = c * t;
             for row in a.iter_mut().chain(vt.iter_mut()) {
                 let (x, y) = (row[p], row[q]);
@@ -1066,7 +1066,7 @@ fn finish(
     })?;
     let across = t.dot(normal);
     let along = t - across * normal;
-    let angle = across.abs().atan2(along.length());
+    let angle = libm::atan2(across.abs(), along.length());
     let not_in_plane = GuideError::TangentNotInPlane {
         guide: name,
         from: source,

@@ -91,7 +91,9 @@ pub fn parse_design(text: &str, format: DesignFormat) -> Result<Design, IoError>
     parse_design_named(text, format, NO_FILE)
 }
 
-fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
+/// [`parse_design`] of the contents of `file` (named in the messages, e.g.
+/// `design.json:3:7: …`).
+pub fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
     expect_kind(text, format, file, &[FileKind::Design])?;
     parse_as(text, format, file)
 }

@@ -30,6 +30,7 @@ mod design;
 mod dxf;
 mod error;
 mod fabrication;
+pub mod generated;
 mod gltf;
 mod iges;
 mod kind;
@@ -45,8 +46,8 @@ use std::path::Path;
 
 pub use atomic::{check_output, is_stdio, write_atomic, write_output};
 pub use design::{
-    parse_any_design, parse_design, read_any_design, read_design, write_design, write_design_to,
-    AnyDesign, DesignFormat,
+    parse_any_design, parse_design, parse_design_named, read_any_design, read_design, write_design,
+    write_design_to, AnyDesign, DesignFormat,
 };
 pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;

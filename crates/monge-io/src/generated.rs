@@ -1,0 +1,211 @@
+//! The mesh file of a generated design (§2.2, §2.3, §5.2): which mesh is
+//! written (the circular mesh or its conical dual, at each offset) and the keys
+//! `monge generate` adds to a JSON mesh. Shared by `monge generate`, the
+//! explorer's server and the explorer in the browser (`monge-wasm`), so that a
+//! mesh exported from any of them is the same file, byte for byte.
+
+use std::borrow::Cow;
+
+use glam::DVec3;
+use monge_core::combescure::CombescureReport;
+use monge_core::conical::conical_dual;
+use monge_core::measure::{conical_error, measure};
+use monge_core::offset::{face_offset, vertex_offset};
+use monge_core::{Generated, MeshKind, Mode, QuadGrid};
+use serde_json::{json, Map, Value};
+
+/// `"characteristic"` (§3.1) or `"arbitrary"` (§3.2).
+pub fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Characteristic => "characteristic",
+        Mode::Arbitrary => "arbitrary",
+    }
+}
+
+/// `"circular"` (§2.2) or `"conical"` (§2.3).
+pub fn kind_name(kind: MeshKind) -> &'static str {
+    match kind {
+        MeshKind::Circular => "circular",
+        MeshKind::Conical => "conical",
+    }
+}
+
+/// The Combescure report as JSON (§5.2): `folded_faces`, `first_fold`,
+/// `min_crossing_sine`, `min_crossing_face`.
+pub fn report_json(r: &CombescureReport) -> Value {
+    json!({
+        "folded_faces": r.folded_faces,
+        "first_fold": r.first_fold.map(|(i, j)| [i, j]),
+        "min_crossing_sine": r.min_crossing.sine,
+        "min_crossing_face": [r.min_crossing.face.0, r.min_crossing.face.1],
+    })
+}
+
+/// The keys of a JSON mesh that describe the generation: `theta_deg`, `mode`, `report`.
+pub fn json_extras(g: &Generated) -> Map<String, Value> {
+    let mut extra = Map::new();
+    extra.insert("theta_deg".into(), json!(g.info.theta_deg));
+    extra.insert("mode".into(), json!(mode_name(g.info.mode)));
+    extra.insert("report".into(), report_json(&g.report));
+    extra
+}
+
+/// One mesh to write: the design's mesh or one of its offsets (§2.2, §2.3).
+#[derive(Clone, Debug)]
+pub struct Layer<'a> {
+    /// The offset distance (0 for the mesh itself).
+    pub offset: f64,
+    /// The mesh: borrowed for the circular mesh itself (no copy of a large
+    /// grid), owned for an offset or a conical dual.
+    pub grid: Cow<'a, QuadGrid>,
+    /// Keys of the JSON output that describe this layer: `kind`, `offset`, and
+    /// `face_normals` (the Gauss vertices) for a conical mesh.
+    pub extra: Map<String, Value>,
+}
+
+impl<'a> Layer<'a> {
+    /// The layer at distance `offset`, of `kind` (`circular`, `conical`,
+    /// `developable`), with its face normals if any.
+    pub fn new(
+        offset: f64,
+        grid: Cow<'a, QuadGrid>,
+        kind: &str,
+        face_normals: Option<&[DVec3]>,
+    ) -> Layer<'a> {
+        Layer {
+            offset,
+            grid,
+            extra: layer_extras(offset, kind, face_normals),
+        }
+    }
+}
+
+/// The keys of a JSON mesh that describe one layer: `kind`, `offset`, and
+/// `face_normals` when given.
+pub fn layer_extras(offset: f64, kind: &str, face_normals: Option<&[DVec3]>) -> Map<String, Value> {
+    let mut extra = Map::new();
+    extra.insert("kind".into(), json!(kind));
+    extra.insert("offset".into(), json!(offset));
+    if let Some(n) = face_normals {
+        let n: Vec<[f64; 3]> = n.iter().map(|v| v.to_array()).collect();
+        extra.insert("face_normals".into(), json!(n));
+    }
+    extra
+}
+
+/// The design's mesh of `kind` at distance 0, then at each of `offsets`: node
+/// offsets of the circular mesh (§2.2), or face offsets of its conical dual
+/// (§2.3; the circular mesh has at least 3 × 3 vertices, as every curved guide
+/// has at least 3 samples).
+pub fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer<'a>> {
+    let distances = std::iter::once(0.0).chain(offsets.iter().copied());
+    match kind {
+        MeshKind::Circular => distances
+            .map(|d| Layer::new(d, node_offset(&g.grid, d), kind_name(kind), None))
+            .collect(),
+        MeshKind::Conical => {
+            let conical = conical_dual(&g.grid);
+            distances
+                .map(|d| {
+                    let o = face_offset(&conical, d);
+                    Layer::new(
+                        d,
+                        Cow::Owned(o.grid),
+                        kind_name(kind),
+                        Some(&conical.face_normals),
+                    )
+                })
+                .collect()
+        }
+    }
+}
+
+/// The node offset of `grid` at distance `d` (§2.2): the grid itself, borrowed,
+/// at 0.
+pub fn node_offset(grid: &QuadGrid, d: f64) -> Cow<'_, QuadGrid> {
+    if d == 0.0 {
+        Cow::Borrowed(grid)
+    } else {
+        Cow::Owned(vertex_offset(grid, d))
+    }
+}
+
+/// The explorer's metrics of a mesh of `kind` (§2.2, §2.3): [`measure`], plus
+/// `conical` (the conical error of a conical mesh), `max_error`, `faces`,
+/// `panel_area` and `edge_length` (`min`, `max`).
+pub fn metrics_json(mesh: &QuadGrid, kind: MeshKind) -> Value {
+    let measured = measure(mesh);
+    let mut metrics = serde_json::to_value(&measured).unwrap_or(Value::Null);
+    let m = &mut metrics;
+    m["max_error"] = json!(measured.max_error());
+    if kind == MeshKind::Conical {
+        let conical = conical_error(mesh);
+        m["max_error"] = json!(measured.max_error_conical(conical));
+        m["conical"] = json!(conical);
+    }
+    m["faces"] = json!(mesh.face_count());
+    let (area, edge) = panel_stats(mesh);
+    m["panel_area"] = json!({ "min": area.0, "max": area.1 });
+    m["edge_length"] = json!({ "min": edge.0, "max": edge.1 });
+    metrics
+}
+
+/// Smallest and largest panel area ([`QuadGrid::face_area`]) and edge length
+/// of a grid; zeros for an empty grid.
+fn panel_stats(grid: &QuadGrid) -> ((f64, f64), (f64, f64)) {
+    let extend = |(lo, hi): (f64, f64), x: f64| (lo.min(x), hi.max(x));
+    let empty = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut area, mut edge) = (empty, empty);
+    for i in 0..grid.rows {
+        for j in 0..grid.cols {
+            let p = grid.vertex(i, j);
+            if j + 1 < grid.cols {
+                edge = extend(edge, p.distance(grid.vertex(i, j + 1)));
+            }
+            if i + 1 < grid.rows {
+                edge = extend(edge, p.distance(grid.vertex(i + 1, j)));
+            }
+            if i + 1 < grid.rows && j + 1 < grid.cols {
+                area = extend(area, grid.face_area(i, j));
+            }
+        }
+    }
+    let finite = |(lo, hi): (f64, f64)| if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
+    (finite(area), finite(edge))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use monge_core::combescure::ParallelLines;
+
+    fn report(folded_faces: usize, sine: f64) -> CombescureReport {
+        CombescureReport {
+            min_crossing: ParallelLines {
+                face: (3, 4),
+                sine,
+                zero_edge: false,
+            },
+            folded_faces,
+            first_fold: (folded_faces > 0).then_some((5, 6)),
+        }
+    }
+
+    #[test]
+    fn report_json_names_every_field() {
+        let v = report_json(&report(2, 0.25));
+        assert_eq!(v["folded_faces"], 2);
+        assert_eq!(v["first_fold"], json!([5, 6]));
+        assert_eq!(v["min_crossing_sine"], 0.25);
+        assert_eq!(v["min_crossing_face"], json!([3, 4]));
+        assert_eq!(report_json(&report(0, 1.0))["first_fold"], Value::Null);
+    }
+
+    #[test]
+    fn panel_stats_of_a_unit_square_grid() {
+        let v = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y];
+        let (area, edge) = panel_stats(&QuadGrid::new(2, 2, v, vec![]));
+        assert_eq!(area, (1.0, 1.0));
+        assert_eq!(edge, (1.0, 1.0));
+    }
+}
