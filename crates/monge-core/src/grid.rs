@@ -355,6 +355,27 @@ impl Folds {
         }
     }
 
+    /// The faces counted by `self` and by `other` together: counting the faces
+    /// of a grid in parts (e.g. in parallel) and merging the parts gives what
+    /// counting them all in one [`Folds`] gives, in any order of merging.
+    ///
+    /// ```
+    /// use monge_core::grid::{Folds, Turn};
+    /// let (mut a, mut b) = (Folds::default(), Folds::default());
+    /// a.add((1, 0), Turn::Positive);
+    /// a.add((1, 1), Turn::Negative);
+    /// b.add((0, 0), Turn::Positive);
+    /// b.add((0, 1), Turn::Positive);
+    /// assert_eq!((a.merge(b).count(), a.merge(b).first()), (1, Some((1, 1))));
+    /// assert_eq!(a.merge(b), b.merge(a));
+    /// ```
+    pub fn merge(self, other: Folds) -> Folds {
+        Folds {
+            count: std::array::from_fn(|k| self.count[k] + other.count[k]),
+            first: std::array::from_fn(|k| self.first[k].into_iter().chain(other.first[k]).min()),
+        }
+    }
+
     /// Number of folded faces.
     pub fn count(&self) -> usize {
         self.count[Turn::Crossed as usize] + self.count[self.wrong_way()]
