@@ -6,7 +6,7 @@ use std::mem::MaybeUninit;
 use glam::DVec3;
 
 use crate::gauss_map::{GaussRows, RowLanes};
-use crate::grid::{quad_turn, Folds};
+use crate::grid::{quad_sides, Folds, Turn};
 use crate::lanes::{F, LANES, V};
 
 /// A face whose last vertex is undefined (§5.2): the Gauss edge along which it
@@ -316,6 +316,9 @@ impl Rows<'_> {
                 let sine2 = g.zip(product, |g, p| g / p);
                 let plane2 = (across * across).zip(a11, |c, a| c / a);
                 let axis = np_left + n_left + n + np;
+                let sides = quad_sides(&[xp_left, x_left, x, xp], axis, V::cross, V::dot, |s| {
+                    F::splat(0.0) - s
+                });
                 for k in (0..LANES).filter(|&k| check[k]) {
                     let face = (lanes.rows[k] - 1, j - 1);
                     let seen = &mut seen[k];
@@ -337,8 +340,8 @@ impl Rows<'_> {
                     if sine2.0[k] < seen.min_crossing.0 {
                         seen.min_crossing = (sine2.0[k], face);
                     }
-                    let quad = [xp_left.lane(k), x_left.lane(k), x.lane(k), xp.lane(k)];
-                    seen.folds.add(face, quad_turn(&quad, axis.lane(k)));
+                    let turn = Turn::of_sides(sides.map(|s| s.0[k]));
+                    seen.folds.add(face, turn);
                 }
             }
         }

@@ -102,6 +102,16 @@ impl V {
         DVec3::new(self.x.0[k], self.y.0[k], self.z.0[k])
     }
 
+    /// The cross product, lane by lane.
+    #[inline(always)]
+    pub fn cross(self, o: V) -> V {
+        V {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+
     /// `(x·x' + y·y') + z·z'`, lane by lane.
     #[inline(always)]
     pub fn dot(self, o: V) -> F {
