@@ -273,7 +273,7 @@ pub fn gauss_map(axes: &PencilAxes, along_u: &[DVec3], along_v: &[DVec3]) -> Gau
 
 /// The pencil planes of the Gauss map's rows and columns (§2.2.1), from which
 /// [`gauss_map`] computes every vertex and [`crate::combescure::combescure`]
-/// the mesh rows, [`LANES`] rows at a time.
+/// the mesh rows, four rows at a time.
 #[derive(Clone, Debug)]
 pub struct GaussRows<'a> {
     along_u: &'a [DVec3],
