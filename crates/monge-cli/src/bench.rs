@@ -5,6 +5,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use glam::DVec3;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
 
 use crate::cli::BenchArgs;
@@ -31,13 +32,16 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
     };
     for &n in args.sizes.as_deref().unwrap_or(&[100, 1000]) {
         let design = standard_design(n as usize + 1);
-        let once = || -> anyhow::Result<Duration> {
+        // The mesh's vertices, and as many normals.
+        let len = (n as usize + 1).pow(2);
+        // One generation, then one fill of as many bytes, in the same conditions.
+        let once = || -> anyhow::Result<(f64, f64)> {
             let start = Instant::now();
             let generated = generate(black_box(&design), &options)
                 .with_context(|| format!("bench design with {n} × {n} faces"))?;
             let elapsed = start.elapsed();
             black_box(generated);
-            Ok(elapsed)
+            Ok((elapsed.as_secs_f64() * 1e3, fill(len) * 1e3))
         };
         let warm_start = Instant::now();
         let mut warm_runs = 0u32;
@@ -48,11 +52,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
         let runs = args
             .runs
             .unwrap_or_else(|| default_runs(warm_start.elapsed() / warm_runs));
-        let mut times = Vec::with_capacity(runs as usize);
+        let (mut times, mut fills) = (Vec::new(), Vec::new());
         for _ in 0..runs {
-            times.push(once()?.as_secs_f64() * 1e3);
+            let (t, f) = once()?;
+            times.push(t);
+            fills.push(f);
         }
-        print(&format!("{}\n", json_line(n, &mut times)))?;
+        print(&format!("{}\n", json_line(n, &mut times, &mut fills)))?;
     }
     Ok(Outcome::Success)
 }
@@ -213,20 +219,43 @@ fn default_runs(per_run: Duration) -> u32 {
     (runs.ceil() as u32).clamp(MIN_RUNS, MAX_RUNS)
 }
 
-/// `{"faces":"NxN","median_ms":…,"runs":…,"min_ms":…,"max_ms":…}` for the run times
-/// (milliseconds, at least one; sorted in place).
-fn json_line(n: u32, times: &mut [f64]) -> String {
+/// Seconds to fill two fresh `Vec<DVec3>` of `len` elements each, every
+/// element written once (one thread): what writing the mesh's bytes (its
+/// vertices and its normals) costs on this machine, allocated as the mesh is.
+fn fill(len: usize) -> f64 {
+    let start = Instant::now();
+    let make = || -> Vec<DVec3> { (0..len).map(|k| DVec3::splat(k as f64)).collect() };
+    let filled = (make(), make());
+    black_box(&filled);
+    let elapsed = start.elapsed().as_secs_f64();
+    drop(filled);
+    elapsed
+}
+
+/// The median of `times` (at least one; sorted in place).
+fn median(times: &mut [f64]) -> f64 {
     times.sort_by(f64::total_cmp);
     let k = times.len();
-    let median = if k % 2 == 1 {
+    if k % 2 == 1 {
         times[k / 2]
     } else {
         0.5 * (times[k / 2 - 1] + times[k / 2])
-    };
+    }
+}
+
+/// `{"faces":"NxN","median_ms":…,"runs":…,"min_ms":…,"max_ms":…,"fill_ms":…,"ratio_to_fill":…}`
+/// for the generator's run times and the fill times of its mesh's bytes
+/// (milliseconds, as many; sorted in place): `fill_ms` is their median, the
+/// ratio that of the medians.
+fn json_line(n: u32, times: &mut [f64], fills: &mut [f64]) -> String {
+    let (time, fill) = (median(times), median(fills));
+    let k = times.len();
     format!(
-        "{{\"faces\":\"{n}x{n}\",\"median_ms\":{median:.4},\"runs\":{k},\"min_ms\":{:.4},\"max_ms\":{:.4}}}",
+        "{{\"faces\":\"{n}x{n}\",\"median_ms\":{time:.4},\"runs\":{k},\"min_ms\":{:.4},\"max_ms\":{:.4},\
+         \"fill_ms\":{fill:.4},\"ratio_to_fill\":{:.2}}}",
         times[0],
-        times[k - 1]
+        times[k - 1],
+        time / fill
     )
 }
 
@@ -280,12 +309,13 @@ mod tests {
 
     #[test]
     fn the_line_starts_with_the_required_keys() {
-        let line = json_line(10, &mut [3.0, 1.0, 2.0, 10.0]);
+        let line = json_line(10, &mut [3.0, 1.0, 2.0, 10.0], &mut [2.0, 0.5, 0.1, 9.0]);
         assert_eq!(
             line,
-            r#"{"faces":"10x10","median_ms":2.5000,"runs":4,"min_ms":1.0000,"max_ms":10.0000}"#
+            r#"{"faces":"10x10","median_ms":2.5000,"runs":4,"min_ms":1.0000,"max_ms":10.0000,"fill_ms":1.2500,"ratio_to_fill":2.00}"#
         );
         let v: serde_json::Value = serde_json::from_str(&line).unwrap();
         assert_eq!(v["median_ms"], 2.5);
+        assert_eq!(v["ratio_to_fill"], 2.0);
     }
 }

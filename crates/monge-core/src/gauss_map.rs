@@ -20,6 +20,7 @@
 
 use glam::DVec3;
 
+use crate::lanes::{F, LANES, V};
 use crate::projective::{HPoint, Line};
 
 /// Round-off allowed when testing whether θ is admissible.
@@ -252,21 +253,28 @@ pub struct GaussMap {
 /// assert!(g.normals[3].abs_diff_eq(expected, 1e-15));
 /// ```
 pub fn gauss_map(axes: &PencilAxes, along_u: &[DVec3], along_v: &[DVec3]) -> GaussMap {
-    let rows = GaussRows::new(axes, along_u, along_v);
-    let cols = along_v.len();
-    let mut normals = vec![DVec3::ZERO; along_u.len() * cols];
-    for (i, out) in normals.chunks_exact_mut(cols).enumerate() {
-        rows.fill(i, out);
+    let gauss = GaussRows::new(axes, along_u, along_v);
+    let (rows, cols) = (along_u.len(), along_v.len());
+    let mut normals = vec![DVec3::ZERO; rows * cols];
+    for (block, out) in normals.chunks_mut(LANES * cols).enumerate() {
+        // Rows past the end repeat the last row; they are not written.
+        let lanes = gauss.rows(std::array::from_fn(|k| (block * LANES + k).min(rows - 1)));
+        for (k, row) in out.chunks_exact_mut(cols).enumerate() {
+            for (j, n) in row.iter_mut().enumerate() {
+                *n = gauss.vertex(&lanes, j).lane(k);
+            }
+        }
     }
     GaussMap {
-        rows: along_u.len(),
+        rows,
         cols,
         normals,
     }
 }
 
-/// The Gauss map row by row (§2.2.1), for callers that consume each row as it is
-/// made (see [`gauss_map`] for the construction).
+/// The pencil planes of the Gauss map's rows and columns (§2.2.1), from which
+/// [`gauss_map`] computes every vertex and [`crate::combescure::combescure`]
+/// the mesh rows, four rows at a time.
 #[derive(Clone, Debug)]
 pub struct GaussRows<'a> {
     along_u: &'a [DVec3],
@@ -275,6 +283,23 @@ pub struct GaussRows<'a> {
     row_planes: Vec<(DVec3, DVec3, f64)>,
     /// Per column: the plane through L2 and N_0j, likewise.
     col_planes: Vec<(DVec3, DVec3, f64)>,
+}
+
+/// The row planes of [`LANES`] rows of the Gauss map (§2.2.1), one row per lane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RowLanes {
+    /// The rows.
+    pub rows: [usize; LANES],
+    /// Unit normals of the row planes.
+    n1: V,
+    /// `N_i0 − N00`.
+    u: V,
+    /// Offsets of the row planes.
+    e1: F,
+    /// `N_i0`, the rows' first normals (guide_u's).
+    first: V,
+    /// Which lanes hold row 0 (guide_v's normals).
+    pub row0: [bool; LANES],
 }
 
 impl<'a> GaussRows<'a> {
@@ -295,24 +320,47 @@ impl<'a> GaussRows<'a> {
         }
     }
 
-    /// Row `i` of the Gauss map into `out` (one normal per column) (§2.2.1).
-    pub fn fill(&self, i: usize, out: &mut [DVec3]) {
-        if i == 0 {
-            out.copy_from_slice(self.along_v);
-            return;
+    /// Unit normal of the pencil plane of column `j` (§2.2.1): by Combescure
+    /// parallelism (Joachimsthal) the mesh's column `j` lies in a plane with this
+    /// normal too.
+    pub fn column_normal(&self, j: usize) -> DVec3 {
+        self.col_planes[j].0
+    }
+
+    /// The row planes of `rows`, one row per lane (§2.2.1).
+    pub(crate) fn rows(&self, rows: [usize; LANES]) -> RowLanes {
+        let planes = rows.map(|i| self.row_planes[i]);
+        RowLanes {
+            rows,
+            n1: V::from_lanes(planes.map(|p| p.0)),
+            u: V::from_lanes(planes.map(|p| p.1)),
+            e1: F(planes.map(|p| p.2)),
+            first: V::from_lanes(rows.map(|i| self.along_u[i])),
+            row0: rows.map(|i| i == 0),
         }
-        let n00 = self.along_u[0];
-        let (n1, u, e1) = self.row_planes[i];
-        out[0] = self.along_u[i];
-        for (out, &(n2, w, e2)) in out[1..].iter_mut().zip(&self.col_planes[1..]) {
-            // The intersection of n1·Y = e1, n2·Y = e2 and (u × w)·Y = 0, in closed form.
-            let alpha = n1.dot(w);
-            let beta = n2.dot(u);
-            let inv_det = 1.0 / (e1 * e2 - alpha * beta);
-            let n = n00 + (e2 * (e1 - alpha) * inv_det) * u + (e1 * (e2 - beta) * inv_det) * w;
-            // n is on S² up to round-off: one Newton step makes it unit to round-off.
-            *out = n * (1.5 - 0.5 * n.length_squared());
+    }
+
+    /// The Gauss vertices `(i, j)` of the rows `i` of `lanes` (§2.2.1, §3.1 iii):
+    /// the intersection of the row's pencil plane, the column's, and the plane
+    /// through `N00`, `N_i0` and `N_0j` (Proposition 1), in closed form;
+    /// guide_u's and guide_v's normals themselves in column and row 0.
+    #[inline(always)]
+    pub(crate) fn vertex(&self, lanes: &RowLanes, j: usize) -> V {
+        if j == 0 {
+            return lanes.first;
         }
+        let (n2, w, e2) = self.col_planes[j];
+        let (n2, w, e2) = (V::splat(n2), V::splat(w), F::splat(e2));
+        let (n1, u, e1) = (lanes.n1, lanes.u, lanes.e1);
+        let alpha = n1.dot(w);
+        let beta = n2.dot(u);
+        let inv_det = (e1 * e2 - alpha * beta).recip();
+        let n = V::splat(self.along_u[0])
+            + u.scale(e2 * (e1 - alpha) * inv_det)
+            + w.scale(e1 * (e2 - beta) * inv_det);
+        // n is on S² up to round-off: one Newton step makes it unit to round-off.
+        let n = n.scale(F::splat(1.5) - F::splat(0.5) * n.dot(n));
+        n.select(lanes.row0, V::splat(self.along_v[j]))
     }
 }
 

@@ -2,9 +2,7 @@
 
 use std::fmt;
 
-use glam::DVec3;
-
-use crate::combescure::{combescure_rows, CombescureReport, ParallelLines};
+use crate::combescure::{combescure, CombescureReport, ParallelLines};
 use crate::design::Design;
 use crate::gauss_map::{
     guide_normals, normalize_theta_deg, pencil_axes, GaussRows, PencilAxes, StartFrame, ThetaRange,
@@ -335,17 +333,9 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
     let n_p = info.frame.n_p;
     let along_u = guide_normals(&info.guide_u.points, n_p);
     let along_v = guide_normals(&info.guide_v.points, n_p);
-    // Relative to the guides' common start point (exact differences of nearby
-    // numbers), so that round-off stays relative to the design's size however
-    // far it is from the origin.
-    let origin = info.guide_u.points[0];
-    let local = |g: &Guide| -> Vec<DVec3> { g.points.iter().map(|p| *p - origin).collect() };
-    let (guide_u, guide_v) = (local(&info.guide_u), local(&info.guide_v));
-    // The Gauss map and the Combescure transform, row by row, so that each Gauss
-    // row is used while it is still in cache.
     let gauss = GaussRows::new(&axes, &along_u, &along_v);
-    let mut transform = combescure_rows(&guide_u, &guide_v, |i, out| gauss.fill(i, out))
-        .map_err(|ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
+    let transform = combescure(&gauss, &info.guide_u.points, &info.guide_v.points).map_err(
+        |ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
             face,
             sine,
             hint: if zero_edge {
@@ -356,16 +346,9 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
             } else {
                 "The mesh pinches to a point there (§5.2). Change θ or the guides"
             },
-        })?;
-    let (rows, cols) = (guide_u.len(), guide_v.len());
-    for p in &mut transform.vertices {
-        *p += origin;
-    }
-    // The guide samples themselves, bit for bit (p − origin + origin may round).
-    transform.vertices[..cols].copy_from_slice(&info.guide_v.points);
-    for (i, p) in info.guide_u.points.iter().enumerate() {
-        transform.vertices[i * cols] = *p;
-    }
+        },
+    )?;
+    let (rows, cols) = (along_u.len(), along_v.len());
     Ok(Generated {
         grid: QuadGrid::new(rows, cols, transform.vertices, transform.normals),
         info,

@@ -274,26 +274,47 @@ pub enum Turn {
 /// assert_eq!(quad_turn(&dart, DVec3::Z), Turn::Crossed);
 /// ```
 pub fn quad_turn(q: &[DVec3; 4], axis: DVec3) -> Turn {
+    let sides = quad_sides(q, axis, |a, b| a.cross(b), |a, b| a.dot(b), |a| -a);
+    Turn::of_sides(sides)
+}
+
+/// The four signed sides of [`quad_turn`], for any vector type (one vector, or
+/// one per SIMD lane) given its cross and dot products and negation.
+#[inline(always)]
+pub(crate) fn quad_sides<V: Copy + std::ops::Sub<Output = V>, S>(
+    q: &[V; 4],
+    axis: V,
+    cross: impl Fn(V, V) -> V,
+    dot: impl Fn(V, V) -> S,
+    neg: impl Fn(S) -> S,
+) -> [S; 4] {
     // The sign of corner k's turn is that of the 2D cross product of its edges
     // in the quad's projection along the axis. There, the quad is convex and
     // turns positively iff each diagonal's line has the other two corners
     // strictly on its proper sides: 2 cross and 4 dot products instead of 4 and 4.
     let [a, b, c, d] = *q;
-    let across_ac = (c - a).cross(axis);
-    let across_bd = (d - b).cross(axis);
-    let sides = [
-        across_ac.dot(b - a),
-        -across_ac.dot(d - a),
-        across_bd.dot(c - b),
-        -across_bd.dot(a - b),
-    ];
-    // Counted without branches; NaN counts neither way, so it is crossed.
-    let positive: u32 = sides.iter().map(|s| u32::from(*s > 0.0)).sum();
-    let negative: u32 = sides.iter().map(|s| u32::from(*s < 0.0)).sum();
-    match (positive, negative) {
-        (4, _) => Turn::Positive,
-        (_, 4) => Turn::Negative,
-        _ => Turn::Crossed,
+    let across_ac = cross(c - a, axis);
+    let across_bd = cross(d - b, axis);
+    [
+        dot(across_ac, b - a),
+        neg(dot(across_ac, d - a)),
+        dot(across_bd, c - b),
+        neg(dot(across_bd, a - b)),
+    ]
+}
+
+impl Turn {
+    /// The turn of a quad from its four signed sides (see [`quad_turn`]).
+    #[inline(always)]
+    pub(crate) fn of_sides(sides: [f64; 4]) -> Turn {
+        // Counted without branches; NaN counts neither way, so it is crossed.
+        let positive: u32 = sides.iter().map(|s| u32::from(*s > 0.0)).sum();
+        let negative: u32 = sides.iter().map(|s| u32::from(*s < 0.0)).sum();
+        match (positive, negative) {
+            (4, _) => Turn::Positive,
+            (_, 4) => Turn::Negative,
+            _ => Turn::Crossed,
+        }
     }
 }
 
@@ -352,6 +373,27 @@ impl Folds {
             n
         } else {
             p
+        }
+    }
+
+    /// The faces counted by `self` and by `other` together: counting the faces
+    /// of a grid in parts (e.g. in parallel) and merging the parts gives what
+    /// counting them all in one [`Folds`] gives, in any order of merging.
+    ///
+    /// ```
+    /// use monge_core::grid::{Folds, Turn};
+    /// let (mut a, mut b) = (Folds::default(), Folds::default());
+    /// a.add((1, 0), Turn::Positive);
+    /// a.add((1, 1), Turn::Negative);
+    /// b.add((0, 0), Turn::Positive);
+    /// b.add((0, 1), Turn::Positive);
+    /// assert_eq!((a.merge(b).count(), a.merge(b).first()), (1, Some((1, 1))));
+    /// assert_eq!(a.merge(b), b.merge(a));
+    /// ```
+    pub fn merge(self, other: Folds) -> Folds {
+        Folds {
+            count: std::array::from_fn(|k| self.count[k] + other.count[k]),
+            first: std::array::from_fn(|k| self.first[k].into_iter().chain(other.first[k]).min()),
         }
     }
 

@@ -28,6 +28,7 @@ pub mod gauss_map;
 pub mod generate;
 pub mod grid;
 pub mod guide;
+mod lanes;
 pub mod measure;
 pub mod multipatch;
 pub mod offset;

@@ -5,12 +5,13 @@
 //! any, folded faces (pinching and self-intersection, §5.2), the spread of panel
 //! areas, the longest edge and the measured exactness.
 //!
-//! The values are evaluated in parallel (rayon), each independently of the
+//! The values are evaluated in parallel (rayon, with the `parallel` feature), each independently of the
 //! others, and collected in order: the result does not depend on the number of
 //! threads. [`to_csv`] and [`plot_svg`] turn a scan into a table and a picture.
 
 use std::fmt::Write as _;
 
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
@@ -423,8 +424,11 @@ pub fn scan(
     if let Some(&first) = values.first() {
         set_parameter(design, path, first)?;
     }
-    let rows = values
-        .par_iter()
+    #[cfg(feature = "parallel")]
+    let values_iter = values.par_iter();
+    #[cfg(not(feature = "parallel"))]
+    let values_iter = values.iter();
+    let rows = values_iter
         .map(|&value| {
             let row = match set_parameter(design, path, value) {
                 Ok(d) => evaluate(&d, value, options),

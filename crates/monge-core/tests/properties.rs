@@ -476,7 +476,7 @@ fn arbitrary_case() -> impl Strategy<Value = Case> {
 // The checks.
 // ---------------------------------------------------------------------------
 
-const METRICS: [&str; 11] = [
+const METRICS: [&str; 12] = [
     "face planarity (measure)",
     "circularity",
     "row planarity",
@@ -488,6 +488,7 @@ const METRICS: [&str; 11] = [
     "swap: vertices",
     "swap: normals (up to sign)",
     "face planarity (own, 4th corner)",
+    "two-line construction: vertices",
 ];
 
 #[derive(Default)]
@@ -696,7 +697,81 @@ fn check(case: &Case, stats: &RefCell<Stats>) -> Result<(), TestCaseError> {
     let dn = d_neg.min(d_pos);
     st.record(9, dn, label);
     prop_assert!(dn <= TOL, "{label}: swapped normals differ by {dn:e}");
+
+    // The generator cuts a line by a plane; the construction of §2.2.3 as first
+    // implemented intersects two lines: the same mesh up to round-off.
+    let dr = max_rel(&grid.vertices, &two_line_construction(&case.design), scale);
+    st.record(11, dr, label);
+    prop_assert!(
+        dr <= TOL,
+        "{label}: two-line construction differs by {dr:e}"
+    );
     Ok(())
+}
+
+/// The mesh of `design` built as the paper describes the Combescure transform
+/// (§2.2.3), independently of the generator's construction: face by face, row
+/// after row, vertex `(i+1, j+1)` is the common point of the line through
+/// `(i+1, j)` parallel to the Gauss edge `(i+1, j) → (i+1, j+1)` and the line
+/// through `(i, j+1)` parallel to the Gauss edge `(i, j+1) → (i+1, j+1)` (closest
+/// points by the 2 × 2 normal equations, solved by nalgebra), relative to the
+/// start point. The Gauss map is the library's.
+fn two_line_construction(design: &Design) -> Vec<DVec3> {
+    use monge_core::gauss_map::{gauss_map, guide_normals, pencil_axes};
+    let info = inspect(design, &GenerateOptions::default()).unwrap();
+    let axes = pencil_axes(&info.frame, info.theta_deg).unwrap();
+    let (u, v) = (&info.guide_u.points, &info.guide_v.points);
+    let n_p = info.frame.n_p;
+    let g = gauss_map(&axes, &guide_normals(u, n_p), &guide_normals(v, n_p));
+    let (rows, cols, origin) = (u.len(), v.len(), u[0]);
+    let n = |i: usize, j: usize| g.normals[i * cols + j];
+    let mut x = vec![DVec3::ZERO; rows * cols];
+    for (j, p) in v.iter().enumerate() {
+        x[j] = *p - origin;
+    }
+    for i in 0..rows - 1 {
+        x[(i + 1) * cols] = u[i + 1] - origin;
+        for j in 0..cols - 1 {
+            let (p1, p2) = (x[(i + 1) * cols + j], x[i * cols + j + 1]);
+            let d1 = n(i + 1, j + 1) - n(i + 1, j);
+            let d2 = n(i + 1, j + 1) - n(i, j + 1);
+            // p1 + s·d1 = p2 + t·d2 in the least-squares sense.
+            let a = nalgebra::Matrix3x2::new(d1.x, -d2.x, d1.y, -d2.y, d1.z, -d2.z);
+            let b = nalgebra::Vector3::new(p2.x - p1.x, p2.y - p1.y, p2.z - p1.z);
+            let st = (a.transpose() * a)
+                .lu()
+                .solve(&(a.transpose() * b))
+                .unwrap();
+            x[(i + 1) * cols + j + 1] = 0.5 * (p1 + st[0] * d1 + p2 + st[1] * d2);
+        }
+    }
+    x.iter().map(|p| *p + origin).collect()
+}
+
+#[test]
+fn examples_agree_with_the_two_line_construction() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        // Designs only (not patches, planes or developable designs).
+        if !name.ends_with(".json") || name.matches('.').count() > 1 {
+            continue;
+        }
+        let design: Design =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let g = generate(&design, &GenerateOptions::default()).unwrap();
+        let scale = g.grid.bbox_diagonal();
+        let d = max_rel(&g.grid.vertices, &two_line_construction(&design), scale);
+        eprintln!(
+            "{name}: {} × {} vertices, max difference {d:.2e} of the size",
+            g.grid.rows, g.grid.cols
+        );
+        assert!(d <= TOL, "{name}: {d:e}");
+        seen += 1;
+    }
+    assert!(seen >= 12, "only {seen} example designs");
 }
 
 /// Distance of one corner of a quad from the plane of the other three, for the
