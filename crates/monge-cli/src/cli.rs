@@ -313,6 +313,16 @@ pub enum Command {
     )]
     Scan(crate::scan::ScanArgs),
 
+    /// Find the design whose exact mesh is nearest to a target mesh or point cloud.
+    #[command(
+        long_about = "Find the design (corner, two planar guides, θ) whose exactly generated mesh is \
+                      nearest to TARGET both ways (mesh → target and target → mesh), with BOBYQA from \
+                      the target's principal directions at its corners; prints the deviation before \
+                      and after, relative to the target's size, and the measured exactness.",
+        after_help = format!("Example:\n  monge approximate examples/targets/roof.obj -o roof.json --grid 20x20\n\n{EXIT}")
+    )]
+    Approximate(crate::approximate::ApproximateArgs),
+
     /// Choose where B-spline guides are sampled so that panel areas vary least (§4.8, Figure 22).
     #[command(
         long_about = format!(

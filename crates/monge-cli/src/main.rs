@@ -9,6 +9,7 @@
 //! 2 any error (printed as `error: <message>` on stderr).
 
 mod align;
+mod approximate;
 mod bench;
 mod check;
 mod cli;
@@ -67,6 +68,7 @@ fn main() -> ExitCode {
         Command::Scan(args) => scan::run(&args),
         Command::OptimisePanels(args) => optimise_panels::run(&args),
         Command::Align(args) => align::run(&args),
+        Command::Approximate(args) => approximate::run(&args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

@@ -238,7 +238,7 @@ fn every_help_ends_with_the_exit_status_footer_once() {
         .filter_map(|l| l.split_whitespace().next())
         .filter(|c| *c != "help")
         .collect();
-    assert_eq!(commands.len(), 13, "{commands:?}");
+    assert_eq!(commands.len(), 14, "{commands:?}");
     let helps = std::iter::once(top.clone()).chain(commands.iter().flat_map(|c| {
         ["--help", "-h"].map(|flag| {
             let out = monge().args([c, &flag]).output().unwrap();

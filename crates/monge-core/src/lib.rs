@@ -16,6 +16,7 @@
 //! [`combescure`] (the discrete Combescure transform, §2.2.3) → a [`QuadGrid`].
 //! [`measure`] measures any quad mesh independently of how it was made.
 
+pub mod approximate;
 pub mod boundary;
 pub mod combescure;
 pub mod conical;

@@ -274,7 +274,7 @@ fn parse_shape(
 }
 
 /// A finite `f64`.
-fn parse_f64(token: &str) -> Result<f64, String> {
+pub(crate) fn parse_f64(token: &str) -> Result<f64, String> {
     match token.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(_) => Err(format!("`{token}` is not a finite number")),
@@ -283,7 +283,7 @@ fn parse_f64(token: &str) -> Result<f64, String> {
 }
 
 /// `x y z` from the first three of `tokens`.
-fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<DVec3, String> {
+pub(crate) fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<DVec3, String> {
     let mut p = [0.0; 3];
     for x in &mut p {
         *x = parse_f64(tokens.next().ok_or("expected three coordinates x y z")?)?;

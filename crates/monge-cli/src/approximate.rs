@@ -1,0 +1,134 @@
+//! `monge approximate`: the design whose exact mesh is nearest to a target mesh or
+//! point cloud (monge's extension of the method; related to the fitting of §4.7, §4.8).
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use monge_core::approximate::{approximate, ApproxOptions, Deviation};
+use monge_core::measure::{conical_error, measure};
+use monge_core::MeshKind;
+use monge_io::{check_output, read_points, write_design};
+
+use crate::cli::KindArg;
+use crate::output::{num, print};
+use crate::Outcome;
+
+/// Arguments of `monge approximate`.
+#[derive(Debug, clap::Args)]
+pub struct ApproximateArgs {
+    /// The target: a mesh or point cloud (`.obj`, ASCII `.ply`, or `.json` with `vertices` or `points`).
+    #[arg(value_name = "TARGET")]
+    pub target: PathBuf,
+    /// Where to write the design found (`.json` or `.toml`).
+    #[arg(short, long, value_name = "DESIGN")]
+    pub output: PathBuf,
+    /// Faces of the mesh, along guide_u × along guide_v.
+    #[arg(long, value_name = "UxV", default_value = "40x40", value_parser = parse_grid)]
+    pub grid: (usize, usize),
+    /// Circular (default) or conical mesh (§2.3).
+    #[arg(long, value_enum, default_value_t = KindArg::Circular)]
+    pub kind: KindArg,
+    /// Number of starts (best θ at each corner of the target first).
+    #[arg(long, value_name = "N", default_value_t = ApproxOptions::default().starts)]
+    pub starts: usize,
+    /// Budget of mesh generations of each optimiser run.
+    #[arg(long, value_name = "N", default_value_t = ApproxOptions::default().max_evaluations)]
+    pub max_evaluations: usize,
+    /// Stop searching after this many seconds and keep the best design found.
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
+}
+
+/// `UxV`, e.g. `40x40`.
+fn parse_grid(text: &str) -> Result<(usize, usize), String> {
+    let (u, v) = text
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("`{text}` is not UxV, e.g. 40x40"))?;
+    let n = |s: &str| {
+        s.trim()
+            .parse::<usize>()
+            .map_err(|_| format!("`{s}` in `{text}` is not a whole number of faces"))
+    };
+    Ok((n(u)?, n(v)?))
+}
+
+/// One line of distances, relative to the target's size and in model units.
+fn line(name: &str, d: &Deviation) -> String {
+    format!(
+        "{name}: mesh → target max {} RMS {}, target → mesh max {} RMS {} (of the size {}; max {} model units)\n",
+        num(d.mesh_to_target_max),
+        num(d.mesh_to_target_rms),
+        num(d.target_to_mesh_max),
+        num(d.target_to_mesh_rms),
+        num(d.size),
+        num(d.max() * d.size)
+    )
+}
+
+/// Runs `monge approximate`.
+pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
+    let file = args.target.display().to_string();
+    check_output(&args.output, &[&args.target])?;
+    if let Some(t) = args.time_limit {
+        anyhow::ensure!(
+            t.is_finite() && t > 0.0,
+            "--time-limit {t}: give a positive number of seconds"
+        );
+    }
+    let points = read_points(&args.target)?;
+    let kind = match args.kind {
+        KindArg::Circular => MeshKind::Circular,
+        KindArg::Conical => MeshKind::Conical,
+    };
+    let options = ApproxOptions {
+        faces: args.grid,
+        kind,
+        starts: args.starts,
+        max_evaluations: args.max_evaluations,
+        deadline: args
+            .time_limit
+            .map(|t| Instant::now() + Duration::from_secs_f64(t)),
+    };
+    // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
+    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {pos} meshes generated, {elapsed} elapsed: {msg}")
+            .expect("a valid progress template"),
+    );
+    let r = approximate(&points, &options, &mut |p| {
+        bar.set_position(p.evaluations as u64);
+        bar.set_message(format!("best RMS {:.2e} of the size", p.best_rms));
+    })
+    .with_context(|| file.clone())?;
+    bar.finish_and_clear();
+    write_design(&r.design, &args.output)?;
+    let m = measure(&r.grid);
+    let exactness = match kind {
+        MeshKind::Circular => m.max_error(),
+        MeshKind::Conical => m.max_error_conical(conical_error(&r.grid)),
+    };
+    print(&format!(
+        "target: {} points, size {}; corner curvatures {} and {}\n{}{}\
+         exactness of the result (generated, measured): {}\n\
+         θ {}°; {} starts, {} meshes generated{}\nwrote {}\n",
+        points.len(),
+        num(r.after.size),
+        num(r.corner_curvatures.0),
+        num(r.corner_curvatures.1),
+        line("initial guess", &r.before),
+        line("result", &r.after),
+        num(exactness),
+        num(r.design.theta_deg),
+        r.starts,
+        r.evaluations,
+        if r.timed_out {
+            " (stopped by --time-limit)"
+        } else {
+            ""
+        },
+        args.output.display()
+    ))?;
+    Ok(Outcome::Success)
+}

@@ -1,0 +1,77 @@
+//! End-to-end tests of `monge approximate` (issue 14; monge's extension of the method).
+
+mod common;
+
+use std::fs;
+
+use predicates::prelude::*;
+use tempfile::TempDir;
+
+use common::{examples, monge};
+
+#[test]
+fn approximate_writes_a_design_whose_mesh_is_exact() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    monge()
+        .arg("approximate")
+        .arg(examples().join("targets/paraboloid.obj"))
+        .args(["-o"])
+        .arg(&design)
+        .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("result: mesh → target max"))
+        .stdout(predicate::str::contains("exactness of the result"));
+    // The design is an ordinary design: generate it and measure it independently.
+    let mesh = dir.path().join("fit.obj");
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&mesh)
+        .assert()
+        .success();
+    monge().arg("check").arg(&mesh).assert().success();
+}
+
+#[test]
+fn approximate_refuses_a_sphere_cap_with_status_2_and_no_output() {
+    let dir = TempDir::new().unwrap();
+    let target = dir.path().join("cap.obj");
+    let mut text = String::new();
+    for k in 0..400 {
+        let (a, b) = ((k % 20) as f64 / 19.0 - 0.5, (k / 20) as f64 / 19.0 - 0.5);
+        text.push_str(&format!("v {a} {b} {}\n", (4.0 - a * a - b * b).sqrt()));
+    }
+    fs::write(&target, text).unwrap();
+    let design = dir.path().join("fit.json");
+    monge()
+        .arg("approximate")
+        .arg(&target)
+        .arg("-o")
+        .arg(&design)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("umbilic").and(predicate::str::contains("cannot follow")));
+    assert!(!design.exists());
+}
+
+#[test]
+fn approximate_refuses_a_malformed_grid_and_time_limit() {
+    let target = examples().join("targets/paraboloid.obj");
+    monge()
+        .args(["approximate"])
+        .arg(&target)
+        .args(["-o", "x.json", "--grid", "40"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("not UxV"));
+    monge()
+        .args(["approximate"])
+        .arg(&target)
+        .args(["-o", "x.json", "--time-limit=0"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("positive number of seconds"));
+}
