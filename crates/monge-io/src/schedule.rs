@@ -248,43 +248,61 @@ pub fn write_nodes_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
     })
 }
 
-/// The whole fabrication as one JSON document (§6): `summary`, `layers`
-/// (distances), `panels`, `beams` (with `label` and `segments`) and `nodes`.
-pub fn write_schedule_json(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
+/// What `schedule.json` holds (§6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScheduleJson {
+    /// `summary` and `layers` (distances): the schedules themselves are the CSV
+    /// files (`monge fabricate`'s default; at 1000 × 1000 faces the full
+    /// document is 1.7 GB, 40 % of the bytes written).
+    #[default]
+    Summary,
+    /// Also every panel, beam (with its nodes in its plane, turning angles,
+    /// torsion and `segments`) and node, each panel and beam with its `label`.
+    Full,
+}
+
+/// The fabrication as one JSON document (§6): `summary` and `layers`
+/// (distances), and with [`ScheduleJson::Full`] also `panels`, `beams` (with
+/// `label` and `segments`) and `nodes`.
+pub fn write_schedule_json(
+    f: &Fabrication,
+    content: ScheduleJson,
+    w: &mut dyn Write,
+) -> io::Result<()> {
     #[derive(Serialize)]
     struct Labelled<'a, T> {
         label: String,
         #[serde(flatten)]
         item: &'a T,
     }
+    /// A list serialized item by item, each with its label.
+    struct List<'a, T>(&'a [T], fn(&T) -> String);
+    impl<T: Serialize> Serialize for List<'_, T> {
+        fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            s.collect_seq(self.0.iter().map(|item| Labelled {
+                label: (self.1)(item),
+                item,
+            }))
+        }
+    }
     #[derive(Serialize)]
     struct Doc<'a> {
         summary: &'a Summary,
         layers: Vec<f64>,
-        panels: Vec<Labelled<'a, Panel>>,
-        beams: Vec<Labelled<'a, Beam>>,
-        nodes: &'a [monge_core::fabrication::Node],
+        #[serde(skip_serializing_if = "Option::is_none")]
+        panels: Option<List<'a, Panel>>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        beams: Option<List<'a, Beam>>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        nodes: Option<&'a [monge_core::fabrication::Node]>,
     }
+    let full = content == ScheduleJson::Full;
     let doc = Doc {
         summary: &f.summary,
         layers: f.layers.iter().map(|l| l.distance).collect(),
-        panels: f
-            .panels
-            .iter()
-            .map(|p| Labelled {
-                label: panel_label(p),
-                item: p,
-            })
-            .collect(),
-        beams: f
-            .beams
-            .iter()
-            .map(|b| Labelled {
-                label: beam_label(b),
-                item: b,
-            })
-            .collect(),
-        nodes: &f.nodes,
+        panels: full.then(|| List(&f.panels, panel_label)),
+        beams: full.then(|| List(&f.beams, beam_label)),
+        nodes: full.then_some(&f.nodes[..]),
     };
     serde_json::to_writer(&mut *w, &doc).map_err(io::Error::other)?;
     writeln!(w)
