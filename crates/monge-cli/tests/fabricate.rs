@@ -101,8 +101,14 @@ fn conical_design_uses_face_offsets() {
     let json = std::fs::read_to_string(dir.path().join("schedule.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let csv = std::fs::read_to_string(dir.path().join("panels.csv")).unwrap();
-    assert_eq!(v["panels"].as_array().unwrap().len(), csv.lines().count() - 1);
-    assert_eq!(v["panels"].as_array().unwrap().len(), v["summary"]["panels"]);
+    assert_eq!(
+        v["panels"].as_array().unwrap().len(),
+        csv.lines().count() - 1
+    );
+    assert_eq!(
+        v["panels"].as_array().unwrap().len(),
+        v["summary"]["panels"]
+    );
 }
 
 #[test]

@@ -16,6 +16,9 @@ use monge_core::QuadGrid;
 
 use crate::text::emit;
 
+/// Calls its argument with every item of a part, in order.
+type Producer<'a, T> = Box<dyn Fn(&mut dyn FnMut(T)) + 'a>;
+
 /// One triangle mesh of a `.glb`, produced on demand: the writer asks for it
 /// twice, once for its size and bounds and once for its bytes, and never holds
 /// its binary data.
@@ -23,9 +26,9 @@ struct Part<'a> {
     name: String,
     material: u32,
     /// Calls its argument with every vertex, in order.
-    positions: Box<dyn Fn(&mut dyn FnMut(DVec3)) + 'a>,
+    positions: Producer<'a, DVec3>,
     /// Calls its argument with every triangle (indices into the vertices).
-    triangles: Box<dyn Fn(&mut dyn FnMut([u32; 3])) + 'a>,
+    triangles: Producer<'a, [u32; 3]>,
 }
 
 /// A buffer view of `len` bytes at `offset` of the binary chunk.

@@ -202,7 +202,7 @@ fn check_surface(s: &NurbsSurface) -> Result<(), String> {
 /// The Global section's parameters (without delimiters).
 fn global_parameters(max_coordinate: f64, resolution: f64) -> [String; 25] {
     let system = concat!("monge-io ", env!("CARGO_PKG_VERSION"));
-    let fields = [
+    [
         hollerith(","),         // 1 parameter delimiter
         hollerith(";"),         // 2 record delimiter
         hollerith("monge"),     // 3 product identification from sender
@@ -228,8 +228,7 @@ fn global_parameters(max_coordinate: f64, resolution: f64) -> [String; 25] {
         "11".into(),            // 23 IGES version: 5.3
         "0".into(),             // 24 drafting standard: none
         hollerith(DATE),        // 25 date and time of last modification
-    ];
-    fields
+    ]
 }
 
 /// Entity 128's parameters (without delimiters), each passed to `field` in order.

@@ -121,7 +121,17 @@ mod tests {
     #[test]
     fn milli_agrees_with_fixed_formatting() {
         let mut v = Vec::new();
-        let xs = [0.0, 1.0, -1.0, 12.3456, -0.0004, -0.5004, 999.9996, 0.05, 1234567.0001];
+        let xs = [
+            0.0,
+            1.0,
+            -1.0,
+            12.3456,
+            -0.0004,
+            -0.5004,
+            999.9996,
+            0.05,
+            1234567.0001,
+        ];
         emit(&mut v, |o| {
             for x in xs {
                 milli(o, x);
