@@ -150,49 +150,33 @@ fn an_output_above_max_output_is_refused_before_anything_is_written() {
     // fig13-freeform: 60 × 40 faces, 3 layers: about 19 MB of files (32 MB with --full-json).
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fab");
-    monge()
-        .args([
-            "fabricate",
-            example("fig13-freeform.json").to_str().unwrap(),
-            "-o",
-        ])
-        .arg(&out)
-        .args(["--layers", "0,0.1,0.2", "--max-output", "0.01"])
-        .assert()
-        .code(2)
+    let run = |extra: &[&str]| {
+        monge()
+            .args([
+                "fabricate",
+                example("fig13-freeform.json").to_str().unwrap(),
+                "-o",
+            ])
+            .arg(&out)
+            .args(extra)
+            .assert()
+            .code(2)
+    };
+    run(&["--layers", "0,0.1,0.2", "--max-output", "0.01"])
         .stderr(predicate::str::contains(
             "the fabrication files of 60 × 40 faces and 3 layer(s) would be about 19 MB",
         ))
         .stderr(predicate::str::contains("fewer --layers"))
         .stderr(predicate::str::contains("--max-output GB"));
     assert!(!out.exists());
-    monge()
-        .args([
-            "fabricate",
-            example("fig13-freeform.json").to_str().unwrap(),
-            "-o",
-        ])
-        .arg(&out)
-        .args([
-            "--layers",
-            "0,0.1,0.2",
-            "--max-output",
-            "0.025",
-            "--full-json",
-        ])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("would be about 32 MB"));
+    run(&[
+        "--layers",
+        "0,0.1,0.2",
+        "--max-output",
+        "0.025",
+        "--full-json",
+    ])
+    .stderr(predicate::str::contains("would be about 32 MB"));
     assert!(!out.exists());
-    monge()
-        .args([
-            "fabricate",
-            example("fig13-freeform.json").to_str().unwrap(),
-            "-o",
-        ])
-        .arg(&out)
-        .args(["--max-output", "0"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("positive number of gigabytes"));
+    run(&["--max-output", "0"]).stderr(predicate::str::contains("positive number of gigabytes"));
 }
