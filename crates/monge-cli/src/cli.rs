@@ -197,8 +197,8 @@ pub enum Command {
              outline, edges, angles, area, circumradius, residuals), beams.csv and segments.csv \
              (every row and column in its plane, split into circular arcs where the circle changes, \
              §4.6: radius, sweep, centre, split nodes: the roller-bender list), nodes.csv (axis, \
-             beam angles, height across the layers, torsion, node type), schedule.json (all of \
-             it), panels.dxf and beams.dxf (R12 drawings, labelled), overview.svg (plan) and \
+             beam angles, height across the layers, torsion, node type), schedule.json (the \
+             summary and the layers; with --full-json also every panel, beam and node), panels.dxf and beams.dxf (R12 drawings, labelled), overview.svg (plan) and \
              gridshell.glb (glTF of all layers, beams swept with a rectangular section). Prints a \
              summary: counts, segments per beam, distinct radii, node types, node heights, worst \
              residuals.",

@@ -7,7 +7,7 @@ use anyhow::Context;
 use monge_core::conical::conical_dual;
 use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, GenerateOptions, MeshKind};
-use monge_io::{read_design, write_fabrication};
+use monge_io::{read_design, write_fabrication, ScheduleJson};
 
 use crate::output::{
     check_output_size, eprint, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
@@ -46,18 +46,27 @@ pub struct FabricateArgs {
     /// Beam cross-section in the glTF: WIDTH,DEPTH (model units) [default: size/200 each].
     #[arg(long, value_name = "W,D", value_delimiter = ',', num_args = 1, value_parser = parse_non_negative, allow_negative_numbers = true)]
     pub section: Vec<f64>,
+    /// Write every panel, beam and node into schedule.json too (by default it holds the summary
+    /// and the layers, and the schedules are the CSV files): about 1.7 kB more a face and layer.
+    #[arg(long)]
+    pub full_json: bool,
     /// Refuse grids of more than N vertices (rows × cols).
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
     /// Refuse outputs estimated above this many gigabytes (10⁹ bytes), before computing
-    /// them: the files take about 4.4 kB a face and layer (and memory about half as much).
+    /// them: the files take about 2.6 kB a face and layer (4.4 kB with --full-json), and
+    /// memory about 1.1 kB.
     #[arg(long, value_name = "GB", default_value_t = MAX_OUTPUT_GB, value_parser = parse_gigabytes)]
     pub max_output: f64,
 }
 
-/// Bytes the fabrication files take per face and layer (measured: 4396 at 100 × 100
-/// and 400 × 400 faces of examples/fig13-freeform.json made finer).
-const BYTES_PER_FACE: f64 = 4400.0;
+/// Bytes the fabrication files take per face and layer (measured with `monge bench`'s
+/// design: 2622 at 400 × 400 faces, 2605 at 1000 × 1000).
+const BYTES_PER_FACE: f64 = 2650.0;
+
+/// Bytes `--full-json` adds to schedule.json per face and layer (measured: 1734 at
+/// 400 × 400 faces).
+const FULL_JSON_BYTES_PER_FACE: f64 = 1750.0;
 
 /// Runs `monge fabricate`.
 pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
@@ -76,8 +85,16 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         .with_context(|| args.design.display().to_string())?
         .grid;
     let faces = grid.rows.saturating_sub(1) * grid.cols.saturating_sub(1);
+    let (json, per_face) = if args.full_json {
+        (
+            ScheduleJson::Full,
+            BYTES_PER_FACE + FULL_JSON_BYTES_PER_FACE,
+        )
+    } else {
+        (ScheduleJson::Summary, BYTES_PER_FACE)
+    };
     check_output_size(
-        BYTES_PER_FACE * (faces * args.layers.len()) as f64,
+        per_face * (faces * args.layers.len()) as f64,
         args.max_output,
         &format!(
             "the fabrication files of {} × {} faces and {} layer(s)",
@@ -105,7 +122,7 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         _ => (f.summary.size / 200.0, f.summary.size / 200.0),
     };
     let start = Instant::now();
-    let paths = write_fabrication(&args.output, &f, section)?;
+    let paths = write_fabrication(&args.output, &f, section, json)?;
     eprint(&format!(
         "computed in {} ms, wrote {} files to `{}` in {} ms.\n",
         millis(computed),

@@ -86,6 +86,29 @@ fn conical_design_uses_face_offsets() {
         serde_json::Value::Null
     );
     assert!(v["summary"]["max_panel_planarity"].as_f64().unwrap() <= 1e-9);
+    // The schedules are the CSV files; --full-json repeats them in the JSON.
+    assert!(v.get("panels").is_none() && v.get("nodes").is_none());
+    monge()
+        .args([
+            "fabricate",
+            example("fig13-conical.json").to_str().unwrap(),
+            "--full-json",
+            "-o",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let json = std::fs::read_to_string(dir.path().join("schedule.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let csv = std::fs::read_to_string(dir.path().join("panels.csv")).unwrap();
+    assert_eq!(
+        v["panels"].as_array().unwrap().len(),
+        csv.lines().count() - 1
+    );
+    assert_eq!(
+        v["panels"].as_array().unwrap().len(),
+        v["summary"]["panels"]
+    );
 }
 
 #[test]
@@ -124,34 +147,36 @@ fn bad_arguments_exit_with_status_2() {
 
 #[test]
 fn an_output_above_max_output_is_refused_before_anything_is_written() {
-    // fig13-freeform: 60 × 40 faces, 3 layers: about 32 MB of files.
+    // fig13-freeform: 60 × 40 faces, 3 layers: about 19 MB of files (32 MB with --full-json).
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fab");
-    monge()
-        .args([
-            "fabricate",
-            example("fig13-freeform.json").to_str().unwrap(),
-            "-o",
-        ])
-        .arg(&out)
-        .args(["--layers", "0,0.1,0.2", "--max-output", "0.01"])
-        .assert()
-        .code(2)
+    let run = |extra: &[&str]| {
+        monge()
+            .args([
+                "fabricate",
+                example("fig13-freeform.json").to_str().unwrap(),
+                "-o",
+            ])
+            .arg(&out)
+            .args(extra)
+            .assert()
+            .code(2)
+    };
+    run(&["--layers", "0,0.1,0.2", "--max-output", "0.01"])
         .stderr(predicate::str::contains(
-            "the fabrication files of 60 × 40 faces and 3 layer(s) would be about 32 MB",
+            "the fabrication files of 60 × 40 faces and 3 layer(s) would be about 19 MB",
         ))
         .stderr(predicate::str::contains("fewer --layers"))
         .stderr(predicate::str::contains("--max-output GB"));
     assert!(!out.exists());
-    monge()
-        .args([
-            "fabricate",
-            example("fig13-freeform.json").to_str().unwrap(),
-            "-o",
-        ])
-        .arg(&out)
-        .args(["--max-output", "0"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("positive number of gigabytes"));
+    run(&[
+        "--layers",
+        "0,0.1,0.2",
+        "--max-output",
+        "0.025",
+        "--full-json",
+    ])
+    .stderr(predicate::str::contains("would be about 32 MB"));
+    assert!(!out.exists());
+    run(&["--max-output", "0"]).stderr(predicate::str::contains("positive number of gigabytes"));
 }

@@ -928,12 +928,13 @@ fn assign_types(nodes: &mut [Node], angle_tol: f64) {
         };
         let matches = |&t: &usize| {
             let (dirs, rep) = &representatives[t];
-            *dirs == node.directions
-                && rep.len() == sig.len()
+            // The angles first: they tell most candidates apart, and cheaply.
+            rep.len() == sig.len()
                 && rep
                     .iter()
                     .zip(&sig)
                     .all(|(a, b)| (a - b).abs() <= angle_tol)
+                && *dirs == node.directions
         };
         let found = (key.0 - 1..=key.0 + 1)
             .flat_map(|a| (key.1 - 1..=key.1 + 1).map(move |b| (a, b)))

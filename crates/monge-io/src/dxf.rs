@@ -10,7 +10,8 @@ use std::io::{self, Write};
 use glam::DVec2;
 use monge_core::fabrication::{Fabrication, SegmentShape};
 
-use crate::schedule::{beam_label, panel_label};
+use crate::schedule::{put_beam_label, put_panel_label};
+use crate::text::{emit, Out};
 
 /// The DXF layers used, with their ACI colours.
 const LAYERS: [(&str, u8); 6] = [
@@ -22,68 +23,104 @@ const LAYERS: [(&str, u8); 6] = [
     ("LABEL", 7),
 ];
 
-/// An R12 DXF document being written.
-struct Dxf<'a> {
-    w: &'a mut dyn Write,
+/// Starts an R12 DXF document: header, layer table, and the entities section.
+fn begin<W: Write + ?Sized>(o: &mut Out<'_, W>) -> io::Result<()> {
+    o.str("0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1009\n0\nENDSEC\n");
+    o.str("0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n70\n");
+    o.int(LAYERS.len());
+    o.push(b'\n');
+    for (name, colour) in LAYERS {
+        o.str("0\nLAYER\n2\n");
+        o.str(name);
+        o.str("\n70\n0\n62\n");
+        o.int(colour);
+        o.str("\n6\nCONTINUOUS\n");
+    }
+    o.str("0\nENDTAB\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
+    o.maybe_flush()
 }
 
-impl<'a> Dxf<'a> {
-    fn begin(w: &'a mut dyn Write) -> io::Result<Self> {
-        write!(
-            w,
-            "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1009\n0\nENDSEC\n"
-        )?;
-        write!(
-            w,
-            "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n70\n{}\n",
-            LAYERS.len()
-        )?;
-        for (name, colour) in LAYERS {
-            write!(
-                w,
-                "0\nLAYER\n2\n{name}\n70\n0\n62\n{colour}\n6\nCONTINUOUS\n"
-            )?;
-        }
-        write!(w, "0\nENDTAB\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n")?;
-        Ok(Dxf { w })
-    }
+/// Ends the entities section and the document.
+fn end<W: Write + ?Sized>(o: &mut Out<'_, W>) -> io::Result<()> {
+    o.str("0\nENDSEC\n0\nEOF\n");
+    o.maybe_flush()
+}
 
-    fn end(self) -> io::Result<()> {
-        write!(self.w, "0\nENDSEC\n0\nEOF\n")
-    }
+/// `0 KIND 8 LAYER`: the start of an entity.
+fn entity<W: Write + ?Sized>(o: &mut Out<'_, W>, kind: &str, layer: &str) {
+    o.str("0\n");
+    o.str(kind);
+    o.str("\n8\n");
+    o.str(layer);
+    o.push(b'\n');
+}
 
-    fn line(&mut self, layer: &str, a: DVec2, b: DVec2) -> io::Result<()> {
-        write!(
-            self.w,
-            "0\nLINE\n8\n{layer}\n10\n{}\n20\n{}\n30\n0\n11\n{}\n21\n{}\n31\n0\n",
-            a.x, a.y, b.x, b.y
-        )
-    }
+/// A point in the XY plane with group codes `10 + k`, `20 + k`, `30 + k`.
+fn point<W: Write + ?Sized>(o: &mut Out<'_, W>, k: u8, p: DVec2) {
+    o.int(10 + k);
+    o.push(b'\n');
+    o.float(p.x);
+    o.push(b'\n');
+    o.int(20 + k);
+    o.push(b'\n');
+    o.float(p.y);
+    o.push(b'\n');
+    o.int(30 + k);
+    o.str("\n0\n");
+}
 
-    fn circle(&mut self, layer: &str, c: DVec2, r: f64) -> io::Result<()> {
-        write!(
-            self.w,
-            "0\nCIRCLE\n8\n{layer}\n10\n{}\n20\n{}\n30\n0\n40\n{r}\n",
-            c.x, c.y
-        )
-    }
+/// A real value with its group code.
+fn real<W: Write + ?Sized>(o: &mut Out<'_, W>, code: u8, x: f64) {
+    o.int(code);
+    o.push(b'\n');
+    o.float(x);
+    o.push(b'\n');
+}
 
-    /// A counter-clockwise arc from `start` to `end` degrees.
-    fn arc(&mut self, layer: &str, c: DVec2, r: f64, start: f64, end: f64) -> io::Result<()> {
-        write!(
-            self.w,
-            "0\nARC\n8\n{layer}\n10\n{}\n20\n{}\n30\n0\n40\n{r}\n50\n{start}\n51\n{end}\n",
-            c.x, c.y
-        )
-    }
+fn line<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, a: DVec2, b: DVec2) -> io::Result<()> {
+    entity(o, "LINE", layer);
+    point(o, 0, a);
+    point(o, 1, b);
+    o.maybe_flush()
+}
 
-    fn text(&mut self, at: DVec2, height: f64, text: &str) -> io::Result<()> {
-        write!(
-            self.w,
-            "0\nTEXT\n8\nLABEL\n10\n{}\n20\n{}\n30\n0\n40\n{height}\n1\n{text}\n",
-            at.x, at.y
-        )
-    }
+fn circle<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, c: DVec2, r: f64) -> io::Result<()> {
+    entity(o, "CIRCLE", layer);
+    point(o, 0, c);
+    real(o, 40, r);
+    o.maybe_flush()
+}
+
+/// A counter-clockwise arc from `start` to `end` degrees.
+fn arc<W: Write + ?Sized>(
+    o: &mut Out<'_, W>,
+    layer: &str,
+    c: DVec2,
+    r: f64,
+    start: f64,
+    end: f64,
+) -> io::Result<()> {
+    entity(o, "ARC", layer);
+    point(o, 0, c);
+    real(o, 40, r);
+    real(o, 50, start);
+    real(o, 51, end);
+    o.maybe_flush()
+}
+
+/// A text on layer `LABEL` whose string `put` writes.
+fn text<W: Write + ?Sized>(
+    o: &mut Out<'_, W>,
+    at: DVec2,
+    height: f64,
+    put: impl FnOnce(&mut Out<'_, W>),
+) -> io::Result<()> {
+    entity(o, "TEXT", "LABEL");
+    point(o, 0, at);
+    real(o, 40, height);
+    o.str("1\n");
+    put(o);
+    o.end()
 }
 
 /// Bounding box of plane points: `(min, max)`.
@@ -99,7 +136,11 @@ fn bounds(points: &[DVec2]) -> (DVec2, DVec2) {
 /// `LABEL`). Panel `(i, j)` of layer `k` is placed in cell `(j, i)` of a grid
 /// whose cells fit the largest panel; layers follow each other upwards.
 pub fn write_panels_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
-    let mut dxf = Dxf::begin(w)?;
+    emit(w, |o| panels_dxf(f, o))
+}
+
+fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Result<()> {
+    begin(o)?;
     let cell = f
         .panels
         .iter()
@@ -118,14 +159,14 @@ pub fn write_panels_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
             let at = DVec2::new(p.j as f64 * cell, y0 + p.i as f64 * cell) - lo;
             let q = p.outline.map(|c| c + at);
             for k in 0..4 {
-                dxf.line("PANEL", q[k], q[(k + 1) % 4])?;
+                line(o, "PANEL", q[k], q[(k + 1) % 4])?;
             }
             let centroid = q.iter().copied().sum::<DVec2>() / 4.0;
-            dxf.text(centroid, cell * 0.06, &panel_label(p))?;
+            text(o, centroid, cell * 0.06, |o| put_panel_label(o, p))?;
         }
         y0 += (rows + 1) as f64 * cell;
     }
-    dxf.end()
+    end(o)
 }
 
 /// Beams in their planes (§4.6, §6): for each beam, its edges as straight
@@ -134,7 +175,11 @@ pub fn write_panels_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
 /// label with its radii (layer `LABEL`). Beams are stacked upwards, each with
 /// its chord along X.
 pub fn write_beams_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
-    let mut dxf = Dxf::begin(w)?;
+    emit(w, |o| beams_dxf(f, o))
+}
+
+fn beams_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Result<()> {
+    begin(o)?;
     let size = f.summary.size;
     let (mark, gap) = (size * 0.002, size * 0.05);
     let mut y0 = 0.0;
@@ -143,7 +188,7 @@ pub fn write_beams_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
         let at = DVec2::new(0.0, y0) - lo;
         let q: Vec<DVec2> = b.nodes.iter().map(|p| *p + at).collect();
         for e in q.windows(2) {
-            dxf.line("EDGE", e[0], e[1])?;
+            line(o, "EDGE", e[0], e[1])?;
         }
         let mut split = vec![false; q.len()];
         for s in b.segments.iter().skip(1) {
@@ -151,9 +196,9 @@ pub fn write_beams_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
         }
         for (p, split) in q.iter().zip(split) {
             if split {
-                dxf.circle("SPLIT", *p, 2.0 * mark)?;
+                circle(o, "SPLIT", *p, 2.0 * mark)?;
             } else {
-                dxf.circle("NODE", *p, mark)?;
+                circle(o, "NODE", *p, mark)?;
             }
         }
         let mut radii = Vec::new();
@@ -169,13 +214,18 @@ pub fn write_beams_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
                 let angle = |p: DVec2| (p - c).to_angle().to_degrees().rem_euclid(360.0);
                 let (from, to) = (angle(q[s.start]), angle(q[s.end]));
                 let (start, end) = if sweep >= 0.0 { (from, to) } else { (to, from) };
-                dxf.arc("ARC", c, radius, start, end)?;
+                arc(o, "ARC", c, radius, start, end)?;
                 radii.push(format!("R{radius:.6}"));
             }
         }
-        let label = format!("{} {}", beam_label(b), radii.join(" "));
-        dxf.text(DVec2::new(-gap * 4.0, y0), gap * 0.4, label.trim_end())?;
+        text(o, DVec2::new(-gap * 4.0, y0), gap * 0.4, |o| {
+            put_beam_label(o, b);
+            for r in &radii {
+                o.push(b' ');
+                o.str(r);
+            }
+        })?;
         y0 += (hi - lo).y + gap;
     }
-    dxf.end()
+    end(o)
 }

@@ -10,6 +10,7 @@ use crate::error::IoError;
 use crate::gltf::write_glb;
 use crate::schedule::{
     write_beams_csv, write_nodes_csv, write_panels_csv, write_schedule_json, write_segments_csv,
+    ScheduleJson,
 };
 use crate::svg::write_overview_svg;
 use crate::write_atomic;
@@ -31,11 +32,12 @@ pub const FABRICATION_FILES: [&str; 9] = [
 /// creating it if needed, each file atomically ([`write_atomic`]); returns the
 /// paths written, in the order of [`FABRICATION_FILES`]. Beams in the glTF are
 /// swept with a `section.0 × section.1` rectangle (width along the beam plane's
-/// normal, depth in the plane).
+/// normal, depth in the plane); `schedule.json` holds `json`.
 pub fn write_fabrication(
     dir: &Path,
     f: &Fabrication,
     section: (f64, f64),
+    json: ScheduleJson,
 ) -> Result<Vec<PathBuf>, IoError> {
     std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
         path: dir.to_owned(),
@@ -47,7 +49,7 @@ pub fn write_fabrication(
         Box::new(|w| write_beams_csv(f, w)),
         Box::new(|w| write_segments_csv(f, w)),
         Box::new(|w| write_nodes_csv(f, w)),
-        Box::new(|w| write_schedule_json(f, w)),
+        Box::new(|w| write_schedule_json(f, json, w)),
         Box::new(|w| write_panels_dxf(f, w)),
         Box::new(|w| write_beams_dxf(f, w)),
         Box::new(|w| write_overview_svg(f, w)),

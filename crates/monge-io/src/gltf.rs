@@ -14,161 +14,213 @@ use json::validation::{Checked::Valid, USize64};
 use monge_core::fabrication::{Beam, Fabrication};
 use monge_core::QuadGrid;
 
-/// Binary data and the glTF objects that describe it, being built.
-struct Builder {
-    root: json::Root,
-    bin: Vec<u8>,
+use crate::text::emit;
+
+/// Calls its argument with every item of a part, in order.
+type Producer<'a, T> = Box<dyn Fn(&mut dyn FnMut(T)) + 'a>;
+
+/// One triangle mesh of a `.glb`, produced on demand: the writer asks for it
+/// twice, once for its size and bounds and once for its bytes, and never holds
+/// its binary data.
+struct Part<'a> {
+    name: String,
+    material: u32,
+    /// Calls its argument with every vertex, in order.
+    positions: Producer<'a, DVec3>,
+    /// Calls its argument with every triangle (indices into the vertices).
+    triangles: Producer<'a, [u32; 3]>,
 }
 
-impl Builder {
-    /// An empty document made by `generator`, with one scene called `scene`.
-    fn new(generator: &str, scene: &str) -> Builder {
-        let mut b = Builder {
-            root: json::Root {
-                asset: json::Asset {
-                    generator: Some(generator.into()),
-                    ..Default::default()
-                },
-                ..Default::default()
-            },
-            bin: Vec::new(),
-        };
-        let scene = b.root.push(json::Scene {
-            extensions: None,
-            extras: Default::default(),
-            name: Some(scene.into()),
-            nodes: Vec::new(),
+/// A buffer view of `len` bytes at `offset` of the binary chunk.
+fn view(
+    root: &mut json::Root,
+    offset: usize,
+    len: usize,
+    target: json::buffer::Target,
+) -> json::Index<json::buffer::View> {
+    root.push(json::buffer::View {
+        buffer: json::Index::new(0),
+        byte_length: USize64::from(len),
+        byte_offset: Some(USize64::from(offset)),
+        byte_stride: None,
+        name: None,
+        target: Some(Valid(target)),
+        extensions: None,
+        extras: Default::default(),
+    })
+}
+
+/// An accessor of `count` elements of `type_` and `component` in `view`.
+fn accessor(
+    root: &mut json::Root,
+    view: json::Index<json::buffer::View>,
+    count: usize,
+    component: json::accessor::ComponentType,
+    type_: json::accessor::Type,
+    bounds: Option<([f32; 3], [f32; 3])>,
+) -> json::Index<json::Accessor> {
+    root.push(json::Accessor {
+        buffer_view: Some(view),
+        byte_offset: None,
+        count: USize64::from(count),
+        component_type: Valid(json::accessor::GenericComponentType(component)),
+        extensions: None,
+        extras: Default::default(),
+        type_: Valid(type_),
+        min: bounds.map(|(lo, _)| json::Value::from(lo.to_vec())),
+        max: bounds.map(|(_, hi)| json::Value::from(hi.to_vec())),
+        name: None,
+        normalized: false,
+        sparse: None,
+    })
+}
+
+/// Writes a binary glTF (`.glb`) made by `generator`: one scene `scene`, the
+/// `materials`, and one mesh and node per non-empty part, streaming the binary
+/// chunk (its length is known from a first pass over the parts).
+fn write_parts<W: Write + ?Sized>(
+    generator: &str,
+    scene: &str,
+    materials: Vec<json::Material>,
+    parts: &[Part<'_>],
+    w: &mut W,
+) -> io::Result<()> {
+    let mut root = json::Root {
+        asset: json::Asset {
+            generator: Some(generator.into()),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let scene = root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        name: Some(scene.into()),
+        nodes: Vec::new(),
+    });
+    root.scene = Some(scene);
+    for m in materials {
+        root.push(m);
+    }
+    let mut offset = 0;
+    let mut kept = Vec::new();
+    for part in parts {
+        let (mut count, mut lo, mut hi) = (0, [f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        (part.positions)(&mut |p| {
+            let p = p.as_vec3().to_array();
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+            count += 1;
         });
-        b.root.scene = Some(scene);
-        b
-    }
-
-    /// Writes the document as binary glTF (`.glb`).
-    fn finish(mut self, w: &mut (impl Write + ?Sized)) -> io::Result<()> {
-        while self.bin.len() % 4 != 0 {
-            self.bin.push(0);
+        let mut indices = 0;
+        (part.triangles)(&mut |_| indices += 3);
+        if indices == 0 {
+            continue;
         }
-        self.root.push(json::Buffer {
-            byte_length: USize64::from(self.bin.len()),
-            name: None,
-            uri: None,
-            extensions: None,
-            extras: Default::default(),
-        });
-        let mut text = self.root.to_vec().map_err(io::Error::other)?;
-        while text.len() % 4 != 0 {
-            text.push(b' ');
-        }
-        let total = 12 + 8 + text.len() + 8 + self.bin.len();
-        let total = u32::try_from(total).map_err(|_| io::Error::other("glTF larger than 4 GiB"))?;
-        w.write_all(b"glTF")?;
-        w.write_all(&2u32.to_le_bytes())?;
-        w.write_all(&total.to_le_bytes())?;
-        w.write_all(&(text.len() as u32).to_le_bytes())?;
-        w.write_all(b"JSON")?;
-        w.write_all(&text)?;
-        w.write_all(&(self.bin.len() as u32).to_le_bytes())?;
-        w.write_all(b"BIN\0")?;
-        w.write_all(&self.bin)
-    }
-
-    /// Appends `bytes` as a buffer view (4-byte aligned) and returns its index.
-    fn view(
-        &mut self,
-        bytes: &[u8],
-        target: json::buffer::Target,
-    ) -> json::Index<json::buffer::View> {
-        while self.bin.len() % 4 != 0 {
-            self.bin.push(0);
-        }
-        let offset = self.bin.len();
-        self.bin.extend_from_slice(bytes);
-        self.root.push(json::buffer::View {
-            buffer: json::Index::new(0),
-            byte_length: USize64::from(bytes.len()),
-            byte_offset: Some(USize64::from(offset)),
-            byte_stride: None,
-            name: None,
-            target: Some(Valid(target)),
-            extensions: None,
-            extras: Default::default(),
-        })
-    }
-
-    /// A triangle mesh named `name` with material `material`; `None` if empty.
-    fn mesh(&mut self, name: String, positions: &[DVec3], triangles: &[u32], material: u32) {
-        if triangles.is_empty() {
-            return;
-        }
-        let p32: Vec<[f32; 3]> = positions.iter().map(|p| p.as_vec3().to_array()).collect();
-        let (lo, hi) = p32.iter().fold(
-            ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
-            |(lo, hi), p| {
-                (
-                    [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
-                    [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
-                )
-            },
+        use json::accessor::{ComponentType, Type};
+        let v = view(
+            &mut root,
+            offset,
+            12 * count,
+            json::buffer::Target::ArrayBuffer,
         );
-        let bytes: Vec<u8> = p32.iter().flatten().flat_map(|c| c.to_le_bytes()).collect();
-        let view = self.view(&bytes, json::buffer::Target::ArrayBuffer);
-        let positions = self.root.push(json::Accessor {
-            buffer_view: Some(view),
-            byte_offset: None,
-            count: USize64::from(p32.len()),
-            component_type: Valid(json::accessor::GenericComponentType(
-                json::accessor::ComponentType::F32,
-            )),
-            extensions: None,
-            extras: Default::default(),
-            type_: Valid(json::accessor::Type::Vec3),
-            min: Some(json::Value::from(lo.to_vec())),
-            max: Some(json::Value::from(hi.to_vec())),
-            name: None,
-            normalized: false,
-            sparse: None,
-        });
-        let bytes: Vec<u8> = triangles.iter().flat_map(|i| i.to_le_bytes()).collect();
-        let view = self.view(&bytes, json::buffer::Target::ElementArrayBuffer);
-        let indices = self.root.push(json::Accessor {
-            buffer_view: Some(view),
-            byte_offset: None,
-            count: USize64::from(triangles.len()),
-            component_type: Valid(json::accessor::GenericComponentType(
-                json::accessor::ComponentType::U32,
-            )),
-            extensions: None,
-            extras: Default::default(),
-            type_: Valid(json::accessor::Type::Scalar),
-            min: None,
-            max: None,
-            name: None,
-            normalized: false,
-            sparse: None,
-        });
+        let positions = accessor(
+            &mut root,
+            v,
+            count,
+            ComponentType::F32,
+            Type::Vec3,
+            Some((lo, hi)),
+        );
+        offset += 12 * count;
+        let v = view(
+            &mut root,
+            offset,
+            4 * indices,
+            json::buffer::Target::ElementArrayBuffer,
+        );
+        offset += 4 * indices;
+        let indices = accessor(
+            &mut root,
+            v,
+            indices,
+            ComponentType::U32,
+            Type::Scalar,
+            None,
+        );
         let primitive = json::mesh::Primitive {
             attributes: BTreeMap::from([(Valid(json::mesh::Semantic::Positions), positions)]),
             extensions: None,
             extras: Default::default(),
             indices: Some(indices),
-            material: Some(json::Index::new(material)),
+            material: Some(json::Index::new(part.material)),
             mode: Valid(json::mesh::Mode::Triangles),
             targets: None,
         };
-        let mesh = self.root.push(json::Mesh {
+        let mesh = root.push(json::Mesh {
             extensions: None,
             extras: Default::default(),
-            name: Some(name.clone()),
+            name: Some(part.name.clone()),
             primitives: vec![primitive],
             weights: None,
         });
-        let node = self.root.push(json::Node {
+        let node = root.push(json::Node {
             mesh: Some(mesh),
-            name: Some(name),
+            name: Some(part.name.clone()),
             ..Default::default()
         });
-        self.root.scenes[0].nodes.push(node);
+        root.scenes[0].nodes.push(node);
+        kept.push(part);
     }
+    root.push(json::Buffer {
+        byte_length: USize64::from(offset),
+        name: None,
+        uri: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+    let mut text = root.to_vec().map_err(io::Error::other)?;
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let total = 12 + 8 + text.len() + 8 + offset;
+    let too_large = |_| io::Error::other("glTF larger than 4 GiB");
+    let total = u32::try_from(total).map_err(too_large)?;
+    let bin = u32::try_from(offset).map_err(too_large)?;
+    emit(w, |o| {
+        o.str("glTF");
+        o.bytes(&2u32.to_le_bytes());
+        o.bytes(&total.to_le_bytes());
+        o.bytes(&(text.len() as u32).to_le_bytes());
+        o.str("JSON");
+        o.bytes(&text);
+        o.bytes(&bin.to_le_bytes());
+        o.str("BIN\0");
+        let mut result = Ok(());
+        for part in kept {
+            (part.positions)(&mut |p| {
+                if result.is_err() {
+                    return;
+                }
+                for c in p.as_vec3().to_array() {
+                    o.bytes(&c.to_le_bytes());
+                }
+                result = o.maybe_flush();
+            });
+            (part.triangles)(&mut |t| {
+                if result.is_err() {
+                    return;
+                }
+                for i in t {
+                    o.bytes(&i.to_le_bytes());
+                }
+                result = o.maybe_flush();
+            });
+        }
+        result
+    })
 }
 
 /// A material of one colour (RGBA), double-sided.
@@ -190,20 +242,14 @@ fn material(name: &str, rgba: [f32; 4]) -> json::Material {
     }
 }
 
-/// A rectangular tube of `width` (along the beam plane's normal) by `depth`
-/// (in the plane) along a beam's nodes, mitred at every node, with end caps (§6).
-fn sweep(
-    beam: &Beam,
-    width: f64,
-    depth: f64,
-    positions: &mut Vec<DVec3>,
-    triangles: &mut Vec<u32>,
-) {
+/// The vertices of a rectangular tube of `width` (along the beam plane's
+/// normal) by `depth` (in the plane) along a beam's nodes, mitred at every
+/// node (§6): four per node.
+fn sweep_positions(beam: &Beam, width: f64, depth: f64, f: &mut dyn FnMut(DVec3)) {
     let fr = &beam.frame;
     let points: Vec<DVec3> = beam.nodes.iter().map(|q| fr.to_space(*q)).collect();
     let n = points.len();
     let dir = |k: usize| (points[k + 1] - points[k]).normalize();
-    let base = positions.len() as u32;
     for (k, point) in points.iter().enumerate() {
         let (tangent, along) = match k {
             0 => (dir(0), dir(0)),
@@ -214,18 +260,26 @@ fn sweep(
         let m = fr.normal.cross(tangent) / tangent.dot(along).max(0.2);
         let (u, v) = (0.5 * width * fr.normal, 0.5 * depth * m);
         for (a, b) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
-            positions.push(*point + a * u + b * v);
+            f(*point + a * u + b * v);
         }
     }
-    for k in 0..n as u32 - 1 {
+}
+
+/// The triangles of the tube of [`sweep_positions`] along `n` nodes whose
+/// first vertex is `base`: four sides between consecutive nodes, and end caps.
+fn sweep_triangles(base: u32, n: u32, f: &mut dyn FnMut([u32; 3])) {
+    for k in 0..n - 1 {
         for c in 0..4 {
             let (a, b) = (base + 4 * k + c, base + 4 * k + (c + 1) % 4);
-            triangles.extend([a, b, b + 4, a, b + 4, a + 4]);
+            f([a, b, b + 4]);
+            f([a, b + 4, a + 4]);
         }
     }
-    let last = base + 4 * (n as u32 - 1);
-    triangles.extend([base, base + 2, base + 1, base, base + 3, base + 2]);
-    triangles.extend([last, last + 1, last + 2, last, last + 2, last + 3]);
+    let last = base + 4 * (n - 1);
+    f([base, base + 2, base + 1]);
+    f([base, base + 3, base + 2]);
+    f([last, last + 1, last + 2]);
+    f([last, last + 2, last + 3]);
 }
 
 /// The whole assembly as binary glTF (§6): for each layer `k`, a mesh
@@ -233,45 +287,65 @@ fn sweep(
 /// `layer k beams` (every row and column swept with a `width × depth`
 /// rectangular section: `width` along the beam plane's normal, `depth` in the plane).
 pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> io::Result<()> {
-    let mut b = Builder::new("monge fabricate", "gridshell");
-    b.root.push(material("glass", [0.55, 0.75, 0.95, 0.4]));
-    b.root.push(material("steel", [0.45, 0.45, 0.5, 1.0]));
+    let mut parts = Vec::new();
     for (k, layer) in f.layers.iter().enumerate() {
-        let g = &layer.grid;
-        b.mesh(
-            format!("layer {k} panels"),
-            &g.vertices,
-            &grid_triangles(g),
-            0,
-        );
-        let (mut positions, mut triangles) = (Vec::new(), Vec::new());
-        for beam in f.beams.iter().filter(|beam| beam.layer == k) {
-            sweep(beam, width, depth, &mut positions, &mut triangles);
-        }
-        b.mesh(format!("layer {k} beams"), &positions, &triangles, 1);
+        parts.push(grid_part(format!("layer {k} panels"), 0, &layer.grid));
+        let beams = move || f.beams.iter().filter(move |beam| beam.layer == k);
+        parts.push(Part {
+            name: format!("layer {k} beams"),
+            material: 1,
+            positions: Box::new(move |emit| {
+                for beam in beams() {
+                    sweep_positions(beam, width, depth, emit);
+                }
+            }),
+            triangles: Box::new(move |emit| {
+                let mut base = 0;
+                for beam in beams() {
+                    let n = beam.nodes.len() as u32;
+                    sweep_triangles(base, n, emit);
+                    base += 4 * n;
+                }
+            }),
+        });
     }
-    b.finish(w)
+    let materials = vec![
+        material("glass", [0.55, 0.75, 0.95, 0.4]),
+        material("steel", [0.45, 0.45, 0.5, 1.0]),
+    ];
+    write_parts("monge fabricate", "gridshell", materials, &parts, w)
 }
 
-/// Two triangles per face of a quad grid, wound about its node axes.
-fn grid_triangles(g: &QuadGrid) -> Vec<u32> {
-    quad_triangles(g.oriented_faces())
+/// The faces of a quad grid, two triangles each, wound about its node axes.
+fn grid_part(name: String, material: u32, g: &QuadGrid) -> Part<'_> {
+    quads_part(name, material, &g.vertices, move || g.oriented_faces())
 }
 
-/// Two triangles per quad of vertex indices.
-fn quad_triangles(quads: impl IntoIterator<Item = [usize; 4]>) -> Vec<u32> {
-    quads
-        .into_iter()
-        .flat_map(|q| {
-            let [a, b, c, d] = q.map(|v| v as u32);
-            [a, b, c, a, c, d]
-        })
-        .collect()
+/// A part of `vertices` and the quads that `quads` yields, two triangles a quad.
+fn quads_part<'a, I: IntoIterator<Item = [usize; 4]>>(
+    name: String,
+    material: u32,
+    vertices: &'a [DVec3],
+    quads: impl Fn() -> I + 'a,
+) -> Part<'a> {
+    Part {
+        name,
+        material,
+        positions: Box::new(move |emit| vertices.iter().for_each(|p| emit(*p))),
+        triangles: Box::new(move |emit| {
+            for q in quads() {
+                let [a, b, c, d] = q.map(|v| v as u32);
+                emit([a, b, c]);
+                emit([a, c, d]);
+            }
+        }),
+    }
 }
 
 /// A quad mesh as binary glTF (`.glb`): one double-sided mesh, two triangles a
 /// quad, positions in `f32` as glTF requires — for looking at a mesh in any
 /// glTF viewer, not for its 1e-9 geometry (keep OBJ, PLY or JSON for that).
+/// The quads are gone through twice (size, then bytes), hence `Clone`.
 ///
 /// ```
 /// use glam::DVec3;
@@ -283,25 +357,20 @@ fn quad_triangles(quads: impl IntoIterator<Item = [usize; 4]>) -> Vec<u32> {
 /// ```
 pub fn write_quads_glb<W: Write + ?Sized>(
     vertices: &[DVec3],
-    quads: impl IntoIterator<Item = [usize; 4]>,
+    quads: impl IntoIterator<Item = [usize; 4]> + Clone,
     w: &mut W,
 ) -> io::Result<()> {
-    surface_glb(vertices, &quad_triangles(quads), w)
+    let part = quads_part("surface".to_owned(), 0, vertices, move || quads.clone());
+    surface_glb(part, w)
 }
 
 /// A quad grid as binary glTF (see [`write_quads_glb`]).
 pub fn write_grid_glb<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
-    surface_glb(&grid.vertices, &grid_triangles(grid), w)
+    surface_glb(grid_part("surface".to_owned(), 0, grid), w)
 }
 
-/// One surface of triangles as binary glTF.
-fn surface_glb<W: Write + ?Sized>(
-    vertices: &[DVec3],
-    triangles: &[u32],
-    w: &mut W,
-) -> io::Result<()> {
-    let mut b = Builder::new("monge", "mesh");
-    b.root.push(material("surface", [0.62, 0.72, 0.85, 1.0]));
-    b.mesh("surface".to_owned(), vertices, triangles, 0);
-    b.finish(w)
+/// One surface as binary glTF.
+fn surface_glb<W: Write + ?Sized>(part: Part<'_>, w: &mut W) -> io::Result<()> {
+    let materials = vec![material("surface", [0.62, 0.72, 0.85, 1.0])];
+    write_parts("monge", "mesh", materials, &[part], w)
 }

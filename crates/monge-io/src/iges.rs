@@ -17,6 +17,7 @@ use glam::DVec3;
 use monge_core::cyclidic::{NurbsSurface, NURBS_DEGREE};
 
 use crate::error::IoError;
+use crate::text::{emit, Out};
 
 /// File name in error messages of [`read_iges_surfaces`].
 const NO_FILE: &str = "<input>";
@@ -93,54 +94,62 @@ pub fn write_iges<W: Write + ?Sized>(surface: &NurbsSurface, w: &mut W) -> io::R
         RELATIVE_RESOLUTION
     };
 
-    let mut out = String::new();
-    let start = "monge: exact NURBS surface (rational B-spline surface, IGES entity 128)";
-    push_line(&mut out, start, 'S', 1);
+    // The Directory Entry gives the number of Parameter Data lines, which
+    // come after it: a first pass counts them, the second writes them.
+    let mut parameter_lines = 0;
+    let mut counter = Packer::new(PARAMETER_COLUMNS, |_: &[u8]| {
+        parameter_lines += 1;
+        Ok(())
+    });
+    surface_parameters(surface, resolution, &mut |f| counter.field(f))?;
+    counter.finish()?;
 
     let global = global_parameters(max_coordinate, resolution);
-    let global_lines = pack(&global, DATA_COLUMNS);
-    for (k, line) in global_lines.iter().enumerate() {
-        push_line(&mut out, line, 'G', k + 1);
-    }
+    emit(w, |o| {
+        let start = "monge: exact NURBS surface (rational B-spline surface, IGES entity 128)";
+        put_line(o, start.as_bytes(), 'S', 1)?;
+        let mut global_lines = 0;
+        let mut packer = Packer::new(DATA_COLUMNS, |line: &[u8]| {
+            global_lines += 1;
+            put_line(o, line, 'G', global_lines)
+        });
+        for field in &global {
+            packer.field(field.as_bytes())?;
+        }
+        packer.finish()?;
 
-    let parameters = pack(&surface_parameters(surface, resolution), PARAMETER_COLUMNS);
-    let de = 1;
-    let entry1 = format!(
-        "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
-        128, 1, 0, 0, 0, 0, 0, 0, "00000000"
-    );
-    let entry2 = format!(
-        "{:>8}{:>8}{:>8}{:>8}{:>8}{:8}{:8}{:8}{:>8}",
-        128,
-        0,
-        0,
-        parameters.len(),
-        0,
-        "",
-        "",
-        "",
-        0
-    );
-    push_line(&mut out, &entry1, 'D', de);
-    push_line(&mut out, &entry2, 'D', de + 1);
-    for (k, line) in parameters.iter().enumerate() {
-        push_line(
-            &mut out,
-            &format!("{line:<PARAMETER_COLUMNS$} {de:>7}"),
-            'P',
-            k + 1,
+        let de = 1;
+        let entry1 = format!(
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
+            128, 1, 0, 0, 0, 0, 0, 0, "00000000"
         );
-    }
+        let entry2 = format!(
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:8}{:8}{:8}{:>8}",
+            128, 0, 0, parameter_lines, 0, "", "", "", 0
+        );
+        put_line(o, entry1.as_bytes(), 'D', de)?;
+        put_line(o, entry2.as_bytes(), 'D', de + 1)?;
+        let mut sequence = 0;
+        let mut data = Vec::with_capacity(DATA_COLUMNS);
+        let back_pointer = format!(" {de:>7}");
+        let mut packer = Packer::new(PARAMETER_COLUMNS, |line: &[u8]| {
+            sequence += 1;
+            data.clear();
+            data.extend_from_slice(line);
+            data.resize(PARAMETER_COLUMNS, b' ');
+            data.extend_from_slice(back_pointer.as_bytes());
+            put_line(o, &data, 'P', sequence)
+        });
+        surface_parameters(surface, resolution, &mut |f| packer.field(f))?;
+        packer.finish()?;
+        debug_assert_eq!(sequence, parameter_lines);
 
-    let counts = format!(
-        "S{:>7}G{:>7}D{:>7}P{:>7}",
-        1,
-        global_lines.len(),
-        2,
-        parameters.len()
-    );
-    push_line(&mut out, &counts, 'T', 1);
-    w.write_all(out.as_bytes())
+        let counts = format!(
+            "S{:>7}G{:>7}D{:>7}P{:>7}",
+            1, global_lines, 2, parameter_lines
+        );
+        put_line(o, counts.as_bytes(), 'T', 1)
+    })
 }
 
 /// Why `surface` cannot be written, if it cannot.
@@ -190,10 +199,10 @@ fn check_surface(s: &NurbsSurface) -> Result<(), String> {
     Ok(())
 }
 
-/// The Global section's parameters, each followed by its delimiter.
-fn global_parameters(max_coordinate: f64, resolution: f64) -> Vec<String> {
+/// The Global section's parameters (without delimiters).
+fn global_parameters(max_coordinate: f64, resolution: f64) -> [String; 25] {
     let system = concat!("monge-io ", env!("CARGO_PKG_VERSION"));
-    let fields = [
+    [
         hollerith(","),         // 1 parameter delimiter
         hollerith(";"),         // 2 record delimiter
         hollerith("monge"),     // 3 product identification from sender
@@ -219,12 +228,15 @@ fn global_parameters(max_coordinate: f64, resolution: f64) -> Vec<String> {
         "11".into(),            // 23 IGES version: 5.3
         "0".into(),             // 24 drafting standard: none
         hollerith(DATE),        // 25 date and time of last modification
-    ];
-    delimit(fields.into_iter())
+    ]
 }
 
-/// Entity 128's parameters, each followed by its delimiter.
-fn surface_parameters(s: &NurbsSurface, resolution: f64) -> Vec<String> {
+/// Entity 128's parameters (without delimiters), each passed to `field` in order.
+fn surface_parameters(
+    s: &NurbsSurface,
+    resolution: f64,
+    field: &mut dyn FnMut(&[u8]) -> io::Result<()>,
+) -> io::Result<()> {
     let p = NURBS_DEGREE;
     let (rows, cols) = (s.rows, s.cols);
     let at = |a: usize, b: usize| s.control_points[a * cols + b];
@@ -233,22 +245,31 @@ fn surface_parameters(s: &NurbsSurface, resolution: f64) -> Vec<String> {
     let closed_v = (0..rows).all(|a| near(at(a, 0), at(a, cols - 1)));
     let polynomial = s.weights.iter().all(|&w| w == s.weights[0]);
 
-    let mut fields: Vec<String> = [128, rows - 1, cols - 1, p, p]
-        .iter()
-        .map(|n| n.to_string())
-        .collect();
-    for flag in [closed_u, closed_v, polynomial, false, false] {
-        fields.push(u8::from(flag).to_string());
+    let mut int = itoa::Buffer::new();
+    for n in [128, rows - 1, cols - 1, p, p] {
+        field(int.format(n).as_bytes())?;
     }
-    fields.extend(s.knots_u.iter().chain(&s.knots_v).map(|&k| real(k)));
+    for flag in [closed_u, closed_v, polynomial, false, false] {
+        field(int.format(u8::from(flag)).as_bytes())?;
+    }
+    let mut real = Real::default();
+    for &k in s.knots_u.iter().chain(&s.knots_v) {
+        field(real.format(k))?;
+    }
     // IGES order: first index (along u) fastest.
     let order = || (0..cols).flat_map(move |b| (0..rows).map(move |a| a * cols + b));
-    fields.extend(order().map(|k| real(s.weights[k])));
     for k in order() {
-        fields.extend(s.control_points[k].to_array().map(real));
+        field(real.format(s.weights[k]))?;
     }
-    fields.extend([s.knots_u[p], s.knots_u[rows], s.knots_v[p], s.knots_v[cols]].map(real));
-    delimit(fields.into_iter())
+    for k in order() {
+        for c in s.control_points[k].to_array() {
+            field(real.format(c))?;
+        }
+    }
+    for x in [s.knots_u[p], s.knots_u[rows], s.knots_v[p], s.knots_v[cols]] {
+        field(real.format(x))?;
+    }
+    Ok(())
 }
 
 /// `text` as an IGES Hollerith string: `5Hmonge`.
@@ -258,40 +279,150 @@ fn hollerith(text: &str) -> String {
 
 /// The shortest decimal that parses back to `x`, in `E` notation with a decimal point.
 fn real(x: f64) -> String {
-    let s = format!("{x:E}");
-    match s.find('.') {
-        Some(_) => s,
-        None => s.replacen('E', ".0E", 1),
+    String::from_utf8(Real::default().format(x).to_vec()).expect("ASCII")
+}
+
+/// Formats reals as IGES wants them: the shortest decimal that parses back to
+/// the same `f64` (`zmij`), rewritten as `d.dddE±n` (`1.0E0`, `-2.5E-1`,
+/// `0.0E0`): the text of `format!("{x:E}")` with `.0` added to a lone digit,
+/// except where two shortest decimals are equally near `x`: then zmij takes the
+/// even last digit (as Python's `repr`), the standard library the larger one.
+#[derive(Default)]
+struct Real {
+    shortest: zmij::Buffer,
+    out: Vec<u8>,
+}
+
+impl Real {
+    /// `x` (finite) in IGES `E` notation.
+    fn format(&mut self, x: f64) -> &[u8] {
+        let text = self.shortest.format_finite(x).as_bytes();
+        let (sign, text) = match text.split_first() {
+            Some((b'-', rest)) => (true, rest),
+            _ => (false, text),
+        };
+        let (mantissa, exponent) = match text.iter().position(|&c| c == b'e') {
+            Some(e) => (
+                &text[..e],
+                std::str::from_utf8(&text[e + 1..])
+                    .ok()
+                    .and_then(|t| t.parse::<i32>().ok())
+                    .expect("zmij writes an integer exponent"),
+            ),
+            None => (text, 0),
+        };
+        // The digits without the point, and the power of ten of the first one.
+        let point = mantissa
+            .iter()
+            .position(|&c| c == b'.')
+            .unwrap_or(mantissa.len());
+        let digits = mantissa.iter().filter(|&&c| c != b'.');
+        let leading = digits.clone().take_while(|&&c| c == b'0').count();
+        self.out.clear();
+        if sign {
+            self.out.push(b'-');
+        }
+        // At most 17 significant digits, and zeros that pad them (`1e+16` is `1` alone).
+        let mut significant = [0u8; 32];
+        let mut n = 0;
+        for &c in digits.skip(leading) {
+            significant[n] = c;
+            n += 1;
+        }
+        let significant = &significant[..n];
+        let end = n - significant.iter().rev().take_while(|&&c| c == b'0').count();
+        if end == 0 {
+            self.out.extend_from_slice(b"0.0E0");
+            return &self.out;
+        }
+        let power = exponent + point as i32 - leading as i32 - 1;
+        self.out.push(significant[0]);
+        self.out.push(b'.');
+        if end > 1 {
+            self.out.extend_from_slice(&significant[1..end]);
+        } else {
+            self.out.push(b'0');
+        }
+        self.out.push(b'E');
+        self.out
+            .extend_from_slice(itoa::Buffer::new().format(power).as_bytes());
+        &self.out
     }
 }
 
-/// Each field followed by `,`, the last by `;`.
-fn delimit(fields: impl ExactSizeIterator<Item = String>) -> Vec<String> {
-    let n = fields.len();
-    fields
-        .enumerate()
-        .map(|(k, f)| f + if k + 1 == n { ";" } else { "," })
-        .collect()
+/// Delimited fields packed into lines of at most `width` columns, none split:
+/// each field is followed by `,`, the last by `;`; `line` is called with each line.
+struct Packer<L: FnMut(&[u8]) -> io::Result<()>> {
+    width: usize,
+    line: Vec<u8>,
+    /// The last field given, written once it is known whether another follows.
+    pending: Option<Vec<u8>>,
+    sink: L,
 }
 
-/// Delimited fields packed into lines of at most `width` columns, none split.
-fn pack(fields: &[String], width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for field in fields {
-        let line = lines.last_mut().expect("at least one line");
-        if !line.is_empty() && line.len() + field.len() > width {
-            lines.push(field.clone());
-        } else {
-            line.push_str(field);
+impl<L: FnMut(&[u8]) -> io::Result<()>> Packer<L> {
+    fn new(width: usize, sink: L) -> Self {
+        Packer {
+            width,
+            line: Vec::with_capacity(width),
+            pending: None,
+            sink,
         }
     }
-    lines
+
+    /// The next field.
+    fn field(&mut self, field: &[u8]) -> io::Result<()> {
+        if let Some(mut previous) = self.pending.take() {
+            previous.push(b',');
+            self.put(&previous)?;
+            previous.clear();
+            previous.extend_from_slice(field);
+            self.pending = Some(previous);
+        } else {
+            self.pending = Some(field.to_vec());
+        }
+        Ok(())
+    }
+
+    /// Writes the last field and line.
+    fn finish(mut self) -> io::Result<()> {
+        if let Some(mut last) = self.pending.take() {
+            last.push(b';');
+            self.put(&last)?;
+        }
+        (self.sink)(&self.line)
+    }
+
+    fn put(&mut self, field: &[u8]) -> io::Result<()> {
+        if !self.line.is_empty() && self.line.len() + field.len() > self.width {
+            (self.sink)(&self.line)?;
+            self.line.clear();
+        }
+        self.line.extend_from_slice(field);
+        Ok(())
+    }
 }
 
 /// One 80-column line: `data` in columns 1–72, the section letter, the sequence number.
-fn push_line(out: &mut String, data: &str, section: char, sequence: usize) {
+fn put_line<W: Write + ?Sized>(
+    o: &mut Out<'_, W>,
+    data: &[u8],
+    section: char,
+    sequence: usize,
+) -> io::Result<()> {
     debug_assert!(data.len() <= DATA_COLUMNS);
-    out.push_str(&format!("{data:<DATA_COLUMNS$}{section}{sequence:>7}\n"));
+    o.bytes(data);
+    for _ in data.len()..DATA_COLUMNS {
+        o.push(b' ');
+    }
+    o.push(section as u8);
+    let mut digits = itoa::Buffer::new();
+    let digits = digits.format(sequence);
+    for _ in digits.len()..7 {
+        o.push(b' ');
+    }
+    o.str(digits);
+    o.end()
 }
 
 /// A rational B-spline surface (IGES entity 128) read by [`read_iges_surfaces`].
@@ -987,4 +1118,71 @@ fn parse_real(text: &str) -> Option<f64> {
     }
     let x: f64 = text.replace(['D', 'd'], "E").parse().ok()?;
     x.is_finite().then_some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `{:E}` (the standard library's shortest digits) with `.0` added to a lone digit.
+    fn std_real(x: f64) -> String {
+        let s = format!("{x:E}");
+        match s.find('.') {
+            Some(_) => s,
+            None => s.replacen('E', ".0E", 1),
+        }
+    }
+
+    #[test]
+    fn reals_are_the_standard_librarys_shortest_digits_in_e_notation() {
+        let mut r = Real::default();
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5e-1,
+            0.1,
+            1e-7,
+            1e15,
+            1e16,
+            1e17,
+            123456789012345680.0,
+            1234567890123456.7,
+            0.000123,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            9007199254740993.0,
+        ];
+        // Random bit patterns (a fixed xorshift sequence), every exponent, and
+        // integers and short decimals, which zmij writes without an exponent.
+        let mut state = 0x9e3779b97f4a7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut values: Vec<f64> = special.to_vec();
+        for _ in 0..200_000 {
+            let x = f64::from_bits(next());
+            if x.is_finite() {
+                values.push(x);
+            }
+            values.push((next() % 100_000_000) as f64 / 1000.0);
+            values.push((next() >> 11) as f64 * 10f64.powi((next() % 40) as i32 - 20));
+        }
+        for x in values {
+            let (ours, std) = (std::str::from_utf8(r.format(x)).unwrap(), std_real(x));
+            if ours != std {
+                // Two shortest decimals equally near x: both read back to x,
+                // have the same length, and ours ends in the even digit.
+                assert_eq!(ours.len(), std.len(), "{x:?}");
+                assert_eq!(ours.parse::<f64>().unwrap(), x, "{x:?}");
+                assert_eq!(std.parse::<f64>().unwrap(), x, "{x:?}");
+                let last = |s: &str| s.split('E').next().unwrap().bytes().last().unwrap();
+                assert_eq!(last(ours) % 2, 0, "{x:?}: {ours} vs {std}");
+            }
+        }
+    }
 }

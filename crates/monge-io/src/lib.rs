@@ -68,7 +68,7 @@ pub use multipatch::{
 pub use points_read::read_points;
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,
-    write_schedule_json, write_segments_csv,
+    write_schedule_json, write_segments_csv, ScheduleJson,
 };
 pub use svg::write_overview_svg;
 

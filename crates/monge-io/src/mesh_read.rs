@@ -2,7 +2,7 @@
 //! written by this crate, and OBJ/PLY quad grids from elsewhere whose vertices
 //! are in row-major order.
 
-use std::io::Read;
+use std::io::{self, BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -29,13 +29,20 @@ use crate::path_name;
 /// then checked to be exactly the faces of the `R × C` grid, in any order.
 ///
 /// `-` is refused with [`IoError::NeedFormat`]: use [`read_mesh_from`].
+///
+/// OBJ and PLY are parsed line by line (record by record) from a buffered
+/// reader, so memory holds the mesh, not the file; JSON is read whole.
 pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
     let format = MeshFormat::from_path(path)?;
     if format == MeshFormat::Glb {
         return Err(not_readable(&path_name(path)));
     }
-    let bytes = std::fs::read(path).map_err(|source| crate::read_error(path, source))?;
-    parse_mesh(&bytes, format, &path_name(path))
+    let file = std::fs::File::open(path).map_err(|source| crate::read_error(path, source))?;
+    parse_mesh(
+        BufReader::with_capacity(READ_BUFFER, file),
+        format,
+        &path_name(path),
+    )
 }
 
 /// Reads a quad grid in `format` from a reader such as standard input (see [`read_mesh`]).
@@ -48,32 +55,85 @@ pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
 /// let grid = read_mesh_from(text.as_bytes(), MeshFormat::Json).unwrap();
 /// assert_eq!((grid.rows, grid.cols), (1, 2));
 /// ```
-pub fn read_mesh_from(mut reader: impl Read, format: MeshFormat) -> Result<QuadGrid, IoError> {
-    const NAME: &str = "<stdin>";
-    let mut bytes = Vec::new();
-    reader
-        .read_to_end(&mut bytes)
-        .map_err(|source| IoError::Read {
-            path: PathBuf::from(NAME),
-            source,
-        })?;
-    parse_mesh(&bytes, format, NAME)
+pub fn read_mesh_from(reader: impl Read, format: MeshFormat) -> Result<QuadGrid, IoError> {
+    parse_mesh(
+        BufReader::with_capacity(READ_BUFFER, reader),
+        format,
+        "<stdin>",
+    )
 }
 
-fn parse_mesh(bytes: &[u8], format: MeshFormat, file: &str) -> Result<QuadGrid, IoError> {
-    let text = || {
-        std::str::from_utf8(bytes).map_err(|e| IoError::Read {
-            path: PathBuf::from(file),
-            source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-        })
-    };
+/// Bytes read from the input at a time.
+const READ_BUFFER: usize = 1 << 16;
+
+/// [`IoError::Read`] of `file`.
+fn read_failed(file: &str, source: io::Error) -> IoError {
+    IoError::Read {
+        path: PathBuf::from(file),
+        source,
+    }
+}
+
+fn parse_mesh(mut r: impl BufRead, format: MeshFormat, file: &str) -> Result<QuadGrid, IoError> {
     match format {
-        MeshFormat::Json => parse_json(text()?, file),
-        MeshFormat::Obj => parse_obj(text()?, file)?.into_grid(file),
+        MeshFormat::Json => {
+            let mut bytes = Vec::new();
+            r.read_to_end(&mut bytes)
+                .map_err(|source| read_failed(file, source))?;
+            let text = std::str::from_utf8(&bytes)
+                .map_err(|e| read_failed(file, io::Error::new(io::ErrorKind::InvalidData, e)))?;
+            parse_json(text, file)
+        }
+        MeshFormat::Obj => parse_obj(r, file)?.into_grid(file),
         MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
-            parse_ply(bytes, file)?.into_grid(file)
+            parse_ply(r, file)?.into_grid(file)
         }
         MeshFormat::Glb => Err(not_readable(file)),
+    }
+}
+
+/// The lines of a buffered reader, read one at a time into one buffer.
+struct Lines<'f, R> {
+    reader: R,
+    buf: Vec<u8>,
+    /// Lines read so far.
+    number: usize,
+    /// Bytes read so far.
+    bytes: usize,
+    file: &'f str,
+}
+
+impl<'f, R: BufRead> Lines<'f, R> {
+    fn new(reader: R, file: &'f str) -> Self {
+        Lines {
+            reader,
+            buf: Vec::new(),
+            number: 0,
+            bytes: 0,
+            file,
+        }
+    }
+
+    /// The next line's 1-based number and bytes (without `\n` or `\r\n`), or
+    /// `None` at the end of the input.
+    fn next_line(&mut self) -> Result<Option<(usize, &[u8])>, IoError> {
+        self.buf.clear();
+        let n = self
+            .reader
+            .read_until(b'\n', &mut self.buf)
+            .map_err(|source| read_failed(self.file, source))?;
+        if n == 0 {
+            return Ok(None);
+        }
+        self.number += 1;
+        self.bytes += n;
+        if self.buf.last() == Some(&b'\n') {
+            self.buf.pop();
+            if self.buf.last() == Some(&b'\r') {
+                self.buf.pop();
+            }
+        }
+        Ok(Some((self.number, &self.buf)))
     }
 }
 
@@ -291,22 +351,27 @@ pub(crate) fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Resul
     Ok(DVec3::from_array(p))
 }
 
-fn parse_obj(text: &str, file: &str) -> Result<RawMesh, IoError> {
+fn parse_obj(reader: impl BufRead, file: &str) -> Result<RawMesh, IoError> {
     let mut raw = RawMesh::default();
-    for (number, line) in text.lines().enumerate() {
+    let mut lines = Lines::new(reader, file);
+    while let Some((number, bytes)) = lines.next_line()? {
+        let line = std::str::from_utf8(bytes).map_err(|e| {
+            let message = format!("line {number} is not UTF-8 text: {e}");
+            read_failed(file, io::Error::new(io::ErrorKind::InvalidData, message))
+        })?;
         let syntax = |message: String| IoError::Syntax {
             file: file.to_owned(),
-            line: number + 1,
+            line: number,
             message,
         };
-        let line = line.trim();
+        let line = line.trim_ascii();
         if let Some(comment) = line.strip_prefix('#') {
             if let Some(shape) = parse_shape(comment, &syntax)? {
                 raw.shape = Some(shape);
             }
             continue;
         }
-        let mut tokens = line.split_whitespace();
+        let mut tokens = line.split_ascii_whitespace();
         match tokens.next() {
             Some("v") => raw.vertices.push(parse_xyz(&mut tokens).map_err(syntax)?),
             Some("vn") => raw.normals.push(parse_xyz(&mut tokens).map_err(syntax)?),
@@ -441,7 +506,7 @@ struct PlyHeader {
     bytes: usize,
 }
 
-fn parse_ply_header(bytes: &[u8], file: &str) -> Result<PlyHeader, IoError> {
+fn parse_ply_header(lines: &mut Lines<'_, impl BufRead>, file: &str) -> Result<PlyHeader, IoError> {
     let syntax_at = |number: usize, message: String| IoError::Syntax {
         file: file.to_owned(),
         line: number + 1,
@@ -454,21 +519,16 @@ fn parse_ply_header(bytes: &[u8], file: &str) -> Result<PlyHeader, IoError> {
         lines: 0,
         bytes: 0,
     };
-    let mut number = 0;
     loop {
-        let rest = &bytes[header.bytes..];
-        let Some(end) = rest.iter().position(|&b| b == b'\n') else {
+        let Some((number, line)) = lines.next_line()? else {
             return Err(syntax_at(
-                number,
+                lines.number,
                 "the header has no `end_header`".to_owned(),
             ));
         };
-        let line = std::str::from_utf8(&rest[..end])
-            .map_err(|_| syntax_at(number, "the header is not text".to_owned()))?;
-        header.bytes += end + 1;
-        header.lines += 1;
-        let n = number;
-        number += 1;
+        let n = number - 1;
+        let line = std::str::from_utf8(line)
+            .map_err(|_| syntax_at(n, "the header is not text".to_owned()))?;
         let syntax = |message: String| syntax_at(n, message);
         if n == 0 {
             if line.trim() != "ply" {
@@ -538,7 +598,11 @@ fn parse_ply_header(bytes: &[u8], file: &str) -> Result<PlyHeader, IoError> {
                 };
                 element.properties.push(property);
             }
-            Some("end_header") => return Ok(header),
+            Some("end_header") => {
+                header.lines = number;
+                header.bytes = lines.bytes;
+                return Ok(header);
+            }
             _ => {}
         }
     }
@@ -618,59 +682,55 @@ impl Slots {
     }
 }
 
-fn parse_ply(bytes: &[u8], file: &str) -> Result<RawMesh, IoError> {
-    let header = parse_ply_header(bytes, file)?;
+fn parse_ply(reader: impl BufRead, file: &str) -> Result<RawMesh, IoError> {
+    let mut lines = Lines::new(reader, file);
+    let header = parse_ply_header(&mut lines, file)?;
     let mut raw = RawMesh {
         shape: header.shape,
         ..RawMesh::default()
     };
-    let body = &bytes[header.bytes..];
     match header.encoding {
-        Encoding::Ascii => {
-            let text = std::str::from_utf8(body).map_err(|e| IoError::Syntax {
-                file: file.to_owned(),
-                line: header.lines + 1,
-                message: format!("an ASCII PLY body that is not text: {e}"),
-            })?;
-            parse_ply_ascii(text, &header, file, &mut raw)?;
+        Encoding::Ascii => parse_ply_ascii(&mut lines, &header, file, &mut raw)?,
+        Encoding::BinaryLittleEndian => {
+            parse_ply_binary(&mut lines.reader, &header, file, &mut raw)?
         }
-        Encoding::BinaryLittleEndian => parse_ply_binary(body, &header, file, &mut raw)?,
     }
     Ok(raw)
 }
 
 fn parse_ply_ascii(
-    text: &str,
+    lines: &mut Lines<'_, impl BufRead>,
     header: &PlyHeader,
     file: &str,
     raw: &mut RawMesh,
 ) -> Result<(), IoError> {
-    let mut lines = text.lines().enumerate().map(|(n, l)| (n + header.lines, l));
-    // 0-based number of the last line read.
-    let mut number = header.lines - 1;
     let mut values: Vec<f64> = Vec::new();
     let mut ranges: Vec<(usize, usize)> = Vec::new();
     for element in &header.elements {
         let slots = Slots::of(element);
         for _ in 0..element.count {
-            let Some((n, line)) = lines.next() else {
-                return Err(IoError::Syntax {
-                    file: file.to_owned(),
-                    line: number + 2,
-                    message: format!(
+            let last = lines.number;
+            let syntax = |line: usize, message: String| IoError::Syntax {
+                file: file.to_owned(),
+                line,
+                message,
+            };
+            let Some((n, line)) = lines.next_line()? else {
+                return Err(syntax(
+                    last + 1,
+                    format!(
                         "the file ends before all {} `{}` lines",
                         element.count, element.name
                     ),
-                });
+                ));
             };
-            number = n;
-            let syntax = |message: String| IoError::Syntax {
-                file: file.to_owned(),
-                line: n + 1,
-                message,
-            };
-            ply_values(line, &element.properties, &mut values, &mut ranges).map_err(syntax)?;
-            slots.add(element, &values, &ranges, raw).map_err(syntax)?;
+            let line = std::str::from_utf8(line)
+                .map_err(|e| syntax(n, format!("an ASCII PLY body that is not text: {e}")))?;
+            ply_values(line, &element.properties, &mut values, &mut ranges)
+                .map_err(|m| syntax(n, m))?;
+            slots
+                .add(element, &values, &ranges, raw)
+                .map_err(|m| syntax(n, m))?;
         }
     }
     Ok(())
@@ -686,7 +746,7 @@ fn ply_values(
 ) -> Result<(), String> {
     values.clear();
     ranges.clear();
-    let mut tokens = line.split_whitespace();
+    let mut tokens = line.split_ascii_whitespace();
     let mut next = || {
         tokens
             .next()
@@ -718,7 +778,7 @@ fn parse_number(token: &str) -> Result<f64, String> {
 }
 
 fn parse_ply_binary(
-    body: &[u8],
+    body: &mut impl Read,
     header: &PlyHeader,
     file: &str,
     raw: &mut RawMesh,
@@ -731,23 +791,26 @@ fn parse_ply_binary(
     };
     let mut values: Vec<f64> = Vec::new();
     let mut ranges: Vec<(usize, usize)> = Vec::new();
+    let mut scratch = [0u8; 8];
     for element in &header.elements {
         let slots = Slots::of(element);
         for record in 0..element.count {
             let start = at;
-            let ends = |at: usize| {
-                error(
-                    at,
-                    format!(
-                        "the file ends in `{}` record {record} of {}",
-                        element.name, element.count
-                    ),
-                )
-            };
-            let read = |scalar: Scalar, at: &mut usize| -> Result<f64, IoError> {
-                let b = body
-                    .get(*at..*at + scalar.size())
-                    .ok_or_else(|| ends(*at))?;
+            let mut read = |scalar: Scalar, at: &mut usize| -> Result<f64, IoError> {
+                let b = &mut scratch[..scalar.size()];
+                body.read_exact(b).map_err(|source| {
+                    if source.kind() == io::ErrorKind::UnexpectedEof {
+                        error(
+                            *at,
+                            format!(
+                                "the file ends in `{}` record {record} of {}",
+                                element.name, element.count
+                            ),
+                        )
+                    } else {
+                        read_failed(file, source)
+                    }
+                })?;
                 *at += scalar.size();
                 Ok(scalar.read_le(b))
             };

@@ -7,106 +7,158 @@
 
 use std::io::{self, Write};
 
-use monge_core::fabrication::{Beam, Fabrication, LineFamily, Panel, SegmentShape, Summary};
+use monge_core::fabrication::{
+    Beam, Fabrication, LineFamily, Panel, PlaneFrame, SegmentShape, Summary,
+};
 use serde::Serialize;
+
+use crate::text::{emit, Out};
 
 /// The label of a panel (§6): `L<layer>-P<i>.<j>`.
 pub fn panel_label(p: &Panel) -> String {
-    format!("L{}-P{}.{}", p.layer, p.i, p.j)
+    label_string(|o| put_panel_label(o, p))
 }
 
 /// The label of a beam (§6): `L<layer>-R<i>` for row `i`, `L<layer>-C<j>` for column `j`.
 pub fn beam_label(b: &Beam) -> String {
-    let family = match b.family {
-        LineFamily::Row => 'R',
-        LineFamily::Column => 'C',
-    };
-    format!("L{}-{}{}", b.layer, family, b.index)
+    label_string(|o| put_beam_label(o, b))
+}
+
+/// A label written by `put` into a new string.
+fn label_string(put: impl FnOnce(&mut Out<'_, Vec<u8>>)) -> String {
+    let mut v = Vec::new();
+    emit(&mut v, |o| {
+        put(o);
+        Ok(())
+    })
+    .expect("writing to a Vec cannot fail");
+    String::from_utf8(v).expect("labels are ASCII")
+}
+
+/// Appends [`panel_label`] to `o` without allocating.
+pub(crate) fn put_panel_label<W: Write + ?Sized>(o: &mut Out<'_, W>, p: &Panel) {
+    o.push(b'L');
+    o.int(p.layer);
+    o.str("-P");
+    o.int(p.i);
+    o.push(b'.');
+    o.int(p.j);
+}
+
+/// Appends [`beam_label`] to `o` without allocating.
+pub(crate) fn put_beam_label<W: Write + ?Sized>(o: &mut Out<'_, W>, b: &Beam) {
+    o.push(b'L');
+    o.int(b.layer);
+    o.str(match b.family {
+        LineFamily::Row => "-R",
+        LineFamily::Column => "-C",
+    });
+    o.int(b.index);
+}
+
+/// `,a,b,c`: each value as its own CSV cell, after a comma.
+fn cells<W: Write + ?Sized>(o: &mut Out<'_, W>, values: impl IntoIterator<Item = f64>) {
+    for v in values {
+        o.push(b',');
+        o.float(v);
+    }
 }
 
 /// `a;b;c`: a list in one CSV cell.
-fn list(values: impl IntoIterator<Item = f64>) -> String {
-    values
-        .into_iter()
-        .map(|v| v.to_string())
-        .collect::<Vec<_>>()
-        .join(";")
+fn list<W: Write + ?Sized>(o: &mut Out<'_, W>, values: impl IntoIterator<Item = f64>) {
+    for (k, v) in values.into_iter().enumerate() {
+        if k > 0 {
+            o.push(b';');
+        }
+        o.float(v);
+    }
+}
+
+/// `,x,y,z` of each vector: a plane frame's origin, x axis and normal.
+fn frame_cells<W: Write + ?Sized>(o: &mut Out<'_, W>, frame: &PlaneFrame) {
+    for v in [frame.origin, frame.x_axis, frame.normal] {
+        cells(o, v.to_array());
+    }
 }
 
 /// The panel schedule (§2.2, §6): one line per panel with its flat outline
 /// (corner k at `xk, yk` in the panel's plane frame), edge lengths, corner angles
 /// (degrees), area, circumradius, residuals and the plane frame in space.
 pub fn write_panels_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
-    writeln!(
-        w,
-        "label,layer,i,j,x0,y0,x1,y1,x2,y2,x3,y3,edge0,edge1,edge2,edge3,angle0_deg,angle1_deg,\
-         angle2_deg,angle3_deg,area,circumradius,planarity,circularity,origin_x,origin_y,origin_z,\
-         x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z"
-    )?;
-    for p in &f.panels {
-        let mut cells = vec![
-            panel_label(p),
-            p.layer.to_string(),
-            p.i.to_string(),
-            p.j.to_string(),
-        ];
-        cells.extend(
-            p.outline
-                .iter()
-                .flat_map(|q| [q.x.to_string(), q.y.to_string()]),
+    emit(w, |o| {
+        o.str(
+            "label,layer,i,j,x0,y0,x1,y1,x2,y2,x3,y3,edge0,edge1,edge2,edge3,angle0_deg,angle1_deg,\
+             angle2_deg,angle3_deg,area,circumradius,planarity,circularity,origin_x,origin_y,origin_z,\
+             x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z",
         );
-        cells.extend(p.edge_lengths.iter().map(|v| v.to_string()));
-        cells.extend(p.angles.iter().map(|v| v.to_degrees().to_string()));
-        cells.extend(
-            [p.area, p.circumradius, p.planarity, p.circularity]
-                .iter()
-                .map(|v| v.to_string()),
-        );
-        for v in [p.frame.origin, p.frame.x_axis, p.frame.normal] {
-            cells.extend(v.to_array().iter().map(|c| c.to_string()));
+        o.end()?;
+        for p in &f.panels {
+            put_panel_label(o, p);
+            for n in [p.layer, p.i, p.j] {
+                o.push(b',');
+                o.int(n);
+            }
+            cells(o, p.outline.iter().flat_map(|q| [q.x, q.y]));
+            cells(o, p.edge_lengths);
+            cells(o, p.angles.map(f64::to_degrees));
+            cells(o, [p.area, p.circumradius, p.planarity, p.circularity]);
+            frame_cells(o, &p.frame);
+            o.end()?;
         }
-        writeln!(w, "{}", cells.join(","))?;
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
 /// The beam schedule (§4.6, §6): one line per beam with its node count, length
 /// along the nodes, number of circular segments, split nodes, radii, largest
 /// torsion, plane residual and plane in space.
 pub fn write_beams_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
-    writeln!(
-        w,
-        "label,layer,family,index,nodes,length,segments,splits,radii,plane_residual,max_torsion,\
-         origin_x,origin_y,origin_z,x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z"
-    )?;
-    for b in &f.beams {
-        let radii = b.segments.iter().filter_map(|s| match s.shape {
-            SegmentShape::Arc { radius, .. } => Some(radius),
-            SegmentShape::Straight { .. } => None,
-        });
-        let mut cells = vec![
-            beam_label(b),
-            b.layer.to_string(),
-            family(b.family).to_owned(),
-            b.index.to_string(),
-            b.nodes.len().to_string(),
-            b.edge_lengths.iter().sum::<f64>().to_string(),
-            b.segments.len().to_string(),
-            b.splits()
-                .iter()
-                .map(|s| s.to_string())
-                .collect::<Vec<_>>()
-                .join(";"),
-            list(radii),
-            b.plane_residual.to_string(),
-            b.torsion.iter().copied().fold(0.0, f64::max).to_string(),
-        ];
-        for v in [b.frame.origin, b.frame.x_axis, b.frame.normal] {
-            cells.extend(v.to_array().iter().map(|c| c.to_string()));
+    emit(w, |o| {
+        o.str(
+            "label,layer,family,index,nodes,length,segments,splits,radii,plane_residual,max_torsion,\
+             origin_x,origin_y,origin_z,x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z",
+        );
+        o.end()?;
+        for b in &f.beams {
+            put_beam_label(o, b);
+            o.push(b',');
+            o.int(b.layer);
+            o.push(b',');
+            o.str(family(b.family));
+            o.push(b',');
+            o.int(b.index);
+            o.push(b',');
+            o.int(b.nodes.len());
+            cells(o, [b.edge_lengths.iter().sum::<f64>()]);
+            o.push(b',');
+            o.int(b.segments.len());
+            o.push(b',');
+            for (k, s) in b.splits().iter().enumerate() {
+                if k > 0 {
+                    o.push(b';');
+                }
+                o.int(*s);
+            }
+            o.push(b',');
+            list(
+                o,
+                b.segments.iter().filter_map(|s| match s.shape {
+                    SegmentShape::Arc { radius, .. } => Some(radius),
+                    SegmentShape::Straight { .. } => None,
+                }),
+            );
+            cells(
+                o,
+                [
+                    b.plane_residual,
+                    b.torsion.iter().copied().fold(0.0, f64::max),
+                ],
+            );
+            frame_cells(o, &b.frame);
+            o.end()?;
         }
-        writeln!(w, "{}", cells.join(","))?;
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
 fn family(f: LineFamily) -> &'static str {
@@ -121,113 +173,136 @@ fn family(f: LineFamily) -> &'static str {
 /// centre (in the beam's plane and in space); radius and centre are empty for
 /// straight segments.
 pub fn write_segments_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
-    writeln!(
-        w,
-        "beam,segment,start_node,end_node,kind,radius,sweep_deg,length,center_u,center_v,\
-         center_x,center_y,center_z,residual"
-    )?;
-    for b in &f.beams {
-        for (k, s) in b.segments.iter().enumerate() {
-            let shape = match s.shape {
-                SegmentShape::Arc {
-                    center,
-                    center_3d,
-                    radius,
-                    sweep,
-                    length,
-                } => format!(
-                    "arc,{radius},{},{length},{},{},{},{},{}",
-                    sweep.to_degrees(),
-                    center.x,
-                    center.y,
-                    center_3d.x,
-                    center_3d.y,
-                    center_3d.z
-                ),
-                SegmentShape::Straight { length } => format!("straight,,0,{length},,,,,"),
-            };
-            writeln!(
-                w,
-                "{},{k},{},{},{shape},{}",
-                beam_label(b),
-                s.start,
-                s.end,
-                s.residual
-            )?;
+    emit(w, |o| {
+        o.str(
+            "beam,segment,start_node,end_node,kind,radius,sweep_deg,length,center_u,center_v,\
+             center_x,center_y,center_z,residual",
+        );
+        o.end()?;
+        for b in &f.beams {
+            for (k, s) in b.segments.iter().enumerate() {
+                put_beam_label(o, b);
+                for n in [k, s.start, s.end] {
+                    o.push(b',');
+                    o.int(n);
+                }
+                match s.shape {
+                    SegmentShape::Arc {
+                        center,
+                        center_3d,
+                        radius,
+                        sweep,
+                        length,
+                    } => {
+                        o.str(",arc");
+                        cells(o, [radius, sweep.to_degrees(), length, center.x, center.y]);
+                        cells(o, center_3d.to_array());
+                    }
+                    SegmentShape::Straight { length } => {
+                        o.str(",straight,,0");
+                        cells(o, [length]);
+                        o.str(",,,,,");
+                    }
+                }
+                cells(o, [s.residual]);
+                o.end()?;
+            }
         }
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
 /// The node schedule (§2.2, §6): one line per node with its position on the
 /// base layer, axis, the edge directions present, beam and axis angles
 /// (degrees), height across the layers, torsion and node type.
 pub fn write_nodes_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
-    writeln!(
-        w,
-        "i,j,x,y,z,axis_x,axis_y,axis_z,directions,beam_angles_deg,axis_angles_deg,height,torsion,type"
-    )?;
-    for n in &f.nodes {
-        let deg = |v: &[f64]| list(v.iter().map(|a| a.to_degrees()));
-        writeln!(
-            w,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            n.i,
-            n.j,
-            n.position.x,
-            n.position.y,
-            n.position.z,
-            n.axis.x,
-            n.axis.y,
-            n.axis.z,
-            n.directions.join(";"),
-            deg(&n.beam_angles),
-            deg(&n.axis_angles),
-            n.height,
-            n.torsion,
-            n.node_type
-        )?;
-    }
-    Ok(())
+    emit(w, |o| {
+        o.str(
+            "i,j,x,y,z,axis_x,axis_y,axis_z,directions,beam_angles_deg,axis_angles_deg,height,\
+             torsion,type",
+        );
+        o.end()?;
+        for n in &f.nodes {
+            o.int(n.i);
+            o.push(b',');
+            o.int(n.j);
+            cells(o, n.position.to_array());
+            cells(o, n.axis.to_array());
+            o.push(b',');
+            for (k, d) in n.directions.iter().enumerate() {
+                if k > 0 {
+                    o.push(b';');
+                }
+                o.str(d);
+            }
+            for angles in [&n.beam_angles, &n.axis_angles] {
+                o.push(b',');
+                list(o, angles.iter().map(|a| a.to_degrees()));
+            }
+            cells(o, [n.height, n.torsion]);
+            o.push(b',');
+            o.int(n.node_type);
+            o.end()?;
+        }
+        Ok(())
+    })
 }
 
-/// The whole fabrication as one JSON document (§6): `summary`, `layers`
-/// (distances), `panels`, `beams` (with `label` and `segments`) and `nodes`.
-pub fn write_schedule_json(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
+/// What `schedule.json` holds (§6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScheduleJson {
+    /// `summary` and `layers` (distances): the schedules themselves are the CSV
+    /// files (`monge fabricate`'s default; at 1000 × 1000 faces the full
+    /// document is 1.7 GB, 40 % of the bytes written).
+    #[default]
+    Summary,
+    /// Also every panel, beam (with its nodes in its plane, turning angles,
+    /// torsion and `segments`) and node, each panel and beam with its `label`.
+    Full,
+}
+
+/// The fabrication as one JSON document (§6): `summary` and `layers`
+/// (distances), and with [`ScheduleJson::Full`] also `panels`, `beams` (with
+/// `label` and `segments`) and `nodes`.
+pub fn write_schedule_json(
+    f: &Fabrication,
+    content: ScheduleJson,
+    w: &mut dyn Write,
+) -> io::Result<()> {
     #[derive(Serialize)]
     struct Labelled<'a, T> {
         label: String,
         #[serde(flatten)]
         item: &'a T,
     }
+    /// A list serialized item by item, each with its label.
+    struct List<'a, T>(&'a [T], fn(&T) -> String);
+    impl<T: Serialize> Serialize for List<'_, T> {
+        fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            s.collect_seq(self.0.iter().map(|item| Labelled {
+                label: (self.1)(item),
+                item,
+            }))
+        }
+    }
     #[derive(Serialize)]
     struct Doc<'a> {
         summary: &'a Summary,
         layers: Vec<f64>,
-        panels: Vec<Labelled<'a, Panel>>,
-        beams: Vec<Labelled<'a, Beam>>,
-        nodes: &'a [monge_core::fabrication::Node],
+        #[serde(skip_serializing_if = "Option::is_none")]
+        panels: Option<List<'a, Panel>>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        beams: Option<List<'a, Beam>>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        nodes: Option<&'a [monge_core::fabrication::Node]>,
     }
+    let full = content == ScheduleJson::Full;
     let doc = Doc {
         summary: &f.summary,
         layers: f.layers.iter().map(|l| l.distance).collect(),
-        panels: f
-            .panels
-            .iter()
-            .map(|p| Labelled {
-                label: panel_label(p),
-                item: p,
-            })
-            .collect(),
-        beams: f
-            .beams
-            .iter()
-            .map(|b| Labelled {
-                label: beam_label(b),
-                item: b,
-            })
-            .collect(),
-        nodes: &f.nodes,
+        panels: full.then(|| List(&f.panels, panel_label)),
+        beams: full.then(|| List(&f.beams, beam_label)),
+        nodes: full.then_some(&f.nodes[..]),
     };
     serde_json::to_writer(&mut *w, &doc).map_err(io::Error::other)?;
     writeln!(w)

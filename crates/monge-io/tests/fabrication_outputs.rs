@@ -7,7 +7,7 @@ use std::process::Command;
 use glam::DVec3;
 use monge_core::fabrication::{fabricate, BaseMesh, Fabrication, FabricationOptions, SegmentShape};
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
-use monge_io::{write_fabrication, FABRICATION_FILES};
+use monge_io::{write_fabrication, ScheduleJson, FABRICATION_FILES};
 
 /// A bi-arc guide_v (radius 3 over 40°, radius 6 over 30°) and an arc guide_u.
 fn design() -> Design {
@@ -45,8 +45,12 @@ fn fabrication() -> Fabrication {
 }
 
 fn write(dir: &Path) -> Fabrication {
+    write_with(dir, ScheduleJson::Summary)
+}
+
+fn write_with(dir: &Path, json: ScheduleJson) -> Fabrication {
     let f = fabrication();
-    let paths = write_fabrication(dir, &f, (0.05, 0.1)).unwrap();
+    let paths = write_fabrication(dir, &f, (0.05, 0.1), json).unwrap();
     assert_eq!(paths.len(), FABRICATION_FILES.len());
     for p in &paths {
         assert!(p.is_file(), "{} missing", p.display());
@@ -93,15 +97,36 @@ fn csv_schedules_read_back_exactly() {
 }
 
 #[test]
-fn json_schedule_has_everything() {
+fn json_schedule_is_the_summary_by_default() {
     let dir = tempfile::tempdir().unwrap();
     let f = write(dir.path());
+    let text = std::fs::read_to_string(dir.path().join("schedule.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+    assert_eq!(keys, ["layers", "summary"]);
+    assert_eq!(v["summary"]["panels"], f.panels.len());
+    assert_eq!(v["layers"], serde_json::json!([0.0, 0.1, 0.2]));
+}
+
+#[test]
+fn full_json_schedule_has_everything() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write_with(dir.path(), ScheduleJson::Full);
     let text = std::fs::read_to_string(dir.path().join("schedule.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(v["summary"]["panels"], f.panels.len());
     assert_eq!(v["summary"]["node_types"], f.summary.node_types);
     assert_eq!(v["panels"].as_array().unwrap().len(), f.panels.len());
     assert_eq!(v["panels"][0]["label"], "L0-P0.0");
+    assert_eq!(v["beams"][1]["label"], monge_io::beam_label(&f.beams[1]));
+    assert_eq!(
+        v["panels"].as_array().unwrap().last().unwrap()["label"],
+        format!(
+            "L2-P{}.{}",
+            f.panels.last().unwrap().i,
+            f.panels.last().unwrap().j
+        )
+    );
     assert_eq!(v["panels"][0]["area"].as_f64().unwrap(), f.panels[0].area);
     assert_eq!(v["beams"][0]["segments"][0]["shape"]["kind"], "arc");
     assert_eq!(v["nodes"].as_array().unwrap().len(), f.nodes.len());

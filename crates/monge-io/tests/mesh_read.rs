@@ -432,3 +432,69 @@ fn binary_ply_of_any_scalar_types_and_its_errors() {
         format!("<stdin>: byte {header_len} (in the binary body): `NaN` is not a finite number")
     );
 }
+
+/// A reader that hands out `chunk` bytes at a time, so that lines and binary
+/// records straddle the reader's buffer boundaries.
+struct Trickle<'a> {
+    bytes: &'a [u8],
+    chunk: usize,
+}
+
+impl Read for Trickle<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let n = self.chunk.min(buf.len()).min(self.bytes.len());
+        buf[..n].copy_from_slice(&self.bytes[..n]);
+        self.bytes = &self.bytes[n..];
+        Ok(n)
+    }
+}
+
+#[test]
+fn streamed_input_in_small_pieces_reads_the_same_bits() {
+    let grid = random_grid(7, 5, true, 11);
+    for format in [
+        MeshFormat::Obj,
+        MeshFormat::Ply,
+        MeshFormat::PlyBinary,
+        MeshFormat::Json,
+    ] {
+        let mut bytes = Vec::new();
+        monge_io::write_mesh_to(&grid, format, &mut bytes).unwrap();
+        for chunk in [1, 3, 4096] {
+            let read = read_mesh_from(
+                Trickle {
+                    bytes: &bytes,
+                    chunk,
+                },
+                format,
+            )
+            .unwrap();
+            assert_bits_eq(&read, &grid);
+        }
+    }
+}
+
+#[test]
+fn crlf_lines_read_and_bad_text_names_its_line() {
+    let text = format!("{}{}", v_lines(4), f_lines(2, 2, |x| x)).replace('\n', "\r\n");
+    let grid = obj(&text).unwrap();
+    assert_eq!((grid.rows, grid.cols), (2, 2));
+    let mut bytes = v_lines(4).into_bytes();
+    bytes.extend_from_slice(b"v 0 0 \xff\n");
+    let err = read_mesh_from(bytes.as_slice(), MeshFormat::Obj).unwrap_err();
+    assert!(matches!(err, IoError::Read { .. }), "{err:?}");
+    assert!(
+        err.to_string().contains("line 5 is not UTF-8 text"),
+        "{err}"
+    );
+    let header = "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\n\
+                  property double z\nend_header\n";
+    let mut bytes = header.as_bytes().to_vec();
+    bytes.extend_from_slice(b"0 \xff 0\n");
+    let err = read_mesh_from(bytes.as_slice(), MeshFormat::Ply).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("<stdin>:8: an ASCII PLY body that is not text"),
+        "{err}"
+    );
+}

@@ -13,7 +13,9 @@ use monge_core::optimise::fit as core_fit;
 use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
 use monge_core::scan::scan as core_scan;
 use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
-use monge_io::{parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat};
+use monge_io::{
+    parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat, ScheduleJson,
+};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
@@ -280,7 +282,7 @@ pub fn smooth<'py>(
     Ok(d)
 }
 
-/// Everything a fabricator needs (§6), as `monge fabricate`: the contents of its
+/// Everything a fabricator needs (§6), as `monge fabricate --full-json`: the contents of its
 /// `schedule.json` (`summary`, `layers` (distances), `panels`, `beams`, `nodes`,
 /// lists of dicts), and `layer_vertices`, each layer's vertices (rows, cols, 3):
 /// node offsets of a circular mesh, face offsets of a conical one.
@@ -314,7 +316,7 @@ pub fn fabricate<'py>(
         core_fabricate(base, &options).map_err(|e| FabricationError::new_err(text(context, e)))
     })?;
     let mut schedule = Vec::new();
-    write_schedule_json(&f, &mut schedule)
+    write_schedule_json(&f, ScheduleJson::Full, &mut schedule)
         .map_err(|e| FabricationError::new_err(format!("cannot write the schedule: {e}")))?;
     let d = py
         .import("json")?

@@ -127,7 +127,7 @@ def test_smooth_equals_the_command_and_interpolates_the_mesh(cli, tmp_path):
 
 def test_fabricate_equals_the_commands_schedule(cli, tmp_path):
     f = monge.fabricate(monge.Design.from_file(DUPIN), layers=[0.0, 0.1])
-    cli("fabricate", DUPIN, "-o", tmp_path / "fab", "--layers", "0,0.1")
+    cli("fabricate", DUPIN, "-o", tmp_path / "fab", "--layers", "0,0.1", "--full-json")
     ref = json.loads((tmp_path / "fab" / "schedule.json").read_text())
     for key in ("summary", "layers", "panels", "beams", "nodes"):
         assert f[key] == ref[key], key
