@@ -34,7 +34,7 @@ pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
     if format == MeshFormat::Glb {
         return Err(not_readable(&path_name(path)));
     }
-    let bytes = std::fs::read(path).map_err(|source| crate::read_error(path, source))?;
+    let bytes = crate::read_file(path)?;
     parse_mesh(&bytes, format, &path_name(path))
 }
 
