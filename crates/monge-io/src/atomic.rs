@@ -63,9 +63,13 @@ pub fn write_atomic(
     }
     staged.file().sync_all().map_err(err)?;
     staged.persist(dir, path, &builder).map_err(err)?;
-    // Makes the rename durable (elsewhere than Unix a rename needs no more).
+    // Makes the rename durable across a power cut (elsewhere than Unix a
+    // rename needs no more). The file is in place by now, so a directory that
+    // refuses to be synced (some network file systems) is not an error.
     #[cfg(unix)]
-    File::open(dir).and_then(|d| d.sync_all()).map_err(err)?;
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
     Ok(())
 }
 
