@@ -1,5 +1,6 @@
 //! Atomic file writes, and `-` for standard output.
 
+use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -15,7 +16,16 @@ const BUFFER: usize = 1 << 16;
 /// exists at `path` that was not there before: a pre-existing file is left
 /// untouched. The writer given to `f` is buffered. A new file gets the usual
 /// permissions (`0o666` less the umask on Unix). Errors are
-/// [`IoError::Write`] naming `path`.
+/// [`IoError::Write`] naming `path`, or [`IoError::Full`] when the file
+/// system refuses more bytes (full disk, quota, `ulimit -f`).
+///
+/// On Linux the temporary file is unnamed (`O_TMPFILE`): if the process is
+/// killed (`kill -9`, power cut) while `f` writes, it vanishes with the
+/// process and nothing is left behind. Once complete and synced, it is linked
+/// under a hidden name `.NAME.XXXXXX.tmp` and renamed over `path` at once,
+/// and the directory is synced. Where `O_TMPFILE` is not supported (other
+/// file systems or systems), the temporary file is named from the start, and
+/// a killed process leaves that `.NAME.XXXXXX.tmp` behind.
 ///
 /// ```
 /// # let dir = tempfile::tempdir().unwrap();
@@ -27,10 +37,7 @@ pub fn write_atomic(
     path: &Path,
     f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<(), IoError> {
-    let err = |source| IoError::Write {
-        path: path.to_owned(),
-        source,
-    };
+    let err = |source| IoError::write(path, source);
     let dir = existing_directory(path)?;
     let prefix = match path.file_name() {
         Some(name) => format!(".{}.", name.to_string_lossy()),
@@ -48,15 +55,71 @@ pub fn write_atomic(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let tmp = builder.tempfile_in(dir).map_err(err)?;
+    let staged = Staged::create(dir, &builder).map_err(err)?;
     {
-        let mut w = BufWriter::with_capacity(BUFFER, tmp.as_file());
+        let mut w = BufWriter::with_capacity(BUFFER, staged.file());
         f(&mut w).map_err(err)?;
         w.flush().map_err(err)?;
     }
-    tmp.as_file().sync_all().map_err(err)?;
-    tmp.persist(path).map_err(|e| err(e.error))?;
+    staged.file().sync_all().map_err(err)?;
+    staged.persist(dir, path, &builder).map_err(err)?;
+    // Makes the rename durable across a power cut (elsewhere than Unix a
+    // rename needs no more). The file is in place by now, so a directory that
+    // refuses to be synced (some network file systems) is not an error.
+    #[cfg(unix)]
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
     Ok(())
+}
+
+/// The temporary file of [`write_atomic`] while it is written.
+enum Staged {
+    /// An unnamed file (`O_TMPFILE`), linked into the directory when complete.
+    #[cfg(target_os = "linux")]
+    Unnamed(File),
+    /// A named temporary file, removed if dropped.
+    Named(tempfile::NamedTempFile),
+}
+
+impl Staged {
+    /// An unnamed file in `dir` where the system supports it, else a named one.
+    fn create(dir: &Path, builder: &tempfile::Builder) -> io::Result<Self> {
+        #[cfg(target_os = "linux")]
+        {
+            use rustix::fs::{Mode, OFlags};
+            let flags = OFlags::WRONLY | OFlags::TMPFILE | OFlags::CLOEXEC;
+            if let Ok(fd) = rustix::fs::open(dir, flags, Mode::from(0o666)) {
+                return Ok(Staged::Unnamed(File::from(fd)));
+            }
+        }
+        builder.tempfile_in(dir).map(Staged::Named)
+    }
+
+    fn file(&self) -> &File {
+        match self {
+            #[cfg(target_os = "linux")]
+            Staged::Unnamed(file) => file,
+            Staged::Named(tmp) => tmp.as_file(),
+        }
+    }
+
+    /// Renames the complete file to `path` (in `dir`), replacing any file there.
+    fn persist(self, dir: &Path, path: &Path, builder: &tempfile::Builder) -> io::Result<()> {
+        match self {
+            #[cfg(target_os = "linux")]
+            Staged::Unnamed(file) => {
+                use rustix::fs::{AtFlags, CWD};
+                let proc = format!("/proc/self/fd/{}", std::os::fd::AsRawFd::as_raw_fd(&file));
+                let linked = builder.make_in(dir, |tmp| {
+                    rustix::fs::linkat(CWD, proc.as_str(), CWD, tmp, AtFlags::SYMLINK_FOLLOW)
+                        .map_err(io::Error::from)
+                })?;
+                linked.persist(path).map_err(|e| e.error)
+            }
+            Staged::Named(tmp) => tmp.persist(path).map(drop).map_err(|e| e.error),
+        }
+    }
 }
 
 /// The directory of `path` (`.` for a bare file name), or

@@ -1,7 +1,7 @@
 //! The error type of this crate.
 
 use std::io;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::kind::FileKind;
 
@@ -35,6 +35,40 @@ pub enum IoError {
         path: PathBuf,
         /// The underlying error.
         source: io::Error,
+    },
+
+    /// The file system refused to write more bytes to a file: the disk is full
+    /// (`ENOSPC`), a quota is reached (`EDQUOT`) or the file-size limit
+    /// (`ulimit -f`, `EFBIG`); an existing file at the path is left as it was.
+    #[error(
+        "cannot write `{}`: the file system refused to write more: {source}; free some space \
+         (or raise the quota or the file-size limit, `ulimit -f`) or choose another -o \
+         (nothing was written: an existing `{}` is left as it was)",
+        path.display(),
+        path.display()
+    )]
+    Full {
+        /// The file being written.
+        path: PathBuf,
+        /// The underlying error.
+        source: io::Error,
+    },
+
+    /// A file changed (was truncated, extended or rewritten) while it was read.
+    #[error(
+        "`{}` changed while it was being read: it had {opened} bytes when opened, {read} were \
+         read and it now has {now}; read it again once whatever writes it has finished",
+        path.display()
+    )]
+    Changed {
+        /// The file being read.
+        path: PathBuf,
+        /// Its length when opened.
+        opened: u64,
+        /// The number of bytes read.
+        read: u64,
+        /// Its length after the read.
+        now: u64,
     },
 
     /// The directory of an output file does not exist.
@@ -174,6 +208,17 @@ fn fmt_parse(file: &str, line: usize, column: usize, message: &str, snippet: &st
 }
 
 impl IoError {
+    /// [`IoError::Full`] if `source` says the file system refused more bytes,
+    /// else [`IoError::Write`], naming `path`.
+    pub(crate) fn write(path: &Path, source: io::Error) -> Self {
+        let path = path.to_owned();
+        if refused_more(&source) {
+            IoError::Full { path, source }
+        } else {
+            IoError::Write { path, source }
+        }
+    }
+
     /// A [`IoError::Parse`] at byte `offset` of `text` (line, column and snippet computed).
     pub(crate) fn parse_at(file: &str, text: &str, offset: Option<usize>, message: String) -> Self {
         let Some(offset) = offset else {
@@ -217,6 +262,19 @@ impl IoError {
             snippet: snippet(text, line, column),
         }
     }
+}
+
+/// Whether `e` is a full disk, a reached quota or the file-size limit.
+#[cfg(unix)]
+fn refused_more(e: &io::Error) -> bool {
+    use rustix::io::Errno;
+    Errno::from_io_error(e).is_some_and(|e| [Errno::NOSPC, Errno::DQUOT, Errno::FBIG].contains(&e))
+}
+
+/// Outside Unix these errors are not told apart: they are [`IoError::Write`].
+#[cfg(not(unix))]
+fn refused_more(_: &io::Error) -> bool {
+    false
 }
 
 /// Widest part of a line shown in a snippet (mesh JSON can be one long line).

@@ -102,6 +102,8 @@ pub fn io_error(e: IoError) -> PyErr {
         IoError::NotFound { .. }
         | IoError::Read { .. }
         | IoError::Write { .. }
+        | IoError::Full { .. }
+        | IoError::Changed { .. }
         | IoError::NoDirectory { .. }
         | IoError::OutputIsInput { .. } => FileError::new_err(message),
         IoError::Syntax { .. }
