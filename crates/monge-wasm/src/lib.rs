@@ -186,10 +186,11 @@ impl Mesh {
 /// point nearest the sphere's centre and its unit direction, or `null` for an
 /// axis at infinity (the pencil of parallel planes of great circles' polars).
 fn axis_json(line: &Line) -> serde_json::Value {
-    let d2 = line.dir.length_squared();
-    if !(d2 > 0.0) || !line.distance_to_origin().is_finite() {
+    // Infinite (or NaN, 0/0) when the direction is zero: the line is at infinity.
+    if !line.distance_to_origin().is_finite() {
         return serde_json::Value::Null;
     }
+    let d2 = line.dir.length_squared();
     json!({
         "point": (line.dir.cross(line.moment) / d2).to_array(),
         "dir": line.dir.normalize().to_array(),
@@ -378,6 +379,28 @@ mod tests {
             folded.push(count);
         }
         assert!(folded[0] == 0 && folded[1] > 100, "{folded:?}");
+    }
+
+    #[test]
+    fn an_axis_at_infinity_is_null() {
+        let at_infinity = Line {
+            dir: DVec3::ZERO,
+            moment: DVec3::X,
+        };
+        assert!(axis_json(&at_infinity).is_null());
+        // θ = 180°: the u-lines are great circles, whose planes meet in L2, through
+        // the centre; L1 is then at infinity up to cos 90° ≈ 6e-17 (1.6e16 away).
+        let toml = include_str!("../../../examples/fig14-family.toml");
+        let mut d = serde_json::to_value(parse(toml, "f.toml", true).unwrap()).unwrap();
+        d["theta_deg"] = json!(180.0);
+        let mesh = Mesh::new(&d.to_string(), "f.json", 0.0, 1_000_000).unwrap();
+        let axes = &mesh.header_value()["axes"];
+        let distance = |a: &serde_json::Value| {
+            let p: [f64; 3] = serde_json::from_value(a["point"].clone()).unwrap();
+            DVec3::from_array(p).length()
+        };
+        assert!(distance(&axes["l1"]) > 1e15, "{axes}");
+        assert!(distance(&axes["l2"]) < 1e-15, "{axes}");
     }
 
     #[test]
