@@ -62,6 +62,26 @@ function generate(name) {
 
 const log = (...args) => console.log('e2e:', ...args);
 
+/** Area of the quad a, b, c, d: half the cross product of its diagonals. */
+function quadArea([a, b, c, d]) {
+  const [p, q] = [[0, 1, 2].map((k) => c[k] - a[k]), [0, 1, 2].map((k) => d[k] - b[k])];
+  return 0.5 * Math.hypot(p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]);
+}
+
+/** `monge generate` of the design of the page's `snapshot` gives the page's vertices bit for bit; they are returned. */
+function sameAsCli(snapshot) {
+  writeFileSync(join(work, 'current.json'), JSON.stringify(snapshot.design));
+  const cli = generate('current.json');
+  assert.equal(cli.status, 0, cli.stderr);
+  const flat = cli.mesh.vertices.flat();
+  assert.equal(cli.mesh.rows, snapshot.rows);
+  assert.equal(cli.mesh.cols, snapshot.cols);
+  assert.equal(flat.length, snapshot.vertices.length);
+  const differ = flat.filter((x, k) => !Object.is(x, snapshot.vertices[k])).length;
+  assert.equal(differ, 0, `${differ} coordinates of the page differ from monge generate's`);
+  return flat;
+}
+
 async function main() {
   const { server, url } = await startStatic();
   const context = await chromium.launchPersistentContext(join(work, 'profile'), {
@@ -128,15 +148,7 @@ async function main() {
 
     // The page's mesh is `monge generate`'s on the page's design, bit for bit,
     // and so are its exports.
-    writeFileSync(join(work, 'current.json'), JSON.stringify(dragged.design));
-    const cli = generate('current.json');
-    assert.equal(cli.status, 0, cli.stderr);
-    const flat = cli.mesh.vertices.flat();
-    assert.equal(cli.mesh.rows, dragged.rows);
-    assert.equal(cli.mesh.cols, dragged.cols);
-    assert.equal(flat.length, dragged.vertices.length);
-    const differ = flat.filter((x, k) => !Object.is(x, dragged.vertices[k])).length;
-    assert.equal(differ, 0, `${differ} coordinates of the page differ from monge generate's`);
+    const flat = sameAsCli(dragged);
     assert.equal(await page.evaluate(() => explorer.exported('json')), readFileSync(join(work, 'out.json'), 'utf8'), 'JSON export');
     spawnSync(monge, ['generate', 'current.json', '-o', 'out.obj'], { cwd: work });
     assert.equal(await page.evaluate(() => explorer.exported('obj')), readFileSync(join(work, 'out.obj'), 'utf8'), 'OBJ export');
@@ -216,6 +228,92 @@ async function main() {
       await page.dispatchEvent(`#samples-${g}`, 'change');
     }
     await idle();
+
+    // The hint, the colours by panel area and by fold with their legends, the
+    // pencil axes, the planes of the curvature lines, and points and arc guides dragged.
+    assert.match(await page.locator('#hint').textContent(), /orbit.*zoom.*pan.*drag/, 'the hint');
+    assert.ok(await page.locator('#hint').isVisible(), 'the hint is on screen');
+    await page.selectOption('#colour', 'area');
+    await page.waitForFunction(() => explorer.state.legend?.mode === 'area');
+    const shown = await snapshot();
+    const legend = await page.evaluate(() => ({ ...explorer.state.legend, text: document.getElementById('legend').textContent, hidden: document.getElementById('legend').hidden }));
+    const metrics = await page.evaluate(() => JSON.parse(explorer.metrics()).panel_area);
+    assert.ok(!legend.hidden && legend.text.startsWith('panel area'), legend.text);
+    assert.deepEqual([legend.min, legend.max], [metrics.min, metrics.max], 'the legend shows the metrics\' panel areas');
+    // Measured again here, from the vertices, with the diagonals' formula.
+    const at = (i, j) => shown.vertices.slice(3 * (i * shown.cols + j), 3 * (i * shown.cols + j) + 3);
+    const areas = [];
+    for (let i = 0; i + 1 < shown.rows; i++) for (let j = 0; j + 1 < shown.cols; j++) areas.push(quadArea([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]));
+    const [min, max] = [Math.min(...areas), Math.max(...areas)];
+    assert.ok(Math.abs(min - legend.min) <= 1e-9 * max && Math.abs(max - legend.max) <= 1e-9 * max, `${min} … ${max} vs ${legend.min} … ${legend.max}`);
+    log(`colour by panel area: legend ${legend.min} … ${legend.max} = metrics = measured from the vertices (to ${Math.max(Math.abs(min - legend.min), Math.abs(max - legend.max)) / max} of the largest)`);
+
+    // Figure 14 at θ = 84° folds: coloured by fold, the legend counts the CLI's folded faces.
+    const family = readFileSync(join(repo, 'examples/fig14-family.toml'), 'utf8').replace(/^theta_deg = .*$/m, 'theta_deg = 84');
+    writeFileSync(join(work, 'folds.toml'), family);
+    const warned = generate('folds.toml').stderr.match(/folds over itself .* in (\d+) faces/);
+    assert.ok(warned, 'monge generate warns of folds');
+    await page.selectOption('#colour', 'fold');
+    const loads = (await snapshot()).generations;
+    await page.setInputFiles('#load', join(work, 'folds.toml'));
+    await page.waitForFunction((n) => explorer.state.generations > n && explorer.idle() && explorer.state.legend?.mode === 'fold', loads);
+    const folds = await page.evaluate(() => ({ ...explorer.state.legend, text: document.getElementById('legend').textContent }));
+    assert.equal(folds.folded, Number(warned[1]), 'the legend counts the folded faces monge generate reports');
+    assert.ok(folds.text.includes(`folded: ${warned[1]}`), folds.text);
+    log(`colour by fold: ${folds.folded} of ${folds.faces} faces folded, as monge generate says`);
+
+    // The pencil axes: two polar reciprocal lines, drawn or named as out of the drawn ball.
+    await page.check('#show-axes');
+    const axes = await page.evaluate(() => ({ header: explorer.state.mesh.axes, drawn: explorer.drawn().axes, note: document.getElementById('axes-note').textContent }));
+    const norm = (v) => Math.hypot(...v);
+    const { l1, l2 } = axes.header;
+    assert.ok(Math.abs(norm(l1.point) * norm(l2.point) - 1) < 1e-9, 'L2 is the polar of L1: distances a and 1/a');
+    assert.ok(Math.abs(l1.dir.reduce((s, x, k) => s + x * l2.dir[k], 0)) < 1e-12, 'L1 ⟂ L2');
+    assert.ok(axes.drawn.length >= 1 && axes.note.includes('L1') && axes.note.includes('L2'), JSON.stringify(axes));
+    log(axes.note);
+    await page.check('#show-planes');
+    const planes = await page.evaluate(() => explorer.drawn().planes);
+    const rowsShown = planes.filter((p) => p.family === 'row').map((p) => p.line);
+    const colsShown = planes.filter((p) => p.family === 'column').map((p) => p.line);
+    const header = await page.evaluate(() => explorer.state.mesh);
+    assert.ok(rowsShown.includes(0) && rowsShown.includes(header.rows - 1) && colsShown.includes(header.cols - 1), JSON.stringify(planes));
+    log(`planes of the curvature lines: ${rowsShown.length} rows and ${colsShown.length} columns drawn`);
+    await page.screenshot({ path: join(repo, 'target/explorer-features.png') });
+    await page.uncheck('#show-planes');
+    await page.uncheck('#show-axes');
+    assert.deepEqual(await page.evaluate(() => explorer.drawn()), { axes: [], planes: [] }, 'hidden on demand');
+
+    /** Loads example `name` and drags handle `index` of guide `guide`; resolves to [before, after] snapshots. */
+    const dragGuide = async (name, guide, index, dx, dy) => {
+      const n = (await snapshot()).generations;
+      await page.setInputFiles('#load', join(repo, 'examples', name));
+      await page.waitForFunction((k) => explorer.state.generations > k && explorer.idle(), n);
+      const before = await snapshot();
+      const from = await page.evaluate(([g, k]) => explorer.handleOnScreen(g, k), [guide, index]);
+      await page.mouse.move(from.x, from.y);
+      await page.mouse.down();
+      for (let k = 1; k <= 5; k++) await page.mouse.move(from.x + dx * k, from.y + dy * k);
+      await page.mouse.up();
+      await idle();
+      const after = await snapshot();
+      assert.notDeepEqual(after.vertices, before.vertices, `dragging ${name}'s guide_${guide} ${index} changed the mesh`);
+      return [before, after];
+    };
+    const [pointsBefore, pointsAfter] = await dragGuide('contract.json', 'u', 2, 4, -6);
+    const [p, q] = [pointsBefore, pointsAfter].map((s) => s.design.guide_u.points);
+    assert.notDeepEqual(q[2], p[2], 'the point moved');
+    assert.deepEqual(q.slice(0, 2), p.slice(0, 2), 'the others stay');
+    assert.ok(Math.abs(q[2][1]) < 1e-9, `the point stays in guide_u's plane y = 0: ${q[2]}`);
+    sameAsCli(pointsAfter);
+    log(`dragged contract.json's points guide_u P2 ${p[2]} → ${q[2].map((x) => x.toFixed(3))}: monge generate = page bit for bit`);
+    const [arcBefore, arcAfter] = await dragGuide('fig12-torus.json', 'v', 'end', -5, -3);
+    const [a, b] = [arcBefore, arcAfter].map((s) => s.design.guide_v.arc);
+    assert.notEqual(b.angle_deg, a.angle_deg, 'the arc\'s angle changed');
+    assert.deepEqual([b.center, b.start, b.normal, b.samples], [a.center, a.start, a.normal, a.samples], 'centre, start, normal stay');
+    sameAsCli(arcAfter);
+    log(`dragged fig12-torus.json's arc guide_v end: angle ${a.angle_deg}° → ${b.angle_deg.toFixed(3)}°: monge generate = page bit for bit`);
+    await page.selectOption('#colour', 'none');
+    assert.ok(await page.locator('#legend').isHidden(), 'no legend for plain faces');
 
     assert.deepEqual(pageErrors, [], 'no errors in the page');
     assert.ok((await snapshot()).full, 'the screenshot is in full quality');

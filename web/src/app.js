@@ -18,6 +18,7 @@ const state = {
   generations: 0,    // meshes drawn so far
   stale: false,      // the design changed and monge refused it
   fast: false,       // drawn in drag quality (see `quality`)
+  legend: null,      // the colour legend's numbers: { mode: 'area', min, max } or { mode: 'fold', folded, faces }
 };
 /** The wasm mesh shown (for metrics and exports); freed when replaced. */
 let current = null;
@@ -60,7 +61,19 @@ const gaussWire = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.L
 const sphereWire = new THREE.Mesh(new THREE.SphereGeometry(0.995, 48, 24), new THREE.MeshBasicMaterial({ color: 0xdddddd, wireframe: true, transparent: true, opacity: 0.35 }));
 gauss.add(sphereWire, gaussSurface, gaussWire);
 for (const line of Object.values(guideLines)) line.renderOrder = 1;
-scene.add(surface, wire, guideLines.u, guideLines.v, handles, markers, gauss);
+/** The surface with one colour per face (by panel area or by fold), shown instead of `surface`. */
+const coloured = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({
+  vertexColors: true, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+}));
+coloured.visible = false;
+/** The pencil axes L1 and L2 (§2.1.2), drawn in the Gauss map's frame, clipped to a ball. */
+const axesGroup = new THREE.Group();
+axesGroup.visible = false;
+gauss.add(axesGroup);
+/** The planes of the curvature lines (§2.2): each drawn line closed by its chord, filled. */
+const planesGroup = new THREE.Group();
+planesGroup.visible = false;
+scene.add(surface, coloured, wire, guideLines.u, guideLines.v, handles, markers, gauss, planesGroup);
 
 let frameRequested = false;
 let pendingLatency = null; // input time of the mesh uploaded but not yet drawn
@@ -183,6 +196,9 @@ function showMesh(mesh, t0, fast = false) {
   setPolyline(guideLines.u, mesh.guidePoints(true));
   setPolyline(guideLines.v, mesh.guidePoints(false));
   showMarkers(header);
+  showColours(mesh);
+  showAxes(header);
+  showPlanes(header);
   if (first) fitView();
   if (!fast) {
     showHandles(); // a drag moves the handles itself
@@ -195,6 +211,131 @@ function showMesh(mesh, t0, fast = false) {
   if (t0 !== null) pendingLatency = t0;
   quality(fast);
   redraw();
+}
+
+/** Colour of `t` in [0, 1] on the panel-area scale: blue (smallest) to red (largest). */
+const ramp = (t) => new THREE.Color().setHSL(0.66 * (1 - t), 0.85, 0.5);
+const FOLDED = new THREE.Color(0xff2020);
+const UNFOLDED = new THREE.Color(0xb0c4de);
+
+/**
+ * Colours the faces of the wasm `mesh` as the `colour` control asks: by panel
+ * area (§4.8) or by fold (§5.2), both measured in the module, with a legend;
+ * `state.legend` holds the legend's numbers.
+ */
+function showColours(mesh) {
+  const mode = $('colour').value;
+  coloured.visible = mode !== 'none';
+  surface.visible = !coloured.visible;
+  const legend = $('legend');
+  legend.hidden = !coloured.visible;
+  coloured.material.color.set(0xffffff);
+  if (!coloured.visible) {
+    state.legend = null;
+    return;
+  }
+  const values = mode === 'area' ? mesh.faceAreas() : mesh.foldedFaces();
+  let [min, max, folded] = [Infinity, -Infinity, 0];
+  for (const x of values) {
+    min = Math.min(min, x);
+    max = Math.max(max, x);
+    folded += x;
+  }
+  // Two triangles, six corners, a face, in the order of the faces (gridIndices).
+  const geometry = surface.geometry.toNonIndexed();
+  const colours = new Float32Array(3 * geometry.getAttribute('position').count);
+  values.forEach((x, k) => {
+    const c = mode === 'fold' ? (x ? FOLDED : UNFOLDED) : ramp(max > min ? (x - min) / (max - min) : 0.5);
+    for (let v = 6 * k; v < 6 * k + 6; v++) c.toArray(colours, 3 * v);
+  });
+  geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+  coloured.geometry.dispose();
+  coloured.geometry = geometry;
+  if (mode === 'area') {
+    state.legend = { mode, min, max };
+    const stops = [0, 0.25, 0.5, 0.75, 1].map((t) => `${ramp(t).getStyle()} ${100 * t}%`).join(', ');
+    legend.innerHTML = '<div>panel area</div><div class="bar"></div><div class="ends"><span class="min"></span><span class="max"></span></div>';
+    legend.querySelector('.bar').style.background = `linear-gradient(to right, ${stops})`;
+    legend.querySelector('.min').textContent = fmt(min, 4);
+    legend.querySelector('.max').textContent = fmt(max, 4);
+  } else {
+    state.legend = { mode, folded, faces: values.length };
+    legend.innerHTML = '<div>fold (§5.2)</div><div><span class="swatch folded"></span><span class="folded-count"></span>'
+      + '<span class="swatch unfolded"></span><span class="unfolded-count"></span></div>';
+    legend.querySelector('.swatch.folded').style.background = FOLDED.getStyle();
+    legend.querySelector('.swatch.unfolded').style.background = UNFOLDED.getStyle();
+    legend.querySelector('.folded-count').textContent = `folded: ${folded}`;
+    legend.querySelector('.unfolded-count').textContent = `not folded: ${values.length - folded}`;
+  }
+}
+
+/** Radius of the ball (the Gauss sphere's radius is 1) to which the pencil axes are clipped. */
+const AXIS_CLIP = 3;
+
+/** The pencil axes L1 (of the v-lines) and L2 (of the u-lines) of the header's Gauss map (§2.1.2). */
+function showAxes(header) {
+  axesGroup.clear();
+  const notes = [];
+  for (const [name, color] of [['l1', 0x109010], ['l2', 0x9020b0]]) {
+    const axis = header.axes[name];
+    const label = name.toUpperCase();
+    if (!axis) {
+      notes.push(`${label} is at infinity (not drawn)`);
+      continue;
+    }
+    const point = new THREE.Vector3().fromArray(axis.point);
+    const distance = point.length();
+    if (distance >= AXIS_CLIP) {
+      notes.push(`${label} is ${fmt(distance)} from the centre, beyond the drawn ball of radius ${AXIS_CLIP}`);
+      continue;
+    }
+    notes.push(`${label} at ${fmt(distance)} from the centre`);
+    const half = Math.sqrt(AXIS_CLIP ** 2 - distance ** 2);
+    const dir = new THREE.Vector3().fromArray(axis.dir);
+    const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([
+      point.clone().addScaledVector(dir, -half), point.clone().addScaledVector(dir, half),
+    ]), new THREE.LineBasicMaterial({ color, depthTest: false }));
+    line.renderOrder = 2;
+    line.userData = { axis: name };
+    axesGroup.add(line);
+  }
+  $('axes-note').textContent = axesGroup.visible ? `pencil axes: ${notes.join('; ')}` : '';
+}
+
+/** At most this many planes of each family are drawn (evenly spaced, the last line included). */
+const PLANES_PER_FAMILY = 12;
+
+/**
+ * The planes of the curvature lines (§2.2) of the drawn mesh, when shown: each
+ * of a few rows and columns closed by its chord and filled (a fan from its first
+ * vertex), which lies in the line's plane as the line is planar.
+ */
+function showPlanes(header) {
+  planesGroup.clear();
+  if (!planesGroup.visible) return;
+  const drawn = surface.geometry.getAttribute('position').array;
+  const { rows, cols } = header;
+  const family = (count, length, at, color, name) => {
+    const step = Math.max(1, Math.ceil((count - 1) / (PLANES_PER_FAMILY - 1)));
+    const lines = [];
+    for (let l = 0; l < count - 1; l += step) lines.push(l);
+    lines.push(count - 1);
+    const material = new THREE.MeshBasicMaterial({ color, transparent: true, opacity: 0.18, side: THREE.DoubleSide, depthWrite: false });
+    for (const l of lines) {
+      const flat = new Float32Array(3 * length);
+      for (let k = 0; k < length; k++) flat.set(drawn.subarray(3 * at(l, k), 3 * at(l, k) + 3), 3 * k);
+      const fan = [];
+      for (let k = 1; k + 1 < length; k++) fan.push(0, k, k + 1);
+      const geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.BufferAttribute(flat, 3));
+      geometry.setIndex(fan);
+      const plane = new THREE.Mesh(geometry, material);
+      plane.userData = { family: name, line: l };
+      planesGroup.add(plane);
+    }
+  };
+  family(rows, cols, (i, j) => i * cols + j, 0x3050c0, 'row'); // row 0 is guide_v (blue)
+  family(cols, rows, (j, i) => i * cols + j, 0xc03030, 'column'); // column 0 is guide_u (red)
 }
 
 /** Red and orange marks where the mesh folds or nearly pinches (§5.2), and the warnings. */
@@ -255,34 +396,48 @@ function fitView() {
 }
 
 // ----------------------------------------------------- control points
-/** Control points of a guide that can be dragged (B-splines only), or null. */
+/** The points of a guide that can be dragged (a B-spline's control points, a `points` guide's points), or null. */
 function controlPoints(name) {
   const spec = state.design[`guide_${name}`];
-  return spec.bspline ? spec.bspline.control_points : null;
+  return spec.bspline ? spec.bspline.control_points : spec.points ?? null;
+}
+
+/** The end of an `arc` guide (its start turned by angle_deg about the normal through the centre), or null. */
+function arcEnd(name) {
+  const arc = state.design[`guide_${name}`].arc;
+  if (!arc) return null;
+  const centre = new THREE.Vector3().fromArray(arc.center);
+  const axis = new THREE.Vector3().fromArray(arc.normal).normalize();
+  return new THREE.Vector3().fromArray(arc.start).sub(centre).applyAxisAngle(axis, THREE.MathUtils.degToRad(arc.angle_deg)).add(centre);
+}
+
+/** A handle: a dot at `p` that drags `index` of guide `name`. */
+function handle(p, name, index, color, radius) {
+  const dot = new THREE.Mesh(new THREE.SphereGeometry(radius, 16, 8), new THREE.MeshBasicMaterial({ color, depthTest: false }));
+  dot.position.copy(p);
+  dot.renderOrder = 3;
+  dot.userData = { guide: name, index };
+  return dot;
 }
 
 function showHandles() {
   handles.clear();
   const radius = 0.018 * meshSize();
   for (const [name, color] of [['u', 0xd02020], ['v', 0x2040d0]]) {
+    const end = arcEnd(name);
+    if (end) handles.add(handle(end, name, 'end', color, radius));
     const points = controlPoints(name);
     if (!points) continue;
     const polygon = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineDashedMaterial({ color, dashSize: radius, gapSize: radius, depthTest: false }));
     setPolyline(polygon, points.flat());
     polygon.computeLineDistances();
     handles.add(polygon);
-    points.forEach((p, index) => {
-      const dot = new THREE.Mesh(new THREE.SphereGeometry(radius, 16, 8), new THREE.MeshBasicMaterial({ color: index === 0 ? 0x777777 : color, depthTest: false }));
-      dot.position.fromArray(p);
-      dot.renderOrder = 3;
-      dot.userData = { guide: name, index };
-      handles.add(dot);
-    });
+    points.forEach((p, index) => handles.add(handle(new THREE.Vector3().fromArray(p), name, index, index === 0 ? 0x777777 : color, radius)));
   }
 }
 
 const raycaster = new THREE.Raycaster();
-let drag = null; // { guide, index, plane, origin, tangent }
+let drag = null; // { guide, index, plane, origin, tangent } or, for an arc's end, { guide, index: 'end', plane, arc }
 
 function pointerRay(event) {
   const rect = renderer.domElement.getBoundingClientRect();
@@ -298,6 +453,13 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
   // The first point is shared by both guides: it stays.
   if (!hit || hit.object.userData.index === 0) return;
   const { guide, index } = hit.object.userData;
+  if (index === 'end') {
+    const arc = state.design[`guide_${guide}`].arc;
+    const centre = new THREE.Vector3().fromArray(arc.center);
+    drag = { guide, index, arc, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(new THREE.Vector3().fromArray(arc.normal).normalize(), centre) };
+    startDrag(event);
+    return;
+  }
   const points = controlPoints(guide);
   const origin = new THREE.Vector3().fromArray(points[0]);
   const normal = new THREE.Vector3().fromArray(state.mesh.guides[guide].plane_normal);
@@ -306,16 +468,43 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
     plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, origin),
     tangent: new THREE.Vector3().fromArray(points[1]).sub(origin).normalize(),
   };
+  startDrag(event);
+}, { capture: true });
+
+/** A handle was grabbed: the pointer drags it, not the view. */
+function startDrag(event) {
   controls.enabled = false;
   renderer.domElement.setPointerCapture(event.pointerId);
   event.stopImmediatePropagation();
-}, { capture: true });
+}
+
+/**
+ * The arc's swept angle (degrees) that puts its end nearest `p` (a point of its
+ * plane): the angle from start to `p` about the normal, the turn nearest the
+ * current angle, kept within (−360°, 360°) and away from 0.
+ */
+function arcAngle(arc, p) {
+  const centre = new THREE.Vector3().fromArray(arc.center);
+  const axis = new THREE.Vector3().fromArray(arc.normal).normalize();
+  const from = new THREE.Vector3().fromArray(arc.start).sub(centre);
+  const to = p.clone().sub(centre);
+  const angle = THREE.MathUtils.radToDeg(Math.atan2(axis.dot(from.clone().cross(to)), from.dot(to)));
+  const turned = angle + 360 * Math.round((arc.angle_deg - angle) / 360);
+  const sign = Math.sign(turned) || Math.sign(arc.angle_deg);
+  return sign * Math.min(Math.max(Math.abs(turned), 0.1), 359.9);
+}
 
 renderer.domElement.addEventListener('pointermove', (event) => {
   if (!drag) return;
   const t0 = performance.now();
   const p = pointerRay(event).intersectPlane(drag.plane, new THREE.Vector3());
   if (!p) return;
+  if (drag.index === 'end') {
+    drag.arc.angle_deg = arcAngle(drag.arc, p);
+    showHandles();
+    change(t0, true);
+    return;
+  }
   if (drag.index === 1) {
     // P1 − P0 is the start tangent: slide along it so the guides still meet at 90°.
     const s = Math.max(p.clone().sub(drag.origin).dot(drag.tangent), 1e-3 * meshSize());
@@ -390,6 +579,7 @@ function showError(error, fast = false) {
   }
   state.stale = true;
   surfaceMaterial.color.set(0xcccccc);
+  coloured.material.color.set(0xcccccc);
   quality(fast);
   redraw();
 }
@@ -484,6 +674,20 @@ $('show-gauss').addEventListener('change', (event) => {
   gauss.visible = event.target.checked;
   redraw();
 });
+$('show-axes').addEventListener('change', (event) => {
+  axesGroup.visible = event.target.checked;
+  if (state.mesh) showAxes(state.mesh);
+  redraw();
+});
+$('show-planes').addEventListener('change', (event) => {
+  planesGroup.visible = event.target.checked;
+  if (state.mesh) showPlanes(state.mesh);
+  redraw();
+});
+$('colour').addEventListener('change', () => {
+  if (current) showColours(current);
+  redraw();
+});
 
 /** Saves `blob` as a download named `name`. */
 function download(blob, name) {
@@ -542,14 +746,21 @@ async function start() {
 window.explorer = {
   state,
   handleOnScreen(guide, index) {
-    const p = new THREE.Vector3().fromArray(controlPoints(guide)[index]).project(camera);
+    const p = (index === 'end' ? arcEnd(guide) : new THREE.Vector3().fromArray(controlPoints(guide)[index])).project(camera);
     const rect = renderer.domElement.getBoundingClientRect();
     return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
   },
   /** The shown mesh's vertices, f64, as `monge generate` writes them. */
   vertices: () => Array.from(current.vertices()),
+  /** The shown mesh's metrics (JSON text), measured in the module. */
+  metrics: () => current.metrics(),
   /** The mesh file `monge generate` writes (`obj` or `json`), as text. */
   exported: (format) => new TextDecoder().decode(current.export(format)),
   idle: () => pendingLatency === null && settleTimer === null,
+  /** What the pencil axes and planes views draw: [{ axis }] and [{ family, line }]. */
+  drawn: () => ({
+    axes: axesGroup.visible ? axesGroup.children.map((c) => c.userData) : [],
+    planes: planesGroup.visible ? planesGroup.children.map((c) => c.userData) : [],
+  }),
 };
 start();

@@ -105,18 +105,42 @@ impl QuadGrid {
         let mut folds = Folds::default();
         for i in 0..self.rows.saturating_sub(1) {
             for j in 0..self.cols.saturating_sub(1) {
-                let q = self.face(i, j);
-                let turn = if self.normals.is_empty() {
-                    quad_turn_alone(&q)
-                } else {
-                    let n = |i, j| self.normals[self.index(i, j)];
-                    let axis = n(i, j) + n(i + 1, j) + n(i + 1, j + 1) + n(i, j + 1);
-                    quad_turn(&q, axis)
-                };
-                folds.add((i, j), turn);
+                folds.add((i, j), self.face_turn(i, j));
             }
         }
         folds
+    }
+
+    /// How face `(i, j)` turns (§5.2): [`quad_turn`] about the sum of its four
+    /// node axes, or without normals [`quad_turn_alone`].
+    pub fn face_turn(&self, i: usize, j: usize) -> Turn {
+        let q = self.face(i, j);
+        if self.normals.is_empty() {
+            quad_turn_alone(&q)
+        } else {
+            let n = |i, j| self.normals[self.index(i, j)];
+            quad_turn(&q, n(i, j) + n(i + 1, j) + n(i + 1, j + 1) + n(i, j + 1))
+        }
+    }
+
+    /// Which faces are folded (§5.2), row-major as [`QuadGrid::face_areas`]:
+    /// the faces that [`QuadGrid::folds`] counts.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    /// let mut g = QuadGrid::new(3, 2, vec![v(0.0, 0.0), v(0.0, 1.0), v(1.0, 0.0), v(1.0, 1.0), v(2.0, 0.0), v(2.0, 1.0)], vec![DVec3::Z; 6]);
+    /// g.vertices.swap(4, 5);
+    /// assert_eq!(g.folded_faces(), [false, true]);
+    /// ```
+    pub fn folded_faces(&self) -> Vec<bool> {
+        let folds = self.folds();
+        let cols = self.cols.saturating_sub(1);
+        (0..self.rows.saturating_sub(1))
+            .flat_map(|i| (0..cols).map(move |j| (i, j)))
+            .map(|(i, j)| folds.is_folded(self.face_turn(i, j)))
+            .collect()
     }
 
     /// Whether the node axes point against the face order
@@ -400,6 +424,12 @@ impl Folds {
     /// Number of folded faces.
     pub fn count(&self) -> usize {
         self.count[Turn::Crossed as usize] + self.count[self.wrong_way()]
+    }
+
+    /// Whether a face that turns as `turn` is folded: it is crossed, or turns
+    /// the wrong way (§5.2).
+    pub fn is_folded(&self, turn: Turn) -> bool {
+        turn == Turn::Crossed || turn as usize == self.wrong_way()
     }
 
     /// The first folded face (row-major), if any.

@@ -16,6 +16,7 @@
 
 use glam::DVec3;
 use js_sys::{Float32Array, Float64Array};
+use monge_core::projective::Line;
 use monge_core::{generate as generate_mesh, inspect, Design, GenerateOptions, Generated};
 use monge_core::{MeshKind, QuadGrid};
 use monge_io::generated::{json_extras, kind_name, layers, metrics_json, mode_name, report_json};
@@ -176,8 +177,24 @@ impl Mesh {
             "mode": mode_name(g.info.mode),
             "theta_range": { "min_deg": g.info.theta_range.min_deg, "max_deg": g.info.theta_range.max_deg },
             "report": report_json(&g.report),
+            "axes": { "l1": axis_json(&g.axes.l1), "l2": axis_json(&g.axes.l2) },
         })
     }
+}
+
+/// A pencil axis of the Gauss map (§2.1.2) as JSON: `{"point", "dir"}`, its
+/// point nearest the sphere's centre and its unit direction, or `null` for an
+/// axis at infinity (the pencil of parallel planes of great circles' polars).
+fn axis_json(line: &Line) -> serde_json::Value {
+    // Infinite (or NaN, 0/0) when the direction is zero: the line is at infinity.
+    if !line.distance_to_origin().is_finite() {
+        return serde_json::Value::Null;
+    }
+    let d2 = line.dir.length_squared();
+    json!({
+        "point": (line.dir.cross(line.moment) / d2).to_array(),
+        "dir": line.dir.normalize().to_array(),
+    })
 }
 
 #[wasm_bindgen]
@@ -229,6 +246,20 @@ impl Mesh {
         }
         let f = grid.face(i, j);
         ((f[0] + f[1] + f[2] + f[3]) / 4.0).to_array().to_vec()
+    }
+
+    /// The area of each face of the mesh shown (§4.8), row-major: face (i, j)
+    /// at `i·(cols − 1) + j`. A copy.
+    #[wasm_bindgen(js_name = faceAreas)]
+    pub fn face_areas(&self) -> Vec<f64> {
+        self.grid.face_areas()
+    }
+
+    /// Whether each face of the mesh shown is folded (§5.2), 1 or 0, in the
+    /// order of [`Mesh::face_areas`]. A copy.
+    #[wasm_bindgen(js_name = foldedFaces)]
+    pub fn folded_faces(&self) -> Vec<u8> {
+        self.grid.folded_faces().into_iter().map(u8::from).collect()
     }
 
     /// The metrics as JSON text (§2.2, §2.3): planarity, circularity or the
@@ -295,5 +326,113 @@ mod tests {
         );
         let m: serde_json::Value = serde_json::from_str(&mesh.metrics()).unwrap();
         assert!(m["conical"]["value"].is_number(), "{m}");
+    }
+
+    #[test]
+    fn face_areas_are_the_two_triangles_and_the_metrics_extremes() {
+        for offset in [0.0, 0.25] {
+            let mesh = Mesh::new(CONICAL, "c.json", offset, 1_000_000).unwrap();
+            let areas = mesh.face_areas();
+            let g = &mesh.grid;
+            assert_eq!(areas.len(), (g.rows - 1) * (g.cols - 1));
+            let max = areas.iter().copied().fold(0.0, f64::max);
+            // The faces are planar: two triangles' areas, a different formula.
+            for (k, area) in areas.iter().enumerate() {
+                let [a, b, c, d] = g.face(k / (g.cols - 1), k % (g.cols - 1));
+                let triangles =
+                    0.5 * ((b - a).cross(c - a).length() + (c - a).cross(d - a).length());
+                assert!(
+                    (area - triangles).abs() <= 1e-9 * max,
+                    "face {k}: {area} vs {triangles}"
+                );
+            }
+            let m: serde_json::Value = serde_json::from_str(&mesh.metrics()).unwrap();
+            let min = areas.iter().copied().fold(f64::INFINITY, f64::min);
+            assert_eq!(
+                (json!(min), json!(max)),
+                (
+                    m["panel_area"]["min"].clone(),
+                    m["panel_area"]["max"].clone()
+                )
+            );
+        }
+    }
+
+    #[test]
+    fn folded_faces_are_those_the_generator_reports() {
+        // Figure 14's family: unfolded at θ = 20°, folded in hundreds of faces at θ = 84°.
+        let toml = include_str!("../../../examples/fig14-family.toml");
+        let mut d = serde_json::to_value(parse(toml, "f.toml", true).unwrap()).unwrap();
+        let mut folded = Vec::new();
+        for theta in [20.0, 84.0] {
+            d["theta_deg"] = json!(theta);
+            let mesh = Mesh::new(&d.to_string(), "f.json", 0.0, 1_000_000).unwrap();
+            let flags = mesh.folded_faces();
+            let report = &mesh.generated.report;
+            assert_eq!(flags.len(), mesh.grid.face_count());
+            assert!(flags.iter().all(|&f| f <= 1));
+            let count = flags.iter().filter(|&&f| f == 1).count();
+            assert_eq!(count, report.folded_faces, "θ = {theta}");
+            let cols = mesh.grid.cols - 1;
+            let first = flags.iter().position(|&f| f == 1);
+            assert_eq!(first.map(|k| (k / cols, k % cols)), report.first_fold);
+            folded.push(count);
+        }
+        assert!(folded[0] == 0 && folded[1] > 100, "{folded:?}");
+    }
+
+    #[test]
+    fn an_axis_at_infinity_is_null() {
+        let at_infinity = Line {
+            dir: DVec3::ZERO,
+            moment: DVec3::X,
+        };
+        assert!(axis_json(&at_infinity).is_null());
+        // θ = 180°: the u-lines are great circles, whose planes meet in L2, through
+        // the centre; L1 is then at infinity up to cos 90° ≈ 6e-17 (1.6e16 away).
+        let toml = include_str!("../../../examples/fig14-family.toml");
+        let mut d = serde_json::to_value(parse(toml, "f.toml", true).unwrap()).unwrap();
+        d["theta_deg"] = json!(180.0);
+        let mesh = Mesh::new(&d.to_string(), "f.json", 0.0, 1_000_000).unwrap();
+        let axes = &mesh.header_value()["axes"];
+        let distance = |a: &serde_json::Value| {
+            let p: [f64; 3] = serde_json::from_value(a["point"].clone()).unwrap();
+            DVec3::from_array(p).length()
+        };
+        assert!(distance(&axes["l1"]) > 1e15, "{axes}");
+        assert!(distance(&axes["l2"]) < 1e-15, "{axes}");
+    }
+
+    #[test]
+    fn the_pencil_axes_hold_the_planes_of_the_gauss_circles() {
+        let mesh = Mesh::new(CONICAL, "c.json", 0.0, 1_000_000).unwrap();
+        let h = mesh.header_value();
+        let axis = |name: &str| {
+            let a = &h["axes"][name];
+            let v = |key: &str| DVec3::from_array(serde_json::from_value(a[key].clone()).unwrap());
+            (v("point"), v("dir"))
+        };
+        let ((p1, d1), (p2, d2)) = (axis("l1"), axis("l2"));
+        // Polar reciprocal lines (§2.1.2): orthogonal, at distances a and 1/a.
+        assert!(d1.dot(d2).abs() < 1e-12 && (p1.length() * p2.length() - 1.0).abs() < 1e-12);
+        // Each v-line of the Gauss map (fixed i) lies in a plane through L1, each u-line through L2.
+        let g = &mesh.generated.grid;
+        for (i, j) in [(0, 0), (g.rows / 2, g.cols / 3), (g.rows - 1, g.cols - 1)] {
+            let n = |i, j| g.normals[g.index(i, j)];
+            let row_plane = d1.cross(n(i, 0) - p1).normalize();
+            let col_plane = d2.cross(n(0, j) - p2).normalize();
+            for k in 0..g.cols {
+                assert!(
+                    row_plane.dot(n(i, k) - p1).abs() < 1e-9,
+                    "row {i}, column {k}"
+                );
+            }
+            for k in 0..g.rows {
+                assert!(
+                    col_plane.dot(n(k, j) - p2).abs() < 1e-9,
+                    "column {j}, row {k}"
+                );
+            }
+        }
     }
 }
