@@ -179,6 +179,14 @@ fn grid(
         expected,
         found,
     };
+    if rows == 0 || cols == 0 {
+        return Err(IoError::NotAGrid {
+            file: file.to_owned(),
+            message: format!(
+                "the grid is empty (rows × cols = {rows} × {cols}): a quad grid has at least one row and one column"
+            ),
+        });
+    }
     let n = rows.checked_mul(cols).ok_or_else(|| IoError::NotAGrid {
         file: file.to_owned(),
         message: format!("rows × cols = {rows} × {cols} is too large"),

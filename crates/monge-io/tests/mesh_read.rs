@@ -157,6 +157,27 @@ fn obj_not_a_grid() {
     );
 }
 
+/// Found by the `mesh_obj` fuzz target: an empty grid with a huge column count
+/// was read, and measuring it asked for a vector of `cols` points (capacity
+/// overflow). An empty grid is refused.
+#[test]
+fn an_empty_grid_is_refused() {
+    for text in [
+        "# monge quad grid rows=0 cols=3333333333333333333 ",
+        "# monge quad grid rows=3 cols=0\n",
+    ] {
+        let err = obj(text).unwrap_err();
+        assert!(matches!(err, IoError::NotAGrid { .. }), "{err:?}");
+        assert!(err.to_string().contains("the grid is empty"), "{err}");
+    }
+    let err = read_mesh_from(
+        b"{\"rows\": 0, \"cols\": 4, \"vertices\": []}".as_slice(),
+        MeshFormat::Json,
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("the grid is empty"), "{err}");
+}
+
 #[test]
 fn obj_count_mismatch_with_comment() {
     let err = obj(&format!("# monge quad grid rows=3 cols=4\n{}", v_lines(11))).unwrap_err();
