@@ -179,11 +179,11 @@ fn grid(
         expected,
         found,
     };
-    if rows == 0 || cols == 0 {
+    if (rows == 0) != (cols == 0) {
         return Err(IoError::NotAGrid {
             file: file.to_owned(),
             message: format!(
-                "the grid is empty (rows × cols = {rows} × {cols}): a quad grid has at least one row and one column"
+                "the grid is empty (rows × cols = {rows} × {cols}): an empty grid is 0 × 0, any other has at least one row and one column"
             ),
         });
     }
