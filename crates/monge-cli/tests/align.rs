@@ -8,7 +8,7 @@ use predicates::prelude::*;
 use tempfile::TempDir;
 
 mod common;
-use common::{example, monge};
+use common::{example, generate_and_check, monge};
 
 /// Largest distance of each boundary line of the JSON mesh `mesh` from the planes
 /// of the planes file, relative to the bounding-box diagonal.
@@ -63,14 +63,7 @@ fn align_and_generate(planes: &Path, extra: &[&str], dir: &Path) -> (PathBuf, [f
         .assert()
         .success()
         .stdout(predicate::str::contains("boundary distance"));
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&mesh)
-        .assert()
-        .success();
-    monge().arg("check").arg(&mesh).assert().success();
+    generate_and_check(&design, &mesh);
     (mesh.clone(), distances(&mesh, planes))
 }
 

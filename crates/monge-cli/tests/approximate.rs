@@ -7,7 +7,7 @@ use std::fs;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-use common::{examples, monge};
+use common::{examples, generate_and_check, monge};
 
 #[test]
 fn approximate_writes_a_design_whose_mesh_is_exact() {
@@ -25,14 +25,7 @@ fn approximate_writes_a_design_whose_mesh_is_exact() {
         .stdout(predicate::str::contains("exactness of the result"));
     // The design is an ordinary design: generate it and measure it independently.
     let mesh = dir.path().join("fit.obj");
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&mesh)
-        .assert()
-        .success();
-    monge().arg("check").arg(&mesh).assert().success();
+    generate_and_check(&design, &mesh);
 }
 
 #[test]

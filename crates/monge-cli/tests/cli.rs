@@ -10,7 +10,7 @@ use serde_json::Value;
 use tempfile::TempDir;
 
 mod common;
-use common::{example, examples, monge};
+use common::{example, examples, generate_and_check, monge};
 
 /// Examples that must generate and pass `check`.
 const REQUIRED: [&str; 5] = [
@@ -20,25 +20,6 @@ const REQUIRED: [&str; 5] = [
     "fig10-arbitrary.json",
     "fig14-family.toml",
 ];
-
-/// Generates `design` into `out` and checks the result, both with exit status 0.
-fn generate_and_check(design: &Path, out: &Path) {
-    monge()
-        .arg("generate")
-        .arg(design)
-        .arg("-o")
-        .arg(out)
-        .assert()
-        .success()
-        .stderr(predicate::str::contains("vertices"));
-    assert!(out.is_file(), "{} was not written", out.display());
-    monge()
-        .arg("check")
-        .arg(out)
-        .assert()
-        .success()
-        .stdout(predicate::str::contains("PASS: every metric"));
-}
 
 #[test]
 fn required_examples_generate_to_every_format_and_pass_check() {

@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use assert_cmd::Command;
+use predicates::prelude::*;
 
 /// The bundled example designs.
 pub fn examples() -> PathBuf {
@@ -21,6 +22,25 @@ pub fn example(name: &str) -> PathBuf {
 /// The `monge` binary.
 pub fn monge() -> Command {
     Command::new(env!("CARGO_BIN_EXE_monge"))
+}
+
+/// Generates `design` into `out` and checks the result, both with exit status 0.
+pub fn generate_and_check(design: &Path, out: &Path) {
+    monge()
+        .arg("generate")
+        .arg(design)
+        .arg("-o")
+        .arg(out)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("vertices"));
+    assert!(out.is_file(), "{} was not written", out.display());
+    monge()
+        .arg("check")
+        .arg(out)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("PASS: every metric"));
 }
 
 /// The faces of an OBJ file as lists of corners, read by hand (`v` and `f`
