@@ -690,12 +690,30 @@ impl Arc {
     /// The angle swept from `start` to `end`, in `[0, 2π)` radians (§4.6).
     pub fn sweep(&self) -> f64 {
         let (x, y) = (self.start - self.center, self.end - self.center);
-        let s = self.normal.dot(x.cross(y)).atan2(x.dot(y));
+        let s = libm::atan2(self.normal.dot(x.cross(y)), x.dot(y));
         if s < 0.0 {
             s + std::f64::consts::TAU
         } else {
             s
         }
+    }
+
+    /// The point a fraction `t ∈ [0, 1]` of the way along the arc (§4.6): `start`
+    /// turned by `t · sweep` about `normal` around `center`, exactly on the circle.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::cyclidic::Arc;
+    /// let a = Arc { center: DVec3::ZERO, radius: 1.0, normal: DVec3::Z, start: DVec3::X, end: DVec3::Y };
+    /// let half = a.point(0.5);
+    /// assert!((half - DVec3::new(1.0, 1.0, 0.0) / 2f64.sqrt()).length() < 1e-15);
+    /// assert!((a.point(1.0) - a.end).length() < 1e-15);
+    /// ```
+    pub fn point(&self, t: f64) -> DVec3 {
+        let x = self.start - self.center;
+        let y = self.normal.cross(x);
+        let (s, c) = libm::sincos(t * self.sweep());
+        self.center + c * x + s * y
     }
 
     /// The arc through `p0` and `p2` tangent to `p1 − p0` at `p0`.

@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 use monge_core::cyclidic::{
-    CyclidicError, CyclidicNet, CyclidicOptions, Family, FoldReason, Frame, Patch,
+    Arc, CyclidicError, CyclidicNet, CyclidicOptions, Family, FoldReason, Frame, Patch,
 };
 use monge_core::design::{ArcSpec, BSplineSpec};
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
@@ -986,4 +986,31 @@ fn gauss_frames_on_a_strip_of_one_face_row() {
     }
     println!("2 × 7 strip: §4.4 frames vs carried {worst:.2e}");
     assert!(worst <= 1e-9);
+}
+
+#[test]
+fn arc_points_turn_from_start_to_end_on_the_circle() {
+    // A circle of radius 2.5 about (1, 2, 3) in a tilted plane, parametrised
+    // here with std's cos and sin, not with the arc's own formula.
+    let (center, radius) = (DVec3::new(1.0, 2.0, 3.0), 2.5);
+    let normal = DVec3::new(1.0, -2.0, 0.5).normalize();
+    let x = normal.any_orthonormal_vector();
+    let y = normal.cross(x);
+    let at = |phi: f64| center + radius * (phi.cos() * x + phi.sin() * y);
+    for sweep in [0.3, 2.0, 4.0, 6.0] {
+        let arc = Arc {
+            center,
+            radius,
+            normal,
+            start: at(0.0),
+            end: at(sweep),
+        };
+        assert!((arc.sweep() - sweep).abs() < 1e-14);
+        for t in [0.0, 0.25, 0.5, 0.9, 1.0] {
+            let p = arc.point(t);
+            assert!(((p - center).length() - radius).abs() < 1e-14);
+            assert!(normal.dot(p - center).abs() < 1e-14);
+            assert!((p - at(t * sweep)).length() < 1e-14, "sweep {sweep}, t {t}");
+        }
+    }
 }

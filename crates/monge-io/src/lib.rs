@@ -37,6 +37,7 @@ mod kind;
 mod mesh_read;
 mod mesh_write;
 mod multipatch;
+mod net;
 mod points_read;
 mod schedule;
 mod svg;
@@ -66,6 +67,7 @@ pub use multipatch::{
     parse_multipatch, parse_planes, read_multipatch, read_planes, write_multipatch,
     write_quad_mesh, write_quad_mesh_to,
 };
+pub use net::{conical_has_no_net, write_net_json};
 pub use points_read::read_points;
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,

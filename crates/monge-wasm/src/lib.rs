@@ -16,11 +16,15 @@
 
 use glam::DVec3;
 use js_sys::{Float32Array, Float64Array};
+use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::projective::Line;
 use monge_core::{generate as generate_mesh, inspect, Design, GenerateOptions, Generated};
 use monge_core::{MeshKind, QuadGrid};
 use monge_io::generated::{json_extras, kind_name, layers, metrics_json, mode_name, report_json};
-use monge_io::{parse_design_named, write_mesh_json, write_mesh_to, DesignFormat, MeshFormat};
+use monge_io::{
+    conical_has_no_net, parse_design_named, write_mesh_json, write_mesh_to, write_net_json,
+    DesignFormat, MeshFormat,
+};
 use serde_json::json;
 use wasm_bindgen::prelude::*;
 
@@ -53,6 +57,8 @@ pub fn generate(text: &str, name: &str, offset: f64, max_vertices: usize) -> Res
 /// an offset, with flat arrays ready to be viewed from JavaScript.
 #[wasm_bindgen]
 pub struct Mesh {
+    /// The design file's name, for messages.
+    name: String,
     generated: Generated,
     kind: MeshKind,
     offset: f64,
@@ -135,6 +141,7 @@ impl Mesh {
             normals: flat32(&generated.grid.normals),
             guides: [flat32(&info.guide_u.points), flat32(&info.guide_v.points)],
             kind: design.mesh,
+            name: name.to_owned(),
             offset,
             grid: layer.grid.into_owned(),
             extra: layer.extra,
@@ -160,6 +167,40 @@ impl Mesh {
         };
         written.map_err(|e| format!("cannot write the mesh: {e}"))?;
         Ok(out)
+    }
+
+    /// [`Mesh::smooth`] with the message as a `String`.
+    fn net(&self, per_arc: usize) -> Result<Net, String> {
+        if self.kind == MeshKind::Conical {
+            return Err(conical_has_no_net(&self.name));
+        }
+        let net = CyclidicNet::from_normals(&self.grid, &CyclidicOptions::default())
+            .map_err(|e| format!("{}: the cyclidic net: {e}", self.name))?;
+        let per_arc = per_arc.max(1);
+        let (mut lines, mut arcs, mut segments) = (0, 0, Vec::new());
+        for line in net.curvature_lines_iter() {
+            lines += 1;
+            for arc in &line.arcs {
+                arcs += 1;
+                let mut from = arc.start;
+                for k in 1..=per_arc {
+                    let to = arc.point(k as f64 / per_arc as f64);
+                    segments.extend(
+                        [from, to]
+                            .iter()
+                            .flat_map(|p| p.to_array())
+                            .map(|x| x as f32),
+                    );
+                    from = to;
+                }
+            }
+        }
+        Ok(Net {
+            net,
+            lines,
+            arcs,
+            segments,
+        })
     }
 
     /// [`Mesh::header`] as a JSON value.
@@ -273,6 +314,54 @@ impl Mesh {
     pub fn export(&self, format: &str) -> Result<Vec<u8>, JsError> {
         self.file(format).map_err(|e| JsError::new(&e))
     }
+
+    /// The cyclidic net of the mesh shown (§4.4): a C¹ surface of Dupin cyclide
+    /// patches whose curvature lines are planar chains of circular arcs, each arc
+    /// drawn as `per_arc` chords (at least 1). Circular meshes only: a conical
+    /// design gets `monge smooth`'s message, a folded face the net's.
+    pub fn smooth(&self, per_arc: usize) -> Result<Net, JsError> {
+        self.net(per_arc).map_err(|e| JsError::new(&e))
+    }
+}
+
+/// The cyclidic net of a mesh (§4.4), ready to draw and to export.
+#[wasm_bindgen]
+pub struct Net {
+    net: CyclidicNet,
+    /// Curvature lines (both families).
+    lines: usize,
+    /// Circular arcs on them, consecutive arcs on one circle merged (§4.6).
+    arcs: usize,
+    /// The arcs' chords, f32, flat pairs of points `x, y, z, x, y, z, …`.
+    segments: Vec<f32>,
+}
+
+#[wasm_bindgen]
+impl Net {
+    /// The number of curvature lines (§4.4).
+    pub fn lines(&self) -> usize {
+        self.lines
+    }
+
+    /// The number of circular arcs on them (§4.6).
+    pub fn arcs(&self) -> usize {
+        self.arcs
+    }
+
+    /// The arcs' chords, for `THREE.LineSegments`: a view, as [`Mesh::vertices`].
+    pub fn segments(&self) -> Float32Array {
+        // SAFETY: as in `Mesh::vertices`.
+        unsafe { Float32Array::view(&self.segments) }
+    }
+
+    /// The JSON `monge smooth -o net.json --samples K` writes (§4.4), with
+    /// `samples` × `samples` points a patch.
+    pub fn export(&self, samples: usize) -> Result<Vec<u8>, JsError> {
+        let mut out = Vec::new();
+        write_net_json(&self.net, samples, &mut out)
+            .map_err(|e| JsError::new(&format!("cannot write the net: {e}")))?;
+        Ok(out)
+    }
 }
 
 #[cfg(test)]
@@ -379,6 +468,53 @@ mod tests {
             folded.push(count);
         }
         assert!(folded[0] == 0 && folded[1] > 100, "{folded:?}");
+    }
+
+    #[test]
+    fn the_net_draws_its_arcs_on_their_circles() {
+        let circular = CONICAL.replace("\"conical\"", "\"circular\"");
+        assert_ne!(circular, CONICAL);
+        let e = Mesh::new(CONICAL, "c.json", 0.0, 1_000_000)
+            .unwrap()
+            .net(4)
+            .err()
+            .unwrap();
+        assert!(
+            e.starts_with("c.json: the design asks for a conical mesh"),
+            "{e}"
+        );
+        let mesh = Mesh::new(&circular, "c.json", 0.0, 1_000_000).unwrap();
+        let net = mesh.net(4).unwrap();
+        let (rows, cols) = (mesh.grid.rows, mesh.grid.cols);
+        assert_eq!(net.lines, rows + cols);
+        assert!(net.arcs >= net.lines && net.arcs <= rows * (cols - 1) + cols * (rows - 1));
+        assert_eq!(net.segments.len(), net.arcs * 4 * 6);
+        // Every chord end is on its arc's circle (centre and radius as the net
+        // gives them, not from `Arc::point`), in its plane, and the chords join
+        // the arc's start to its end.
+        let p =
+            |k: usize| DVec3::from_array(std::array::from_fn(|c| net.segments[3 * k + c] as f64));
+        let size = mesh.vertices.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let arcs = net.net.curvature_lines_iter().flat_map(|l| l.arcs);
+        for (a, arc) in arcs.enumerate() {
+            let ends: Vec<DVec3> = (0..8).map(|k| p(8 * a + k)).collect();
+            for q in &ends {
+                let r = *q - arc.center;
+                assert!((r.length() - arc.radius).abs() < 1e-6 * size, "arc {a}");
+                assert!(arc.normal.dot(r).abs() < 1e-6 * size, "arc {a}");
+            }
+            assert!((ends[0] - arc.start).length() < 1e-6 * size, "arc {a}");
+            assert!((ends[7] - arc.end).length() < 1e-6 * size, "arc {a}");
+            for k in [1, 3, 5] {
+                assert_eq!(ends[k], ends[k + 1], "arc {a}: chords join");
+            }
+        }
+        let json: serde_json::Value = serde_json::from_slice(&net.export(3).unwrap()).unwrap();
+        assert_eq!(
+            json["patches"].as_array().unwrap().len(),
+            (rows - 1) * (cols - 1)
+        );
+        assert_eq!(json["lines"].as_array().unwrap().len(), net.lines);
     }
 
     #[test]
