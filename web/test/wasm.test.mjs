@@ -55,6 +55,37 @@ for (const name of examples) {
   });
 }
 
+for (const name of examples) {
+  test(`${name}: the cyclidic net is monge smooth's, byte for byte`, () => {
+    const text = parseDesign(readFileSync(join(repo, 'examples', name), 'utf8'), name, name.endsWith('.toml'));
+    const out = join(work, 'net.json');
+    const run = spawnSync(monge, ['smooth', join(repo, 'examples', name), '-o', out, '--samples', '5'], { encoding: 'utf8' });
+    const mesh = generate(text, name, 0, 25_000_000);
+    try {
+      if (run.status !== 0) {
+        // A conical design or a folded face: the same refusal, naming the file.
+        assert.throws(() => mesh.smooth(4), (e) => {
+          const why = e.message.slice(e.message.indexOf(': ') + 2);
+          return e.message.startsWith(`${name}: `) && run.stderr.includes(why.split('\n')[0]);
+        }, run.stderr);
+        return;
+      }
+      const net = mesh.smooth(4);
+      try {
+        assert.ok(Buffer.from(net.export(5)).equals(readFileSync(out)), 'net JSON');
+        const lines = JSON.parse(readFileSync(out, 'utf8')).lines;
+        assert.equal(net.lines(), lines.length);
+        assert.equal(net.arcs(), lines.reduce((n, l) => n + l.arcs.length, 0));
+        assert.equal(net.segments().length, net.arcs() * 4 * 6);
+      } finally {
+        net.free();
+      }
+    } finally {
+      mesh.free();
+    }
+  });
+}
+
 test('refusals carry the CLI\'s messages', () => {
   const name = 'fig10-arbitrary.json';
   const design = JSON.parse(readFileSync(join(repo, 'examples', name), 'utf8'));
