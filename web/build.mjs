@@ -5,7 +5,7 @@
 //    Cargo.toml) into web/wasm/; paths are remapped so the bytes do not depend
 //    on where the repository or the cargo home is;
 // 2. index.html, style.css, default-design.json from src/, the module's
-//    monge_wasm_bg.wasm, and app.js bundled with the parts of three.js it uses
+//    monge_wasm_bg.wasm, and app.js and worker.js bundled with the parts of three.js it uses
 //    and the module's glue, minified by esbuild.
 //
 // Deterministic: the same sources and toolchain give the same bytes, which
@@ -44,8 +44,10 @@ for (const file of ['index.html', 'style.css', 'default-design.json']) {
 }
 cpSync(join(wasmOut, 'monge_wasm_bg.wasm'), join(dist, 'monge_wasm_bg.wasm'));
 buildSync({
-  entryPoints: [join(here, 'src', 'app.js')],
-  outfile: join(dist, 'app.js'),
+  // The page, and its worker (metrics and arcs off the main thread), each with
+  // the module's glue.
+  entryPoints: [join(here, 'src', 'app.js'), join(here, 'src', 'worker.js')],
+  outdir: dist,
   bundle: true,
   minify: true,
   format: 'esm',

@@ -14,11 +14,13 @@ const state = {
   mesh: null,        // the header of the mesh shown (see Mesh.header in crates/monge-wasm)
   offset: 0,
   latencies: [],     // ms from input event to the frame that shows its mesh
-  blocked: [],       // ms each change spent in the module and uploading (main thread)
+  blocked: [],       // ms of each main-thread task for monge: a change (module, upload), a drag's end, the worker's answer
   generations: 0,    // meshes drawn so far
   stale: false,      // the design changed and monge refused it
   fast: false,       // drawn in drag quality (see `quality`)
   legend: null,      // the colour legend's numbers: { mode: 'area', min, max } or { mode: 'fold', folded, faces }
+  name: '<input>',   // the design's file name, in messages
+  net: null,         // the cyclidic net drawn: { lines, arcs } or { error }
 };
 /** The wasm mesh shown (for metrics and exports); freed when replaced. */
 let current = null;
@@ -72,8 +74,11 @@ axesGroup.visible = false;
 gauss.add(axesGroup);
 /** The planes of the curvature lines (§2.2): each drawn line closed by its chord, filled. */
 const planesGroup = new THREE.Group();
+/** The cyclidic net's curvature lines (§4.4): circular arcs, drawn as chords. */
+const arcLines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x106030 }));
+arcLines.visible = false;
 planesGroup.visible = false;
-scene.add(surface, coloured, wire, guideLines.u, guideLines.v, handles, markers, gauss, planesGroup);
+scene.add(arcLines, surface, coloured, wire, guideLines.u, guideLines.v, handles, markers, gauss, planesGroup);
 
 let frameRequested = false;
 let pendingLatency = null; // input time of the mesh uploaded but not yet drawn
@@ -200,11 +205,13 @@ function showMesh(mesh, t0, fast = false) {
   showAxes(header);
   showPlanes(header);
   if (first) fitView();
-  if (!fast) {
+  if (fast) {
+    arcLines.visible = false; // until the drag rests and the worker draws them again
+    $('metrics').classList.add('pending');
+  } else {
     showHandles(); // a drag moves the handles itself
-    showMetrics(header, mesh);
+    measure();
   }
-  $('metrics').classList.toggle('pending', fast);
   showThetaRange(header);
   $('error').hidden = true;
   state.generations += 1;
@@ -524,6 +531,48 @@ for (const type of ['pointerup', 'pointercancel']) {
 
 // ------------------------------------------------------------ computing
 /**
+ * The metrics and the cyclidic net's arcs are measured in a Web Worker
+ * (src/worker.js, its own copy of the module), so that the main thread only
+ * generates and draws: at 300 × 300 faces the metrics take ~45 ms.
+ */
+const worker = new Worker(new URL('worker.js', import.meta.url), { type: 'module' });
+let measureId = 0;         // the latest request to the worker
+let measuring = false;     // its answer has not come yet
+
+/** Asks the worker for the metrics (and arcs) of the design shown. */
+function measure() {
+  measureId += 1;
+  measuring = true;
+  $('metrics').classList.add('pending');
+  worker.postMessage({
+    id: measureId, text: JSON.stringify(state.design), name: state.name, offset: state.offset,
+    maxVertices: MAX_VERTICES, arcs: $('show-arcs').checked,
+  });
+}
+
+worker.onmessage = ({ data }) => {
+  if (data.id !== measureId) return; // a newer design is being measured
+  const start = performance.now();
+  measuring = false;
+  if (data.error) return; // the main thread shows monge's message for this design
+  showArcs(data.net);
+  showMetrics(state.mesh, data);
+  $('metrics').classList.remove('pending');
+  redraw();
+  state.blocked.push(performance.now() - start);
+};
+
+/** Draws the net's arcs (`net.segments`: chord ends, f32), or says why there is no net. */
+function showArcs(net) {
+  state.net = net && (net.error ? { error: net.error } : { lines: net.lines, arcs: net.arcs });
+  arcLines.visible = Boolean(net && !net.error);
+  if (arcLines.visible) {
+    arcLines.geometry.dispose();
+    arcLines.geometry = new THREE.BufferGeometry();
+    arcLines.geometry.setAttribute('position', new THREE.BufferAttribute(net.segments, 3));
+  }
+}
+/**
  * The design changed at time `t0` (null: no input to time): generate its mesh
  * now, in the input's own task, so it is drawn in the very next frame.
  * `dragging`: θ or a control point is being dragged, so the mesh is drawn in
@@ -550,11 +599,12 @@ function change(t0, dragging = false, name = '<input>') {
 
 /** After a drag: the metrics, and the mesh in full quality. */
 function settle() {
+  const start = performance.now();
   showHandles();
-  showMetrics(state.mesh, current);
-  $('metrics').classList.remove('pending');
+  measure();
   quality(false);
   redraw();
+  state.blocked.push(performance.now() - start);
 }
 
 /** The wasm mesh of a design (JSON text) at the page's offset; throws the CLI's message. */
@@ -562,6 +612,7 @@ function generateMesh(text, name) {
   const start = performance.now();
   const mesh = generate(text, name, state.offset, MAX_VERTICES);
   generateMs = performance.now() - start;
+  state.name = name;
   return mesh;
 }
 let generateMs = 0; // how long the last generation took
@@ -578,6 +629,9 @@ function showError(error, fast = false) {
     // the guides are invalid: the message says why
   }
   state.stale = true;
+  measureId += 1; // an answer for the refused design's predecessor is stale
+  measuring = false;
+  arcLines.visible = false;
   surfaceMaterial.color.set(0xcccccc);
   coloured.material.color.set(0xcccccc);
   quality(fast);
@@ -587,11 +641,13 @@ function showError(error, fast = false) {
 // ------------------------------------------------------------ controls
 const fmt = (x, digits = 3) => (x === null || x === undefined ? '—' : Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
 
-/** The metrics table of the mesh with `header`, measured now in the module. */
-function showMetrics(answer, mesh) {
-  const start = performance.now();
-  const m = JSON.parse(mesh.metrics());
-  const metricsMs = performance.now() - start;
+/** The first words of a long message. */
+const brief = (text, n = 90) => (text.length > n ? `${text.slice(0, n)}…` : text);
+
+/** The metrics table of the mesh with header `answer`, from the worker's `measured`. */
+function showMetrics(answer, measured) {
+  const m = JSON.parse(measured.metrics);
+  const net = state.net;
   const worst = (w) => (w ? `${fmt(w.value)} at (${w.at.join(', ')})` : '—');
   const rows = [
     ['grid', `${answer.rows} × ${answer.cols} vertices, ${m.faces} faces`],
@@ -603,7 +659,8 @@ function showMetrics(answer, mesh) {
     ['max error (relative)', fmt(m.max_error)],
     ['panel area', `${fmt(m.panel_area.min)} … ${fmt(m.panel_area.max)}`],
     ['edge length', `${fmt(m.edge_length.min)} … ${fmt(m.edge_length.max)}`],
-    ['in the page (wasm)', `generate ${fmt(generateMs, 2)} ms, metrics ${fmt(metricsMs, 2)} ms`],
+    ...(net ? [['cyclidic net (§4.4)', net.error ? brief(net.error.slice(net.error.indexOf(': ') + 2)) : `${net.lines} curvature lines, ${net.arcs} circular arcs`]] : []),
+    ['in the page (wasm)', `generate ${fmt(generateMs, 2)} ms; in the worker: metrics ${fmt(measured.metricsMs, 2)} ms`],
   ];
   $('metrics').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');
@@ -684,6 +741,11 @@ $('show-planes').addEventListener('change', (event) => {
   if (state.mesh) showPlanes(state.mesh);
   redraw();
 });
+$('show-arcs').addEventListener('change', () => {
+  if (state.mesh && !state.stale) measure();
+  else arcLines.visible = false;
+  redraw();
+});
 $('colour').addEventListener('change', () => {
   if (current) showColours(current);
   redraw();
@@ -698,6 +760,17 @@ function download(blob, name) {
 
 $('save').addEventListener('click', () => {
   download(new Blob([`${JSON.stringify(state.design, null, 2)}\n`], { type: 'application/json' }), 'design.json');
+});
+$('export-net').addEventListener('click', () => {
+  // The cyclidic net's JSON, as `monge smooth -o net.json` writes it (a click, not a drag: on the main thread).
+  if (!current || state.stale) return;
+  try {
+    const net = current.smooth(1);
+    try { download(new Blob([net.export(9)]), 'net.json'); } finally { net.free(); }
+  } catch (error) {
+    // No net (a conical design, a folded face): monge's message; the mesh stays current.
+    Object.assign($('error'), { textContent: error.message, hidden: false });
+  }
 });
 for (const format of ['obj', 'json']) {
   // The file `monge generate` writes, written by the same code in the module.
@@ -756,7 +829,11 @@ window.explorer = {
   metrics: () => current.metrics(),
   /** The mesh file `monge generate` writes (`obj` or `json`), as text. */
   exported: (format) => new TextDecoder().decode(current.export(format)),
-  idle: () => pendingLatency === null && settleTimer === null,
+  idle: () => pendingLatency === null && settleTimer === null && !measuring,
+  /** The cyclidic net drawn: { lines, arcs, segments } (chord ends), or { error }, or null. */
+  arcs: () => (state.net && !state.net.error ? { ...state.net, segments: arcLines.visible ? arcLines.geometry.getAttribute('position').count / 2 : 0 } : state.net),
+  /** The JSON `monge smooth -o net.json --samples 9` writes for the design shown, as text. */
+  netExport: () => { const net = current.smooth(1); try { return new TextDecoder().decode(net.export(9)); } finally { net.free(); } },
   /** What the pencil axes and planes views draw: [{ axis }] and [{ family, line }]. */
   drawn: () => ({
     axes: axesGroup.visible ? axesGroup.children.map((c) => c.userData) : [],
