@@ -221,3 +221,52 @@ cat "$1/big.obj""#;
     );
     assert!(stderr.contains(&expected), "{stderr}");
 }
+
+#[test]
+fn standard_output_full_or_closed_is_a_clear_error() {
+    let design = common::example("fig13-freeform.json");
+    // A full device as standard output.
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_monge"))
+        .args([
+            "generate".as_ref(),
+            design.as_os_str(),
+            "-o".as_ref(),
+            "-".as_ref(),
+        ])
+        .stdout(full)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: cannot write `<stdout>`: No space left on device"),
+        "{err}"
+    );
+    // A reader that closes its end after 10 bytes (`monge … -o - | head -c 10`).
+    let mut child = Command::new(env!("CARGO_BIN_EXE_monge"))
+        .args([
+            "generate".as_ref(),
+            design.as_os_str(),
+            "-o".as_ref(),
+            "-".as_ref(),
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut head = [0u8; 10];
+    std::io::Read::read_exact(child.stdout.as_mut().unwrap(), &mut head).unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: cannot write `<stdout>`: Broken pipe"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}

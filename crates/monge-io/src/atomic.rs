@@ -3,11 +3,16 @@
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime};
 
 use crate::error::IoError;
 
 /// Buffer size of the writers handed to the closures.
 const BUFFER: usize = 1 << 16;
+
+/// Age after which a `.NAME.XXXXXX.tmp` left beside `NAME` by a killed
+/// [`write_atomic`] is removed by the next write to `NAME`: one hour.
+pub const STALE: Duration = Duration::from_secs(3600);
 
 /// Writes a file atomically: `f` writes into a temporary file in the same
 /// directory, which is flushed, synced and then renamed to `path`.
@@ -23,9 +28,12 @@ const BUFFER: usize = 1 << 16;
 /// killed (`kill -9`, power cut) while `f` writes, it vanishes with the
 /// process and nothing is left behind. Once complete and synced, it is linked
 /// under a hidden name `.NAME.XXXXXX.tmp` and renamed over `path` at once,
-/// and the directory is synced. Where `O_TMPFILE` is not supported (other
-/// file systems or systems), the temporary file is named from the start, and
-/// a killed process leaves that `.NAME.XXXXXX.tmp` behind.
+/// and the directory is synced: a process killed in the microseconds between
+/// the link and the rename leaves that `.NAME.XXXXXX.tmp` behind. Where
+/// `O_TMPFILE` is not supported (other file systems or systems), the
+/// temporary file is named from the start, and a killed process leaves it
+/// behind too. Either way, the next write to `path` removes such leftovers
+/// once they are [`STALE`] old (a write in progress keeps its file's time fresh).
 ///
 /// ```
 /// # let dir = tempfile::tempdir().unwrap();
@@ -55,6 +63,7 @@ pub fn write_atomic(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
+    remove_stale(dir, &prefix);
     let staged = Staged::create(dir, &builder).map_err(err)?;
     {
         let mut w = BufWriter::with_capacity(BUFFER, staged.file());
@@ -71,6 +80,33 @@ pub fn write_atomic(
         let _ = d.sync_all();
     }
     Ok(())
+}
+
+/// Removes the temporary files `PREFIX` + 6 characters + `.tmp` in `dir` that
+/// were last modified [`STALE`] ago or more: what killed writes left behind.
+/// Best effort: a file that cannot be read or removed is left.
+fn remove_stale(dir: &Path, prefix: &str) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let now = SystemTime::now();
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(random) = name
+            .to_str()
+            .and_then(|n| n.strip_prefix(prefix))
+            .and_then(|n| n.strip_suffix(".tmp"))
+        else {
+            continue;
+        };
+        let old = entry
+            .metadata()
+            .and_then(|m| m.modified())
+            .is_ok_and(|t| now.duration_since(t).is_ok_and(|age| age >= STALE));
+        if random.len() == 6 && random.bytes().all(|b| b.is_ascii_alphanumeric()) && old {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// The temporary file of [`write_atomic`] while it is written.

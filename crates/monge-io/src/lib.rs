@@ -47,7 +47,7 @@ use std::fs::{File, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
 
-pub use atomic::{check_output, is_stdio, write_atomic, write_output};
+pub use atomic::{check_output, is_stdio, write_atomic, write_output, STALE};
 pub use design::{
     parse_any_design, parse_design, parse_design_named, read_any_design, read_design, write_design,
     write_design_to, AnyDesign, DesignFormat,

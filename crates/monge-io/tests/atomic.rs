@@ -121,3 +121,38 @@ fn new_files_get_ordinary_permissions() {
     std::fs::write(&reference, "x").unwrap();
     assert_eq!(mode(&path), mode(&reference));
 }
+
+#[test]
+fn the_next_write_removes_what_a_killed_write_left_an_hour_ago() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.obj");
+    // Leftovers of a write killed between link and rename (or of a named
+    // temporary file), one stale and one fresh, and files that only look alike.
+    let names = [
+        ".out.obj.Ab3dE9.tmp",
+        ".out.obj.Zz9yX1.tmp",
+        ".out.obj.toolong7.tmp",
+        ".other.obj.Ab3dE9.tmp",
+        "out.obj.Ab3dE9.tmp",
+    ];
+    let hours_ago = std::time::SystemTime::now() - monge_io::STALE * 2;
+    for (k, name) in names.iter().enumerate() {
+        let file = std::fs::File::create(dir.path().join(name)).unwrap();
+        if k != 1 {
+            file.set_modified(hours_ago).unwrap();
+        }
+    }
+    write_atomic(&path, |w| w.write_all(b"new\n")).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new\n");
+    assert_eq!(
+        entries(dir.path()),
+        [
+            ".other.obj.Ab3dE9.tmp",
+            ".out.obj.Zz9yX1.tmp",
+            ".out.obj.toolong7.tmp",
+            "out.obj",
+            "out.obj.Ab3dE9.tmp",
+        ],
+        "only the stale leftover of out.obj is removed"
+    );
+}
