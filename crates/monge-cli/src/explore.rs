@@ -226,6 +226,7 @@ fn answer(request: &http::Request, shared: &Shared) -> http::Response {
         content_type: reply.content_type,
         headers,
         body: reply.body,
+        head_only: false,
     }
 }
 
@@ -284,6 +285,8 @@ fn is_own_host(host: &str, address: SocketAddr) -> bool {
 
 /// Dispatches a request by method and path.
 fn route(method: &str, url: &str, body: &[u8], shared: &Shared) -> Reply {
+    // HEAD is GET without the body (the server leaves the body out).
+    let method = if method == "HEAD" { "GET" } else { method };
     let (path, query) = url.split_once('?').unwrap_or((url, ""));
     let query = Query::parse(query);
     match (method, path) {

@@ -82,6 +82,8 @@ pub struct Response {
     pub headers: Vec<(&'static str, String)>,
     /// The body.
     pub body: Vec<u8>,
+    /// Whether only the headers are sent (an answer to `HEAD`).
+    pub head_only: bool,
 }
 
 impl Response {
@@ -94,6 +96,7 @@ impl Response {
             body: serde_json::json!({ "error": message })
                 .to_string()
                 .into_bytes(),
+            head_only: false,
         }
     }
 }
@@ -170,7 +173,8 @@ where
             Err(Refusal::Close) => return,
         };
         let keep_alive = keep_alive(&request);
-        let response = {
+        let head = request.method == "HEAD";
+        let mut response = {
             let _permit = workers.acquire();
             catch_unwind(AssertUnwindSafe(|| handler(&request))).unwrap_or_else(|_| {
                 Response::error(
@@ -179,6 +183,10 @@ where
                 )
             })
         };
+        if head {
+            // The headers of the GET, Content-Length included, without the body.
+            response.head_only = true;
+        }
         if write_response(&mut stream, response, keep_alive).is_err() || !keep_alive {
             return;
         }
@@ -396,7 +404,9 @@ fn write_response(stream: &mut TcpStream, response: Response, keep_alive: bool) 
     }
     out.push_str("\r\n");
     let mut bytes = out.into_bytes();
-    bytes.extend_from_slice(&response.body);
+    if !response.head_only {
+        bytes.extend_from_slice(&response.body);
+    }
     stream.write_all(&bytes)?;
     stream.flush()?;
     if !keep_alive {

@@ -288,6 +288,20 @@ fn routes_and_files() {
         server.request("GET", "/", b""),
         (200, b"<p>explorer</p>".to_vec())
     );
+    // HEAD: the GET's status and headers, Content-Length included, no body.
+    let mut stream = TcpStream::connect(&server.address).unwrap();
+    write!(
+        stream,
+        "HEAD / HTTP/1.0\r\nHost: {}\r\n\r\n",
+        server.address
+    )
+    .unwrap();
+    let mut answer = String::new();
+    stream.read_to_string(&mut answer).unwrap();
+    assert!(answer.starts_with("HTTP/1.1 200 "), "{answer}");
+    assert!(answer.contains("Content-Length: 15\r\n"), "{answer}");
+    assert!(answer.ends_with("\r\n\r\n"), "no body: {answer}");
+    assert_eq!(server.request("HEAD", "/nothing.js", b"").0, 404);
     assert_eq!(server.request("GET", "/nothing.js", b"").0, 404);
     assert_eq!(server.request("GET", "/../Cargo.toml", b"").0, 404);
     assert_eq!(server.post_json("/api/unknown", b"{}").0, 404);
