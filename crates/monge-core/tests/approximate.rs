@@ -126,34 +126,57 @@ fn a_noised_surface_with_planar_curvature_lines_is_recovered() {
         })
         .collect();
     let r = approximate(&target, &quick(10), &mut |_| {}).unwrap();
-    // Independent: both ways against the exact surface the target was sampled from.
+    // Independent: both ways against the exact surface the target was sampled from, as
+    // meshes of 40 × 40 faces (the result's design regenerated finer, so that the
+    // comparison is of the surfaces, not of the 10 × 10 faces' sag), by brute force.
+    let truth = generate(&roof(41), &GenerateOptions::default())
+        .unwrap()
+        .grid;
+    let mut design = r.design.clone();
+    for guide in [&mut design.guide_u, &mut design.guide_v] {
+        guide.bspline.as_mut().unwrap().samples = 41;
+    }
+    let result = generate(&design, &GenerateOptions::default()).unwrap().grid;
     let (to_max, to_rms) = max_rms(
+        result
+            .vertices
+            .iter()
+            .map(|v| brute_to_mesh(*v, &truth) / size),
+    );
+    let (from_max, from_rms) = max_rms(
+        truth
+            .vertices
+            .iter()
+            .map(|v| brute_to_mesh(*v, &result) / size),
+    );
+    // And the 10 × 10 mesh's own vertices.
+    let (coarse_max, _) = max_rms(
         r.grid
             .vertices
             .iter()
-            .map(|v| brute_to_mesh(*v, &fine) / size),
-    );
-    let (from_max, from_rms) = max_rms(
-        fine.vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &r.grid) / size),
+            .map(|v| brute_to_mesh(*v, &truth) / size),
     );
     eprintln!(
-        "recovery: mesh → surface max {to_max:.2e} RMS {to_rms:.2e}, surface → mesh max {from_max:.2e} \
-         RMS {from_rms:.2e} (initial guess: {:?})",
-        r.before
+        "recovery: surface found → surface max {to_max:.2e} RMS {to_rms:.2e}, surface → surface \
+         found max {from_max:.2e} RMS {from_rms:.2e}; 10 × 10 vertices → surface max \
+         {coarse_max:.2e} (initial guess: {:?}, result {:?})",
+        r.before, r.after
     );
-    // Measured 2026-11 with these quick settings: mesh → surface max 5.1e-3 RMS 2.2e-3,
-    // surface → mesh max 1.1e-2 RMS 2.6e-3 of the size (the issue asks ≤ 1e-3: not reached).
+    // The issue's bound: recovered to 1e-3 of the size, both ways (measured 2026-11-25
+    // with these quick settings: 8.7e-4 and 1.5e-4, RMS 1.4e-4 and 5e-5).
     assert!(
-        to_max <= 2e-2 && from_max <= 2e-2,
-        "max {to_max:e} {from_max:e}"
+        to_max <= 1e-3 && from_max <= 1e-3 && coarse_max <= 1e-3,
+        "max {to_max:e} {from_max:e} {coarse_max:e}"
     );
     assert!(
-        to_rms <= 4e-3 && from_rms <= 4e-3,
+        to_rms <= 3e-4 && from_rms <= 3e-4,
         "RMS {to_rms:e} {from_rms:e}"
     );
-    assert!(r.after.max() < r.before.max());
+    // The search never ends worse than it started (its objective).
+    let objective = |d: &monge_core::approximate::Deviation| {
+        d.mesh_to_target_rms.powi(2) + d.beyond_mesh_rms.powi(2)
+    };
+    assert!(objective(&r.after) <= objective(&r.before));
     // Exact: it is generated, and the measure module says so independently.
     assert!(measure(&r.grid).max_error() <= 1e-9);
 }
