@@ -1398,3 +1398,60 @@ pub fn approximate(
         timed_out: search.timed_out,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::guide::{Guide, GuideName};
+
+    /// Points of a planar cubic B-spline sampled by the guide module's de Boor (not
+    /// [`guide_basis`]), in the plane's `(along, up)` coordinates.
+    fn sampled(polygon: &Polygon, samples: usize) -> Vec<(f64, f64)> {
+        let control = polygon.iter().map(|(s, w)| [*s, 0.0, *w]).collect();
+        let spec = GuideSpec::bspline(3, control, samples);
+        let guide = Guide::from_spec(&spec, GuideName::U, &Default::default()).unwrap();
+        guide.points.iter().map(|p| (p.x, p.z)).collect()
+    }
+
+    #[test]
+    fn a_guide_is_recovered_from_its_points() {
+        let truth = [
+            (0.0, 0.0),
+            (2.5, 0.0),
+            (5.0, -0.949),
+            (7.5, -1.686),
+            (10.0, -2.108),
+        ];
+        for samples in [26, 11] {
+            let points = sampled(&truth, samples);
+            let fitted = fit_guide(&points, false).unwrap();
+            // The curve, to 2e-4 of its length (~10.6): every point near the fitted curve.
+            let curve = sampled(&fitted, 4001);
+            let residual = points
+                .iter()
+                .map(|p| {
+                    curve
+                        .iter()
+                        .map(|q| (p.0 - q.0).hypot(p.1 - q.1))
+                        .fold(f64::INFINITY, f64::min)
+                })
+                .fold(0.0, f64::max);
+            assert!(residual < 2e-3, "{residual:e}");
+            // Its control polygon to 0.5 % of its length (the fit holds the parameters near chord
+            // lengths, which differ slightly from the truth's).
+            for (a, b) in fitted.iter().zip(&truth) {
+                assert!((a.0 - b.0).hypot(a.1 - b.1) < 0.05, "{fitted:?}");
+            }
+        }
+        // With the start tangent free, it is found too (turned by 0.1 rad here).
+        let (c, s) = (0.1f64.cos(), 0.1f64.sin());
+        let turned = truth.map(|(x, y)| (c * x - s * y, s * x + c * y));
+        let fitted = fit_guide(&sampled(&turned, 21), true).unwrap();
+        assert!(
+            (fitted[1].1.atan2(fitted[1].0) - 0.1).abs() < 1e-3,
+            "{fitted:?}"
+        );
+        // Too few points for the unknowns.
+        assert_eq!(fit_guide(&sampled(&truth, 5), false), None);
+    }
+}
