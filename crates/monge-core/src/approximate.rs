@@ -1150,7 +1150,7 @@ fn samples_for(faces: (usize, usize), kind: MeshKind) -> (usize, usize) {
 
 /// Largest target points used in the objective (every k-th beyond it); the final
 /// deviation uses them all.
-const OBJECTIVE_POINTS: usize = 3000;
+const OBJECTIVE_POINTS: usize = 1000;
 
 /// The search: objective, budget, best point.
 struct Search<'a> {
