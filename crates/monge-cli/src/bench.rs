@@ -23,9 +23,16 @@ const MAX_RUNS: u32 = 100_000;
 
 /// Runs `monge bench`.
 pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
-    if args.all {
-        let sizes = args.sizes.as_deref().unwrap_or(&[100, 400, 1000]);
-        return run_all(sizes, args.max_vertices);
+    if args.all || args.approximate {
+        let exe = std::env::current_exe().context("cannot find the monge binary to run")?;
+        if args.all {
+            let sizes = args.sizes.as_deref().unwrap_or(&[100, 400, 1000]);
+            run_all(&exe, sizes, args.max_vertices)?;
+        }
+        if args.approximate {
+            run_approximate(&exe)?;
+        }
+        return Ok(Outcome::Success);
     }
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
@@ -94,10 +101,37 @@ const COMMANDS: [(&str, &[&str]); 8] = [
     ),
 ];
 
+/// The shipped target of `monge approximate` (`examples/targets/roof-pcl.obj`: a 10 m
+/// roof, 2000 points), for `monge bench --approximate`.
+const ROOF_TARGET: &str = include_str!("../../../examples/targets/roof-pcl.obj");
+
+/// `monge bench --approximate`: `monge approximate` of the shipped 10 m roof on its
+/// default 40 × 40 grid, as a child process of this binary.
+fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
+    let dir = tempfile::tempdir().context("cannot create a temporary directory")?;
+    let target = dir.path().join("roof-pcl.obj");
+    std::fs::write(&target, ROOF_TARGET)
+        .with_context(|| format!("cannot write `{}`", target.display()))?;
+    let args = [
+        "approximate".to_owned(),
+        target.to_string_lossy().into_owned(),
+        "-o".to_owned(),
+        dir.path().join("fit.json").to_string_lossy().into_owned(),
+    ];
+    let (wall, peak_rss_kb) = run_child(exe, &args)
+        .context("`monge approximate` of the shipped roof target (40 × 40 faces)")?;
+    print(&format!(
+        "{{\"command\":\"approximate\",\"faces\":\"40x40\",\"target_points\":2000,\
+         \"wall_ms\":{:.1},\"peak_rss_mb\":{:.1}}}\n",
+        wall * 1e3,
+        peak_rss_kb as f64 / 1024.0,
+    ))?;
+    Ok(())
+}
+
 /// `monge bench --all`: every command of [`COMMANDS`] on the bundled design at
 /// each size, once each, as a child process of this binary.
-fn run_all(sizes: &[u32], max_vertices: usize) -> anyhow::Result<Outcome> {
-    let exe = std::env::current_exe().context("cannot find the monge binary to run")?;
+fn run_all(exe: &std::path::Path, sizes: &[u32], max_vertices: usize) -> anyhow::Result<()> {
     for &n in sizes {
         let dir = tempfile::tempdir().context("cannot create a temporary directory")?;
         let design = dir.path().join("design.json");
@@ -119,7 +153,7 @@ fn run_all(sizes: &[u32], max_vertices: usize) -> anyhow::Result<Outcome> {
                 })
                 .collect();
             let before = dir_bytes(dir.path())?;
-            let (wall, peak_rss_kb) = run_child(&exe, &args)
+            let (wall, peak_rss_kb) = run_child(exe, &args)
                 .with_context(|| format!("`monge {}` on {n} × {n} faces", args.join(" ")))?;
             let bytes = dir_bytes(dir.path())?.saturating_sub(before);
             // Nothing written (check): no raw-write time to compare with.
@@ -145,7 +179,7 @@ fn run_all(sizes: &[u32], max_vertices: usize) -> anyhow::Result<Outcome> {
             ))?;
         }
     }
-    Ok(Outcome::Success)
+    Ok(())
 }
 
 /// Runs `exe args` with its output discarded; its wall time (seconds) and peak

@@ -613,6 +613,11 @@ pub struct BenchArgs {
     /// as many bytes (`write_all` and `sync_all` of one file in the same directory).
     #[arg(long)]
     pub all: bool,
+    /// Time `monge approximate` of the shipped 10 m roof target (2000 points, the default
+    /// 40 × 40 grid) as a child process: one JSON line with wall time and peak RSS
+    /// (after the lines of --all when both are given; the target is ≤ 10 s).
+    #[arg(long)]
+    pub approximate: bool,
     /// Refuse grids of more than N vertices.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
