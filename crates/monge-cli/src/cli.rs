@@ -661,6 +661,12 @@ pub struct RenderArgs {
     /// every curvature line through the mesh vertices drawn as its chain of circular arcs.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(2..=64))]
     pub smooth: Option<u32>,
+    /// Colour the mesh by its distance to TARGET (a mesh or point cloud: .obj, .ply,
+    /// .json), as `monge approximate` measures it: white on the target, dark red at the
+    /// 95th percentile (at least 1e-6 of the target's size) and beyond; the caption
+    /// gives the scale and the deviation both ways. One DESIGN only.
+    #[arg(long, value_name = "TARGET")]
+    pub deviation: Option<PathBuf>,
 }
 
 /// `--size`: `WIDTHxHEIGHT`, each from 1 to [`MAX_SIDE`].

@@ -4,14 +4,15 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use glam::DVec3;
+use monge_core::approximate::TargetCloud;
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::developable::developable;
 use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, MeshKind, QuadGrid};
-use monge_io::{check_output, read_any_design, write_atomic, AnyDesign};
+use monge_io::{check_output, read_any_design, read_points, write_atomic, AnyDesign};
 use monge_render::{
-    gauss_net, guide_highlights, render_png, render_svg, sheet_png, sheet_svg, Highlight, Panel,
-    Projection, RenderOptions, Rgb, Scene, View,
+    gauss_net, guide_highlights, heat, render_png, render_svg, sheet_png, sheet_svg, Highlight,
+    Panel, Projection, RenderOptions, Rgb, Scene, View,
 };
 
 use crate::cli::RenderArgs;
@@ -65,6 +66,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
     };
     let generate_options = GenerateOptions::default();
 
+    if args.deviation.is_some() && (args.designs.len() != 1 || args.theta_sweep.is_some()) {
+        bail!("--deviation colours one design by its distance to a target: give exactly one DESIGN, without --theta-sweep");
+    }
     let (bytes, what) = if let Some(thetas) = &args.theta_sweep {
         let [path] = args.designs.as_slice() else {
             bail!("--theta-sweep renders one design at several θ: give exactly one DESIGN");
@@ -102,6 +106,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
             path.display()
         );
         (sheet(&panels, args.columns, &options, format)?, what)
+    } else if let (Some(target), [path]) = (&args.deviation, args.designs.as_slice()) {
+        let (scene, _) = load(path, args.gauss, args.smooth, &generate_options)?;
+        let (panel, what) = deviation_panel(scene, target)?;
+        let what = format!("`{}` coloured by {what}", path.display());
+        (sheet(&[panel], 1, &options, format)?, what)
     } else if let [path] = args.designs.as_slice() {
         let (scene, _) = load(path, args.gauss, args.smooth, &generate_options)?;
         let bytes = match format {
@@ -159,10 +168,54 @@ fn load(
                 highlights: guide_highlights(&mesh.helix, &column),
                 gauss: if gauss { gauss_net(&mesh.grid) } else { None },
                 mesh: mesh.grid,
+                vertex_colors: None,
             };
             Ok((scene, "developable".to_owned()))
         }
     }
+}
+
+/// `scene` with its mesh coloured by the distance of each vertex to the target at
+/// `path` ([`TargetCloud::distances`]), captioned with the colour scale and the
+/// deviation both ways; and a few words on it.
+fn deviation_panel(mut scene: Scene, path: &Path) -> anyhow::Result<(Panel, String)> {
+    let points = read_points(path)?;
+    let target =
+        TargetCloud::new(&points).with_context(|| format!("target `{}`", path.display()))?;
+    let distances = target.distances(&scene.mesh);
+    let mut sorted = distances.clone();
+    sorted.sort_by(f64::total_cmp);
+    // The 95th percentile, so that a few vertices beyond the target's last points do
+    // not wash out the rest; at least 1e-6 of the target's size, so that rounding on
+    // a mesh that is its own target stays white.
+    let p95 = sorted[(sorted.len() - 1) * 95 / 100].max(1e-6 * target.size());
+    scene.vertex_colors = Some(distances.iter().map(|d| heat(d / p95)).collect());
+    let d = target.deviation(&scene.mesh);
+    let size = target.size();
+    // In the caption font's characters (capitals, digits, some punctuation).
+    let caption = format!(
+        "distance to {}\nwhite 0, dark red from {} (95th percentile)\n\
+         mesh to target: max {}, RMS {}\ntarget to mesh: max {}, RMS {}",
+        path.file_name().unwrap_or_default().to_string_lossy(),
+        num(p95),
+        num(d.mesh_to_target_max * size),
+        num(d.mesh_to_target_rms * size),
+        num(d.target_to_mesh_max * size),
+        num(d.target_to_mesh_rms * size),
+    );
+    let what = format!(
+        "its distance to `{}` (95th percentile {}, largest {})",
+        path.display(),
+        num(p95),
+        num(d.mesh_to_target_max * size)
+    );
+    Ok((
+        Panel {
+            scene: Some(scene),
+            caption,
+        },
+        what,
+    ))
 }
 
 /// A contact sheet in `format`.
@@ -208,6 +261,7 @@ fn scene(
                 mesh: conical_dual(&g.grid).grid,
                 highlights: guide_highlights(&g.info.guide_u.points, &g.info.guide_v.points),
                 gauss: None,
+                vertex_colors: None,
             }
         }
     };
@@ -240,6 +294,7 @@ fn smooth_scene(grid: &QuadGrid, k: usize, path: &Path) -> anyhow::Result<Scene>
         mesh: dense,
         highlights,
         gauss: None,
+        vertex_colors: None,
     })
 }
 

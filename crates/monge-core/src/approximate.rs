@@ -392,6 +392,32 @@ impl TargetCloud {
         }
     }
 
+    /// The distance from each vertex of `grid` to the target (model units), as
+    /// [`Deviation::mesh_to_target_max`] measures it: to the tangent plane of the
+    /// nearest target point, and beyond the target's boundary.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::TargetCloud;
+    /// use monge_core::QuadGrid;
+    /// // A 10 × 10 sampling of the plane z = 0, and a square 0.5 above it.
+    /// let plane: Vec<DVec3> =
+    ///     (0..100).map(|k| DVec3::new((k % 10) as f64, (k / 10) as f64, 0.0)).collect();
+    /// let target = TargetCloud::new(&plane).unwrap();
+    /// let square = [DVec3::new(3.0, 3.0, 0.5), DVec3::new(3.0, 4.0, 0.5),
+    ///               DVec3::new(4.0, 3.0, 0.5), DVec3::new(4.0, 4.0, 0.5)];
+    /// let grid = QuadGrid::new(2, 2, square.to_vec(), vec![DVec3::Z; 4]);
+    /// for d in target.distances(&grid) {
+    ///     assert!((d - 0.5).abs() < 1e-12);
+    /// }
+    /// ```
+    pub fn distances(&self, grid: &QuadGrid) -> Vec<f64> {
+        grid.vertices
+            .iter()
+            .map(|v| self.distance_from(*v))
+            .collect()
+    }
+
     /// Distances both ways between `grid` and the target, relative to the target's size.
     pub fn deviation(&self, grid: &QuadGrid) -> Deviation {
         self.deviation_strided(grid, 1)

@@ -421,6 +421,14 @@ impl Projector {
     }
 }
 
+/// The mean of four colours.
+fn mean_color(c: [Rgb; 4]) -> Rgb {
+    let mean = |f: fn(&Rgb) -> u8| {
+        (c.iter().map(|c| u32::from(f(c))).sum::<u32>() as f64 / 4.0).round() as u8
+    };
+    Rgb::new(mean(|c| c.r), mean(|c| c.g), mean(|c| c.b))
+}
+
 /// `c` scaled by `k` (clamped to 0..=255).
 fn shade(c: Rgb, k: f64) -> Rgba {
     let s = |x: u8| (f64::from(x) * k).round().clamp(0.0, 255.0) as u8;
@@ -521,7 +529,11 @@ fn draw_mesh(scene: &Scene, r: Rect, o: &RenderOptions, scale: f64, shapes: &mut
         let normal = (c - a).cross(d - b).normalize_or_zero();
         let centre = (a + b + c + d) / 4.0;
         let facing = normal.dot(projector.to_eye(centre)) >= 0.0;
-        let base = if facing { o.front_color } else { o.back_color };
+        let base = match &scene.vertex_colors {
+            Some(colors) => mean_color(ids.map(|k| colors.get(k).copied().unwrap_or(Rgb::WHITE))),
+            None if facing => o.front_color,
+            None => o.back_color,
+        };
         let lambert = normal.dot(light).abs();
         faces.push(Face {
             depth: corners.iter().map(|c| c.1).sum::<f64>() / 4.0,

@@ -187,6 +187,10 @@ pub struct Scene {
     /// unit sphere, with its row 0 and column 0 highlighted like the guides (see
     /// [`gauss_net`]).
     pub gauss: Option<QuadGrid>,
+    /// If set, one colour per vertex of `mesh`: each face is filled with the mean of
+    /// its corners' colours (shaded), front and back alike, instead of the options'
+    /// front and back colours (see [`heat`]).
+    pub vertex_colors: Option<Vec<Rgb>>,
 }
 
 impl Scene {
@@ -201,8 +205,38 @@ impl Scene {
             mesh,
             highlights,
             gauss: None,
+            vertex_colors: None,
         }
     }
+}
+
+/// A sequential colour scale for magnitudes such as a deviation: `t` = 0 white,
+/// 0.5 orange, 1 (and beyond) dark red; NaN grey.
+///
+/// ```
+/// use monge_render::{heat, Rgb};
+/// assert_eq!(heat(0.0), Rgb::WHITE);
+/// assert_eq!(heat(1.0), heat(7.0));
+/// assert_eq!(heat(f64::NAN), Rgb::new(128, 128, 128));
+/// ```
+pub fn heat(t: f64) -> Rgb {
+    if t.is_nan() {
+        return Rgb::new(128, 128, 128);
+    }
+    // White → yellow → orange → red → dark red.
+    const STOPS: [(f64, [f64; 3]); 5] = [
+        (0.0, [255.0, 255.0, 255.0]),
+        (0.25, [255.0, 237.0, 111.0]),
+        (0.5, [253.0, 141.0, 60.0]),
+        (0.75, [227.0, 26.0, 28.0]),
+        (1.0, [128.0, 0.0, 38.0]),
+    ];
+    let t = t.clamp(0.0, 1.0);
+    let k = STOPS.iter().rposition(|(x, _)| *x <= t).unwrap_or(0).min(3);
+    let ((x0, c0), (x1, c1)) = (STOPS[k], STOPS[k + 1]);
+    let f = (t - x0) / (x1 - x0);
+    let mix = |i: usize| (c0[i] + f * (c1[i] - c0[i])).round() as u8;
+    Rgb::new(mix(0), mix(1), mix(2))
 }
 
 /// The two guides as highlights: guide_u in [`GUIDE_U_COLOR`], guide_v in [`GUIDE_V_COLOR`].
