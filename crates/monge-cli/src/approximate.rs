@@ -39,6 +39,10 @@ pub struct ApproximateArgs {
     /// Stop searching after this many seconds and keep the best design found.
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
+    /// Keep the target's boundary: the guides are two of its own boundary curves from a
+    /// corner (traced through its points and fitted), and only θ is searched.
+    #[arg(long)]
+    pub keep_boundary: bool,
 }
 
 /// `UxV`, e.g. `40x40`.
@@ -90,6 +94,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         deadline: args
             .time_limit
             .map(|t| Instant::now() + Duration::from_secs_f64(t)),
+        keep_boundary: args.keep_boundary,
     };
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());

@@ -83,6 +83,10 @@ pub struct ApproxOptions {
     pub max_evaluations: usize,
     /// Stop improving at this instant and return the best design found (default none).
     pub deadline: Option<Instant>,
+    /// Keep the target's boundary: the guides are two of the target's own boundary
+    /// curves, traced and fitted from a corner, and stay as they are; only θ is searched
+    /// (default false: the guides move too).
+    pub keep_boundary: bool,
 }
 
 impl Default for ApproxOptions {
@@ -93,6 +97,7 @@ impl Default for ApproxOptions {
             starts: 4,
             max_evaluations: 1500,
             deadline: None,
+            keep_boundary: false,
         }
     }
 }
@@ -171,6 +176,13 @@ pub enum ApproxError {
          give more time (--time-limit) or a coarser grid"
     )]
     TimeLimit,
+    /// `keep_boundary` was asked, but no boundary curves could be traced.
+    #[error(
+        "the target's boundary could not be traced from any of its corners (too few points \
+         along it, or no corner where two boundary curves meet), so there is no boundary to \
+         keep: sample the target's edges more densely, or approximate without --keep-boundary"
+    )]
+    NoBoundary,
     /// No design of the search gives a fair mesh on the requested grid.
     #[error(
         "no design found gives a mesh without folds on the requested grid (θ scanned from −170° \
@@ -684,6 +696,8 @@ struct Start {
     guides: [Vec<f64>; 2],
     /// Tilt of each guide's plane about its start tangent (see [`design_of`]).
     tilts: [f64; 2],
+    /// Whether the guides are the target's own boundary curves ([`boundary_start`]).
+    on_boundary: bool,
     curvatures: (f64, f64),
 }
 
@@ -741,6 +755,7 @@ fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, ApproxError> {
             frame: [t_u, t_v, n],
             guides: [guide(t_u, t_v), guide(t_v, t_u)],
             tilts: [0.0; 2],
+            on_boundary: false,
             curvatures: (corner.k1, corner.k2),
         });
         // The target's own corner there, and its boundary curves from it.
@@ -838,6 +853,7 @@ fn boundary_start(
         frame: [t_u, t_v, n],
         guides: [g_u, g_v],
         tilts: [tilt_u, tilt_v],
+        on_boundary: true,
         curvatures,
     })
 }
@@ -1284,6 +1300,72 @@ impl Search<'_> {
     }
 }
 
+impl Search<'_> {
+    /// θ alone from `x0`, the rest fixed: every tenth of `half_width` degrees on both
+    /// sides, then golden-section search around the best; the best point and its
+    /// objective.
+    fn run_theta(
+        &mut self,
+        start: &Start,
+        x0: &[f64],
+        faces: (usize, usize),
+        half_width: f64,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> (f64, Vec<f64>) {
+        let mut f = |search: &mut Self, theta: f64| {
+            let mut x = x0.to_vec();
+            x[8] = theta.clamp(-179.0, 179.0);
+            let value = search.objective(start, &x, faces);
+            progress(&Progress {
+                evaluations: search.evaluations,
+                budget: search.total,
+                best_rms: search.best.sqrt(),
+            });
+            (
+                if value.is_finite() {
+                    value
+                } else {
+                    f64::INFINITY
+                },
+                x,
+            )
+        };
+        let step = half_width / 10.0;
+        let mut best = f(self, x0[8]);
+        for k in -10..=10 {
+            let trial = f(self, x0[8] + f64::from(k) * step);
+            if trial.0 < best.0 {
+                best = trial;
+            }
+        }
+        let golden = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (best.1[8] - step, best.1[8] + step);
+        let (mut c, mut d) = (b - golden * (b - a), a + golden * (b - a));
+        let (mut fc, mut fd) = (f(self, c), f(self, d));
+        while b - a > 1e-6 && !self.timed_out {
+            if fc.0 < fd.0 {
+                (b, d, fd) = (d, c, fc);
+                c = b - golden * (b - a);
+                fc = f(self, c);
+            } else {
+                (a, c, fc) = (c, d, fd);
+                d = a + golden * (b - a);
+                fd = f(self, d);
+            }
+        }
+        for trial in [fc, fd] {
+            if trial.0 < best.0 {
+                best = trial;
+            }
+        }
+        if best.0.is_finite() {
+            best
+        } else {
+            (f64::NAN, x0.to_vec())
+        }
+    }
+}
+
 /// The start's own parameters: no move, θ given, its guides' control points.
 fn start_parameters(start: &Start, theta: f64) -> Vec<f64> {
     let mut x = vec![0.0; PARAMETERS];
@@ -1323,7 +1405,13 @@ pub fn approximate(
         return Err(ApproxError::GridTooSmall(fu, fv));
     }
     let target = TargetCloud::new(points)?;
-    let guesses = initial_guesses(&target)?;
+    let mut guesses = initial_guesses(&target)?;
+    if options.keep_boundary {
+        guesses.retain(|g| g.on_boundary);
+        if guesses.is_empty() {
+            return Err(ApproxError::NoBoundary);
+        }
+    }
     let coarse = ((fu / 2).max(4), (fv / 2).max(4));
     let budget = options.max_evaluations.max(2 * PARAMETERS + 2);
     let starts_wanted = options.starts.max(1);
@@ -1371,7 +1459,11 @@ pub fn approximate(
     let mut starts = 0;
     for (g, theta) in &chosen {
         let x = start_parameters(&guesses[*g], *theta);
-        let (f, x) = search.run(&guesses[*g], &x, coarse, 0.05, progress);
+        let (f, x) = if options.keep_boundary {
+            search.run_theta(&guesses[*g], &x, coarse, 10.0, progress)
+        } else {
+            search.run(&guesses[*g], &x, coarse, 0.05, progress)
+        };
         results.push((f, *g, x));
         if search.timed_out {
             break;
@@ -1389,7 +1481,11 @@ pub fn approximate(
     let (start, fine) = results
         .iter()
         .find_map(|(_, g, x)| {
-            let (f, fine) = search.run(&guesses[*g], x, (fu, fv), 0.005, progress);
+            let (f, fine) = if options.keep_boundary {
+                search.run_theta(&guesses[*g], x, (fu, fv), 1.0, progress)
+            } else {
+                search.run(&guesses[*g], x, (fu, fv), 0.005, progress)
+            };
             f.is_finite().then_some((&guesses[*g], fine))
         })
         .ok_or(ApproxError::NoStart)?;

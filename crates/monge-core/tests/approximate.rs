@@ -277,4 +277,82 @@ fn every_error_is_triggered() {
         ..quick(8)
     };
     assert_eq!(run(&target, &past), ApproxError::TimeLimit);
+    // Five points along one side of every corner: too few to fit a boundary guide.
+    let mut short = roof(11);
+    short.guide_u.bspline.as_mut().unwrap().samples = 5;
+    let target = generate(&short, &GenerateOptions::default())
+        .unwrap()
+        .grid
+        .vertices;
+    let keep = ApproxOptions {
+        keep_boundary: true,
+        ..quick(8)
+    };
+    assert_eq!(run(&target, &keep), ApproxError::NoBoundary);
+}
+
+/// Distance from `p` to the polyline `line`.
+fn to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
+    line.windows(2)
+        .map(|w| {
+            let e = w[1] - w[0];
+            let t = ((p - w[0]).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+            p.distance(w[0] + t * e)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn keep_boundary_keeps_the_targets_boundary_curves_as_guides() {
+    let fine = generate(&roof(31), &GenerateOptions::default())
+        .unwrap()
+        .grid;
+    let size = fine.bbox_diagonal();
+    let target: Vec<DVec3> = fine
+        .vertices
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let k = 3 * k as u64;
+            *v + 1e-4 * size * DVec3::new(noise(k), noise(k + 1), noise(k + 2))
+        })
+        .collect();
+    let options = ApproxOptions {
+        keep_boundary: true,
+        ..quick(10)
+    };
+    let r = approximate(&target, &options, &mut |_| {}).unwrap();
+    // The result's guides (its row 0 and column 0) on the truth's boundary, whose four
+    // sides are its first and last rows and columns.
+    let sides: Vec<Vec<DVec3>> = vec![
+        fine.row(0).collect(),
+        fine.row(fine.rows - 1).collect(),
+        fine.column(0).collect(),
+        fine.column(fine.cols - 1).collect(),
+    ];
+    let to_boundary = |p: DVec3| {
+        sides
+            .iter()
+            .map(|s| to_polyline(p, s))
+            .fold(f64::INFINITY, f64::min)
+            / size
+    };
+    let worst = r
+        .grid
+        .row(0)
+        .chain(r.grid.column(0))
+        .map(to_boundary)
+        .fold(0.0, f64::max);
+    // The whole surface near the truth too (θ is searched).
+    let (to_max, _) = max_rms(
+        r.grid
+            .vertices
+            .iter()
+            .map(|v| brute_to_mesh(*v, &fine) / size),
+    );
+    eprintln!("keep boundary: guides to the boundary {worst:.2e}, mesh → surface {to_max:.2e}");
+    // Measured 2026-11-25: 5.5e-4 and 6.0e-4 of the size.
+    assert!(worst <= 1e-3, "{worst:e}");
+    assert!(to_max <= 2e-3, "{to_max:e}");
+    assert!(measure(&r.grid).max_error() <= 1e-9);
 }
