@@ -45,6 +45,10 @@ pub struct ApproximateArgs {
     pub keep_boundary: bool,
 }
 
+/// Above this RMS distance (either way, relative to the target's size) the result is
+/// reported as a target one patch cannot follow.
+const ONE_PATCH_RMS: f64 = 5e-3;
+
 /// `UxV`, e.g. `40x40`.
 fn parse_grid(text: &str) -> Result<(usize, usize), String> {
     let (u, v) = text
@@ -135,5 +139,19 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         },
         args.output.display()
     ))?;
+    let rms = r.after.mesh_to_target_rms.max(r.after.target_to_mesh_rms);
+    if rms > ONE_PATCH_RMS {
+        print(&format!(
+            "one patch follows this target only to an RMS distance of {} of its size (more than \
+             {}): a single surface with planar curvature lines cannot follow it closer; split \
+             the target and approximate each part, or design several patches with `monge \
+             patches` (§4.7: piecewise planar curvature lines); `monge render {} --deviation {}` \
+             shows where it departs\n",
+            num(rms),
+            num(ONE_PATCH_RMS),
+            args.output.display(),
+            args.target.display()
+        ))?;
+    }
     Ok(Outcome::Success)
 }
