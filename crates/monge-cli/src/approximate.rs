@@ -6,10 +6,14 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use monge_core::approximate::{approximate, ApproxOptions, Deviation};
+use monge_core::approximate::{approximate, ApproxOptions, Approximation, Deviation, TargetCloud};
+use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
-use monge_core::MeshKind;
-use monge_io::{check_output, read_points, write_design};
+use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
+use monge_io::{check_output, read_points, write_atomic, write_design};
+use monge_render::{RenderOptions, Scene};
+
+use crate::render::{distance_panel, sheet, Picture};
 
 use crate::cli::KindArg;
 use crate::output::{num, print};
@@ -43,6 +47,11 @@ pub struct ApproximateArgs {
     /// corner (traced through its points and fitted), and only θ is searched.
     #[arg(long)]
     pub keep_boundary: bool,
+    /// Also draw the initial guess and the result side by side (`.png` or `.svg`), each
+    /// mesh coloured by its distance to the target on the same scale (white 0, dark red
+    /// from the initial guess's 95th percentile), as `monge render --deviation` does.
+    #[arg(long, value_name = "PICTURE")]
+    pub picture: Option<PathBuf>,
 }
 
 /// Above this RMS distance (either way, relative to the target's size) the result is
@@ -75,10 +84,49 @@ fn line(name: &str, d: &Deviation) -> String {
     )
 }
 
+/// The initial guess and the result side by side, coloured by their distance to the
+/// target on the initial guess's scale, written to `path`.
+fn write_picture(
+    r: &Approximation,
+    target: &TargetCloud,
+    path: &std::path::Path,
+    format: Picture,
+) -> anyhow::Result<()> {
+    let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
+        let g = generate(design, &GenerateOptions::default())?;
+        Ok(match design.mesh {
+            MeshKind::Circular => g.grid,
+            MeshKind::Conical => conical_dual(&g.grid).grid,
+        })
+    };
+    let (before, scale, _) = distance_panel(
+        Scene::new(mesh(&r.initial).context("the initial guess")?),
+        target,
+        "initial guess",
+        None,
+    );
+    let (after, _, _) = distance_panel(Scene::new(r.grid.clone()), target, "result", Some(scale));
+    let options = RenderOptions {
+        width: 1600,
+        height: 700,
+        ..RenderOptions::default()
+    };
+    let bytes = sheet(&[before, after], 2, &options, format)?;
+    write_atomic(path, |w| w.write_all(&bytes))?;
+    Ok(())
+}
+
 /// Runs `monge approximate`.
 pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     let file = args.target.display().to_string();
     check_output(&args.output, &[&args.target])?;
+    let picture = match &args.picture {
+        Some(path) => {
+            check_output(path, &[&args.target, &args.output])?;
+            Some((path, Picture::of(path)?))
+        }
+        None => None,
+    };
     if let Some(t) = args.time_limit {
         anyhow::ensure!(
             t.is_finite() && t > 0.0,
@@ -113,6 +161,10 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     .with_context(|| file.clone())?;
     bar.finish_and_clear();
     write_design(&r.design, &args.output)?;
+    if let Some((path, format)) = picture {
+        let target = TargetCloud::new(&points).with_context(|| file.clone())?;
+        write_picture(&r, &target, path, format)?;
+    }
     let m = measure(&r.grid);
     let exactness = match kind {
         MeshKind::Circular => m.max_error(),
@@ -139,6 +191,12 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         },
         args.output.display()
     ))?;
+    if let Some(path) = &args.picture {
+        print(&format!(
+            "wrote {} (the initial guess and the result, coloured by their distance to the target)\n",
+            path.display()
+        ))?;
+    }
     let rms = r.after.mesh_to_target_rms.max(r.after.target_to_mesh_rms);
     if rms > ONE_PATCH_RMS {
         print(&format!(

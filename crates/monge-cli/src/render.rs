@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use glam::DVec3;
-use monge_core::approximate::TargetCloud;
+use monge_core::approximate::{Deviation, TargetCloud};
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::developable::developable;
@@ -21,14 +21,14 @@ use crate::Outcome;
 
 /// The picture formats, by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Picture {
+pub enum Picture {
     Png,
     Svg,
 }
 
 impl Picture {
     /// The format of `out`'s extension.
-    fn of(out: &Path) -> anyhow::Result<Picture> {
+    pub fn of(out: &Path) -> anyhow::Result<Picture> {
         let ext = out
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -178,48 +178,69 @@ fn load(
 /// `scene` with its mesh coloured by the distance of each vertex to the target at
 /// `path` ([`TargetCloud::distances`]), captioned with the colour scale and the
 /// deviation both ways; and a few words on it.
-fn deviation_panel(mut scene: Scene, path: &Path) -> anyhow::Result<(Panel, String)> {
+fn deviation_panel(scene: Scene, path: &Path) -> anyhow::Result<(Panel, String)> {
     let points = read_points(path)?;
     let target =
         TargetCloud::new(&points).with_context(|| format!("target `{}`", path.display()))?;
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let (panel, scale, d) = distance_panel(scene, &target, &format!("distance to {name}"), None);
+    let what = format!(
+        "its distance to `{}` (95th percentile {}, largest {})",
+        path.display(),
+        num(scale),
+        num(d.mesh_to_target_max * d.size)
+    );
+    Ok((panel, what))
+}
+
+/// `scene` with its mesh coloured by each vertex's distance to `target`
+/// ([`TargetCloud::distances`]): white 0, dark red from `scale`, by default the 95th
+/// percentile (so that a few vertices beyond the target's last points do not wash out
+/// the rest; at least 1e-6 of the target's size, so that rounding on a mesh that is its
+/// own target stays white). The caption starts with `title`, then gives the scale and
+/// the deviation both ways. The panel, the scale, the deviation.
+pub fn distance_panel(
+    mut scene: Scene,
+    target: &TargetCloud,
+    title: &str,
+    scale: Option<f64>,
+) -> (Panel, f64, Deviation) {
     let distances = target.distances(&scene.mesh);
-    let mut sorted = distances.clone();
-    sorted.sort_by(f64::total_cmp);
-    // The 95th percentile, so that a few vertices beyond the target's last points do
-    // not wash out the rest; at least 1e-6 of the target's size, so that rounding on
-    // a mesh that is its own target stays white.
-    let p95 = sorted[(sorted.len() - 1) * 95 / 100].max(1e-6 * target.size());
-    scene.vertex_colors = Some(distances.iter().map(|d| heat(d / p95)).collect());
+    let how = if scale.is_none() {
+        " (95th percentile)"
+    } else {
+        ""
+    };
+    let scale = scale.unwrap_or_else(|| {
+        let mut sorted = distances.clone();
+        sorted.sort_by(f64::total_cmp);
+        sorted[(sorted.len() - 1) * 95 / 100].max(1e-6 * target.size())
+    });
+    scene.vertex_colors = Some(distances.iter().map(|d| heat(d / scale)).collect());
     let d = target.deviation(&scene.mesh);
     let size = target.size();
     // In the caption font's characters (capitals, digits, some punctuation).
     let caption = format!(
-        "distance to {}\nwhite 0, dark red from {} (95th percentile)\n\
+        "{title}\nwhite 0, dark red from {}{how}\n\
          mesh to target: max {}, RMS {}\ntarget to mesh: max {}, RMS {}",
-        path.file_name().unwrap_or_default().to_string_lossy(),
-        num(p95),
+        num(scale),
         num(d.mesh_to_target_max * size),
         num(d.mesh_to_target_rms * size),
         num(d.target_to_mesh_max * size),
         num(d.target_to_mesh_rms * size),
     );
-    let what = format!(
-        "its distance to `{}` (95th percentile {}, largest {})",
-        path.display(),
-        num(p95),
-        num(d.mesh_to_target_max * size)
-    );
-    Ok((
+    (
         Panel {
             scene: Some(scene),
             caption,
         },
-        what,
-    ))
+        scale,
+        d,
+    )
 }
 
 /// A contact sheet in `format`.
-fn sheet(
+pub fn sheet(
     panels: &[Panel],
     columns: usize,
     options: &RenderOptions,

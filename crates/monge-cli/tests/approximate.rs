@@ -33,6 +33,55 @@ fn approximate_writes_a_design_whose_mesh_is_exact() {
 }
 
 #[test]
+fn approximate_draws_the_initial_guess_and_the_result() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    let picture = dir.path().join("fit.svg");
+    monge()
+        .arg("approximate")
+        .arg(examples().join("targets/paraboloid.obj"))
+        .arg("-o")
+        .arg(&design)
+        .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+        .arg("--picture")
+        .arg(&picture)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "coloured by their distance to the target",
+        ));
+    let svg = fs::read_to_string(&picture).unwrap();
+    for caption in [
+        "initial guess",
+        "result",
+        "white 0, dark red from",
+        "target to mesh: max",
+    ] {
+        assert!(svg.contains(caption), "{caption}");
+    }
+    // Both panels on the initial guess's scale: the result's caption gives the same number.
+    let scales: Vec<&str> = svg
+        .split("dark red from ")
+        .skip(1)
+        .map(|s| s.split([' ', '<']).next().unwrap())
+        .collect();
+    assert_eq!(scales.len(), 2);
+    assert_eq!(scales[0], scales[1]);
+    // A picture of another format is refused before any work, and nothing is written.
+    let design = dir.path().join("other.json");
+    monge()
+        .arg("approximate")
+        .arg(examples().join("targets/paraboloid.obj"))
+        .arg("-o")
+        .arg(&design)
+        .args(["--picture", "fit.gif"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("`.png` or `.svg`"));
+    assert!(!design.exists());
+}
+
+#[test]
 fn approximate_refuses_a_sphere_cap_with_status_2_and_no_output() {
     let dir = TempDir::new().unwrap();
     let target = dir.path().join("cap.obj");

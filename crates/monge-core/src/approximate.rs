@@ -234,7 +234,9 @@ pub struct Approximation {
     pub design: Design,
     /// Its mesh (the conical dual for [`MeshKind::Conical`]).
     pub grid: QuadGrid,
-    /// Deviation of the initial guess (best θ of the scan) on the full grid.
+    /// The initial guess: the best start of the θ scan, before any optimisation.
+    pub initial: Design,
+    /// Deviation of the initial guess on the full grid.
     pub before: Deviation,
     /// Deviation of the result.
     pub after: Deviation,
@@ -1511,6 +1513,7 @@ pub fn approximate(
     Ok(Approximation {
         design,
         grid,
+        initial,
         before: before.unwrap_or(nan),
         after,
         initial_theta_deg,
