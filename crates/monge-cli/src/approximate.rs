@@ -6,11 +6,14 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use monge_core::approximate::{approximate, ApproxOptions, Approximation, Deviation, TargetCloud};
+use monge_core::approximate::{
+    approximate, approximate_patches, ApproxOptions, Approximation, Deviation, TargetCloud,
+};
 use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
+use monge_core::multipatch::{build, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
-use monge_io::{check_output, read_points, write_atomic, write_design};
+use monge_io::{check_output, read_points, write_atomic, write_design, write_multipatch};
 use monge_render::{RenderOptions, Scene};
 
 use crate::render::{distance_panel, sheet, Picture};
@@ -52,6 +55,11 @@ pub struct ApproximateArgs {
     /// from the initial guess's 95th percentile), as `monge render --deviation` does.
     #[arg(long, value_name = "PICTURE")]
     pub picture: Option<PathBuf>,
+    /// Then fit K patches with piecewise planar curvature lines (§4.7): guide_u cut into
+    /// K pieces, each patch with its own θ; DESIGN is then a multi-patch design (the
+    /// input of `monge patches`), written only if it follows the target more closely.
+    #[arg(long, value_name = "K")]
+    pub patches: Option<usize>,
 }
 
 /// Above this RMS distance (either way, relative to the target's size) the result is
@@ -88,6 +96,7 @@ fn line(name: &str, d: &Deviation) -> String {
 /// target on the initial guess's scale, written to `path`.
 fn write_picture(
     r: &Approximation,
+    result: &QuadGrid,
     target: &TargetCloud,
     path: &std::path::Path,
     format: Picture,
@@ -105,7 +114,7 @@ fn write_picture(
         "initial guess",
         None,
     );
-    let (after, _, _) = distance_panel(Scene::new(r.grid.clone()), target, "result", Some(scale));
+    let (after, _, _) = distance_panel(Scene::new(result.clone()), target, "result", Some(scale));
     let options = RenderOptions {
         width: 1600,
         height: 700,
@@ -114,6 +123,15 @@ fn write_picture(
     let bytes = sheet(&[before, after], 2, &options, format)?;
     write_atomic(path, |w| w.write_all(&bytes))?;
     Ok(())
+}
+
+/// The largest error of the patches of `design`, each measured on its own grid as by
+/// `monge check` (a multi-patch mesh's lines are planar only piecewise).
+fn patches_exactness(design: &MultiPatchDesign) -> anyhow::Result<f64> {
+    let mp = build(design, &GenerateOptions::default())?;
+    Ok((0..mp.patches.len())
+        .map(|k| measure(&mp.patch_grid(k)).max_error())
+        .fold(0.0, f64::max))
 }
 
 /// Runs `monge approximate`.
@@ -159,11 +177,39 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         bar.set_message(format!("best RMS {:.2e} of the size", p.best_rms));
     })
     .with_context(|| file.clone())?;
+    // The second step: several patches (§4.7), kept if they follow the target closer.
+    let patched = match args.patches {
+        Some(k) => {
+            let p = approximate_patches(&points, &r, k, &options, &mut |p| {
+                bar.set_position(p.evaluations as u64);
+                bar.set_message(format!(
+                    "{k} patches: best RMS {:.2e} of the size",
+                    p.best_rms
+                ));
+            })
+            .with_context(|| file.clone())?;
+            Some(p)
+        }
+        None => None,
+    };
     bar.finish_and_clear();
-    write_design(&r.design, &args.output)?;
+    let objective = |d: &Deviation| d.mesh_to_target_rms.powi(2) + d.beyond_mesh_rms.powi(2);
+    let better = patched
+        .as_ref()
+        .filter(|p| objective(&p.after) < objective(&r.after));
+    let (grid, after) = match better {
+        Some(p) => {
+            write_multipatch(&p.design, &args.output)?;
+            (&p.grid, p.after)
+        }
+        None => {
+            write_design(&r.design, &args.output)?;
+            (&r.grid, r.after)
+        }
+    };
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
-        write_picture(&r, &target, path, format)?;
+        write_picture(&r, grid, &target, path, format)?;
     }
     let m = measure(&r.grid);
     let exactness = match kind {
@@ -173,7 +219,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     print(&format!(
         "target: {} points, size {}; corner curvatures {} and {}\n{}{}\
          exactness of the result (generated, measured): {}\n\
-         θ {}°; {} starts, {} meshes generated{}\nwrote {}\n",
+         θ {}°; {} starts, {} meshes generated{}\n",
         points.len(),
         num(r.after.size),
         num(r.corner_curvatures.0),
@@ -189,24 +235,48 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         } else {
             ""
         },
-        args.output.display()
     ))?;
+    if let Some(p) = &patched {
+        let thetas: Vec<String> = p.design.patches.iter().map(|s| num(s.theta_deg)).collect();
+        print(&format!(
+            "{}exactness of the patches (generated, measured): {}\nθ of the patches: {}°; {} meshes generated; {}\n",
+            line(&format!("{} patches (§4.7)", p.design.patches.len()), &p.after),
+            num(patches_exactness(&p.design)?),
+            thetas.join("°, "),
+            p.evaluations,
+            if better.is_some() {
+                "they follow the target closer than one patch: DESIGN is a multi-patch design (`monge patches` reads it)"
+            } else {
+                "they do not follow the target closer than one patch: DESIGN is the single patch"
+            }
+        ))?;
+    }
+    print(&format!("wrote {}\n", args.output.display()))?;
     if let Some(path) = &args.picture {
         print(&format!(
             "wrote {} (the initial guess and the result, coloured by their distance to the target)\n",
             path.display()
         ))?;
     }
-    let rms = r.after.mesh_to_target_rms.max(r.after.target_to_mesh_rms);
+    let rms = after.mesh_to_target_rms.max(after.target_to_mesh_rms);
     if rms > ONE_PATCH_RMS {
         print(&format!(
-            "one patch follows this target only to an RMS distance of {} of its size (more than \
-             {}): a single surface with planar curvature lines cannot follow it closer; split \
-             the target and approximate each part, or design several patches with `monge \
-             patches` (§4.7: piecewise planar curvature lines); `monge render {} --deviation {}` \
-             shows where it departs\n",
+            "{} follows this target only to an RMS distance of {} of its size (more than {}): \
+             {}; `monge render {} --deviation {}` shows where it departs\n",
+            if better.is_some() {
+                "the multi-patch design"
+            } else {
+                "one patch"
+            },
             num(rms),
             num(ONE_PATCH_RMS),
+            if args.patches.is_none() {
+                "a single surface with planar curvature lines cannot follow it closer: fit \
+                 several patches with piecewise planar curvature lines (§4.7, e.g. --patches 3), \
+                 or split the target and approximate each part"
+            } else {
+                "try more patches, or split the target and approximate each part"
+            },
             args.output.display(),
             args.target.display()
         ))?;

@@ -121,3 +121,56 @@ fn approximate_refuses_a_malformed_grid_and_time_limit() {
         .code(2)
         .stderr(predicate::str::contains("positive number of seconds"));
 }
+
+#[test]
+fn approximate_patches_writes_a_multi_patch_design_when_it_follows_closer() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.patches.json");
+    let out = monge()
+        .arg("approximate")
+        .arg(examples().join("targets/paraboloid.obj"))
+        .arg("-o")
+        .arg(&design)
+        .args(["--grid", "8x8", "--starts", "1", "--max-evaluations", "80"])
+        .args(["--patches", "2"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("2 patches (§4.7): mesh → target max"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("exactness of the patches (generated, measured)"));
+    // Whichever was written, the command that reads it builds it.
+    let command = if stdout.contains("DESIGN is a multi-patch design") {
+        "patches"
+    } else {
+        assert!(stdout.contains("DESIGN is the single patch"), "{stdout}");
+        "generate"
+    };
+    monge()
+        .arg(command)
+        .arg(&design)
+        .arg("-o")
+        .arg(dir.path().join("fit.obj"))
+        .assert()
+        .success();
+    // One patch is not several.
+    let other = dir.path().join("other.json");
+    monge()
+        .arg("approximate")
+        .arg(examples().join("targets/paraboloid.obj"))
+        .arg("-o")
+        .arg(&other)
+        .args(["--grid", "8x8", "--starts", "1", "--max-evaluations", "40"])
+        .args(["--patches", "1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("at least 2"));
+    assert!(!other.exists());
+}

@@ -52,6 +52,9 @@ use crate::design::{Design, GuideSpec, MeshKind, Xyz};
 use crate::generate::{generate, GenerateOptions};
 use crate::grid::{bbox_diagonal, QuadGrid};
 
+mod patches;
+pub use patches::{approximate_patches, PatchApproximation};
+
 /// Fewest target points accepted: a quadric has 6 coefficients, and the corner's own
 /// fit uses a fraction of the points.
 pub const MIN_POINTS: usize = 30;
@@ -183,6 +186,34 @@ pub enum ApproxError {
          keep: sample the target's edges more densely, or approximate without --keep-boundary"
     )]
     NoBoundary,
+    /// Patches were asked of a conical approximation.
+    #[error(
+        "patches (§4.7) continue circular meshes: approximate with --kind circular to fit \
+         several patches"
+    )]
+    PatchesNotCircular,
+    /// Too many patches for the faces along guide_u.
+    #[error(
+        "{patches} patches along guide_u need at least 2 faces each, but the grid has \
+         {segments} faces along guide_u: ask for at most {} patches (and at least 2), or a \
+         finer --grid",
+        segments / 2
+    )]
+    TooManyPatches {
+        /// Patches asked for.
+        patches: usize,
+        /// Faces along guide_u.
+        segments: usize,
+    },
+    /// No θ of a patch gives a mesh without folds with the patches before it.
+    #[error(
+        "no θ of patch {patch} (scanned every degree) gives a mesh without folds with the \
+         patches before it: ask for fewer patches (--patches) or a coarser --grid"
+    )]
+    NoPatchStart {
+        /// The patch (0 when the patches found together fold).
+        patch: usize,
+    },
     /// No design of the search gives a fair mesh on the requested grid.
     #[error(
         "no design found gives a mesh without folds on the requested grid (θ scanned from −170° \
