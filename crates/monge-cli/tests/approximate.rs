@@ -174,3 +174,28 @@ fn approximate_patches_writes_a_multi_patch_design_when_it_follows_closer() {
         .stderr(predicate::str::contains("at least 2"));
     assert!(!other.exists());
 }
+
+#[test]
+fn approximate_reads_an_iges_surface_as_target() {
+    // The smooth surface of the shipped roof (a cyclidic net, one NURBS surface in IGES).
+    let dir = TempDir::new().unwrap();
+    let iges = dir.path().join("roof.igs");
+    monge()
+        .arg("smooth")
+        .arg(examples().join("targets/roof.design.json"))
+        .arg("-o")
+        .arg(&iges)
+        .assert()
+        .success();
+    let design = dir.path().join("fit.json");
+    monge()
+        .arg("approximate")
+        .arg(&iges)
+        .arg("-o")
+        .arg(&design)
+        .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("target: 4096 points"));
+    generate_and_check(&design, &dir.path().join("fit.obj"));
+}

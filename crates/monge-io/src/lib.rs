@@ -68,7 +68,7 @@ pub use multipatch::{
     write_quad_mesh, write_quad_mesh_to,
 };
 pub use net::{conical_has_no_net, write_net_json};
-pub use points_read::read_points;
+pub use points_read::{read_points, IGES_TARGET_POINTS};
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,
     write_schedule_json, write_segments_csv, ScheduleJson,

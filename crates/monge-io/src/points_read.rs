@@ -14,7 +14,10 @@ use crate::{path_name, read_to_string};
 
 /// Reads the points of a target: the vertices of an OBJ (`v` lines; faces, if any, are
 /// ignored), of an ASCII PLY (`x`, `y`, `z` of the `vertex` element), or of a JSON file
-/// with `vertices` (a monge mesh) or `points`, each `[x, y, z]`.
+/// with `vertices` (a monge mesh) or `points`, each `[x, y, z]`; or points sampled on
+/// the rational B-spline surfaces of an IGES file (`.igs`, `.iges`: every entity 128, on
+/// a grid of its parameter range, [`IGES_TARGET_POINTS`] points in all; trimming curves
+/// are ignored).
 ///
 /// ```
 /// let dir = tempfile::tempdir().unwrap();
@@ -25,8 +28,14 @@ use crate::{path_name, read_to_string};
 /// assert_eq!(points[1].z, 0.5);
 /// ```
 pub fn read_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
-    let format = MeshFormat::from_path(path)?;
     let file = path_name(path);
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if matches!(extension.as_deref(), Some("igs" | "iges")) {
+        return iges_points(&read_to_string(path)?, &file);
+    }
+    let format = MeshFormat::from_path(path)?;
     if format == MeshFormat::Glb {
         return Err(IoError::UnknownExtension {
             path: path.to_owned(),
@@ -50,6 +59,37 @@ pub fn read_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
         });
     }
     Ok(points)
+}
+
+/// About how many points [`read_points`] samples on the surfaces of an IGES target.
+pub const IGES_TARGET_POINTS: usize = 4000;
+
+/// Points on every rational B-spline surface of an IGES file, on a square grid of each
+/// one's parameter range (at least 5 × 5 a surface).
+fn iges_points(text: &str, file: &str) -> Result<Vec<DVec3>, IoError> {
+    let surfaces = crate::read_iges_surfaces(text).map_err(|e| match e {
+        IoError::Syntax { line, message, .. } => syntax(file, line, message),
+        e => e,
+    })?;
+    if surfaces.is_empty() {
+        return Err(syntax(
+            file,
+            1,
+            "no rational B-spline surface (IGES entity 128): a target needs surfaces, or give \
+             its mesh or points as OBJ, PLY or JSON"
+                .to_owned(),
+        ));
+    }
+    let side = ((IGES_TARGET_POINTS / surfaces.len()) as f64).sqrt().ceil() as usize;
+    let side = side.max(5);
+    let at =
+        |range: [f64; 2], k: usize| range[0] + (range[1] - range[0]) * k as f64 / (side - 1) as f64;
+    Ok(surfaces
+        .iter()
+        .flat_map(|s| {
+            (0..side * side).map(move |k| s.point(at(s.range_u, k / side), at(s.range_v, k % side)))
+        })
+        .collect())
 }
 
 fn syntax(file: &str, line: usize, message: String) -> IoError {

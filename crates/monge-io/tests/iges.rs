@@ -701,3 +701,35 @@ fn cyclidic_net_round_trips_through_iges() {
     }
     assert!(worst <= 1e-12, "largest difference {worst:e}");
 }
+
+// ---------------------------------------------------------------------------
+// IGES surfaces as targets of `monge approximate`
+
+#[test]
+fn a_targets_points_are_sampled_on_its_iges_surfaces() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("hypar.IGS");
+    std::fs::write(&path, file(&[entity(128, BILINEAR)])).unwrap();
+    let points = monge_io::read_points(&path).unwrap();
+    // One surface: a 64 × 64 grid (64² ≥ IGES_TARGET_POINTS = 4000).
+    assert_eq!(points.len(), 64 * 64);
+    assert!(points.len() >= monge_io::IGES_TARGET_POINTS);
+    // Every point on the surface z = xy/6 over [0, 2] × [0, 3], corners included.
+    for p in &points {
+        assert!((p.z - p.x * p.y / 6.0).abs() < 1e-14, "{p}");
+        assert!(
+            p.x > -1e-14 && p.x < 2.0 + 1e-14 && p.y > -1e-14 && p.y < 3.0 + 1e-14,
+            "{p}"
+        );
+    }
+    assert!(points[0].length() < 1e-14);
+    assert!(points[points.len() - 1].distance(DVec3::new(2.0, 3.0, 1.0)) < 1e-14);
+    // A file without surfaces says so, with the file's name.
+    let empty = dir.path().join("empty.iges");
+    std::fs::write(&empty, file(&[])).unwrap();
+    let e = monge_io::read_points(&empty).unwrap_err().to_string();
+    assert!(
+        e.contains("empty.iges") && e.contains("no rational B-spline surface"),
+        "{e}"
+    );
+}
