@@ -1257,6 +1257,21 @@ fn bounds(x0: &[f64], size: f64) -> (Vec<f64>, Vec<f64>) {
 }
 
 impl Search<'_> {
+    /// A search with the same target, settings and deadline, and its own counts.
+    fn fork(&self) -> Self {
+        Search {
+            target: self.target,
+            kind: self.kind,
+            stride: self.stride,
+            evaluations: 0,
+            budget: self.budget,
+            total: self.total,
+            best: f64::INFINITY,
+            deadline: self.deadline,
+            timed_out: false,
+        }
+    }
+
     /// Objective at `x` (real units) from `start` on a grid of `faces`, or NaN when
     /// infeasible (or past the deadline).
     fn objective(&mut self, start: &Start, x: &[f64], faces: (usize, usize)) -> f64 {
@@ -1488,21 +1503,39 @@ pub fn approximate(
     } else {
         ApproxError::NoStart
     })?;
-    let mut results: Vec<(f64, usize, Vec<f64>)> = Vec::new();
-    let mut starts = 0;
-    for (g, theta) in &chosen {
+    // The starts on the coarse grid, each its own search, in parallel (the results, in
+    // the starts' order, do not depend on the threads).
+    let run_start = |(g, theta): &(usize, f64)| {
+        let mut local = search.fork();
         let x = start_parameters(&guesses[*g], *theta);
         let (f, x) = if options.keep_boundary {
-            search.run_theta(&guesses[*g], &x, coarse, 10.0, progress)
+            local.run_theta(&guesses[*g], &x, coarse, 10.0, &mut |_| {})
         } else {
-            search.run(&guesses[*g], &x, coarse, 0.05, progress)
+            local.run(&guesses[*g], &x, coarse, 0.05, &mut |_| {})
         };
-        results.push((f, *g, x));
-        if search.timed_out {
-            break;
-        }
-        starts += 1;
+        ((f, *g, x), local)
+    };
+    #[cfg(feature = "parallel")]
+    let runs: Vec<_> = {
+        use rayon::prelude::*;
+        chosen.par_iter().map(run_start).collect()
+    };
+    #[cfg(not(feature = "parallel"))]
+    let runs: Vec<_> = chosen.iter().map(run_start).collect();
+    let mut results: Vec<(f64, usize, Vec<f64>)> = Vec::with_capacity(runs.len());
+    let mut starts = 0;
+    for (result, local) in runs {
+        search.evaluations += local.evaluations;
+        search.best = search.best.min(local.best);
+        search.timed_out |= local.timed_out;
+        starts += usize::from(!local.timed_out);
+        results.push(result);
     }
+    progress(&Progress {
+        evaluations: search.evaluations,
+        budget: search.total,
+        best_rms: search.best.sqrt(),
+    });
     results.sort_by(|a, b| a.0.total_cmp(&b.0));
     // A design fair on the coarse grid may fold on the full one: then the starts themselves.
     results.extend(

@@ -78,3 +78,32 @@ fn the_first_degenerate_face_does_not_depend_on_the_threads() {
     assert_eq!(answers[0].0, (0, 17));
     assert!(answers.iter().all(|a| *a == answers[0]), "{answers:?}");
 }
+
+/// `approximate` runs its starts in parallel: the design found is the same to the bit.
+#[test]
+fn approximate_finds_the_same_design_on_one_and_three_threads() {
+    use monge_core::approximate::{approximate, ApproxOptions};
+    let target: Vec<glam::DVec3> = (0..21 * 21)
+        .map(|k| {
+            let (x, y) = ((k % 21) as f64 * 0.5, (k / 21) as f64 * 0.5);
+            glam::DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+        })
+        .collect();
+    let options = ApproxOptions {
+        faces: (8, 8),
+        starts: 3,
+        max_evaluations: 150,
+        ..Default::default()
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| approximate(&target, &options, &mut |_| {}).unwrap())
+    };
+    let (one, three) = (run(1), run(3));
+    assert_eq!(one.design, three.design);
+    assert_eq!(one.evaluations, three.evaluations);
+    assert_eq!(one.starts, 3);
+}
