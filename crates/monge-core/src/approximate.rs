@@ -574,7 +574,12 @@ fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 /// variance first (the last is the normal of the best-fit plane).
 fn principal_axes(points: &[DVec3]) -> (DVec3, DVec3, DVec3) {
     let n = points.len().max(1) as f64;
-    let c = points.iter().copied().sum::<DVec3>() / n;
+    principal_axes_about(points, points.iter().copied().sum::<DVec3>() / n)
+}
+
+/// The unit eigenvectors of the second moments of `points` about `c`, largest first
+/// (the last is the normal of the plane through `c` nearest to the points).
+fn principal_axes_about(points: &[DVec3], c: DVec3) -> (DVec3, DVec3, DVec3) {
     let mut m = Matrix3::zeros();
     for p in points {
         let d = *p - c;
@@ -832,18 +837,10 @@ fn boundary_start(
         return None;
     }
     // Each curve's plane through the corner.
-    let plane_normal = |path: &[DVec3]| {
-        let mut m = Matrix3::zeros();
-        for p in path {
-            let d = *p - corner;
-            let v = nalgebra::Vector3::new(d.x, d.y, d.z);
-            m += v * v.transpose();
-        }
-        let eig = SymmetricEigen::new(m);
-        let v = eig.eigenvectors.column(eig.eigenvalues.imin());
-        DVec3::new(v[0], v[1], v[2])
-    };
-    let (m_u, m_v) = (plane_normal(&path_u), plane_normal(&path_v));
+    let (m_u, m_v) = (
+        principal_axes_about(&path_u, corner).2,
+        principal_axes_about(&path_v, corner).2,
+    );
     // Each curve's own start tangent: a guide fitted in its plane, tangent free.
     let tangent = |m: DVec3, path: &[DVec3]| -> Option<DVec3> {
         let chord = path[path.len() - 1] - corner;

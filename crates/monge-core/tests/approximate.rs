@@ -100,6 +100,24 @@ fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
     )
 }
 
+/// The roof at 30 × 30 faces, its size, and its vertices noised by 1e-4 of it.
+fn noised_roof() -> (QuadGrid, f64, Vec<DVec3>) {
+    let fine = generate(&roof(31), &GenerateOptions::default())
+        .unwrap()
+        .grid;
+    let size = fine.bbox_diagonal();
+    let target = fine
+        .vertices
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let k = 3 * k as u64;
+            *v + 1e-4 * size * DVec3::new(noise(k), noise(k + 1), noise(k + 2))
+        })
+        .collect();
+    (fine, size, target)
+}
+
 /// Small, quick options for the test suite (debug builds).
 fn quick(faces: usize) -> ApproxOptions {
     ApproxOptions {
@@ -112,19 +130,7 @@ fn quick(faces: usize) -> ApproxOptions {
 
 #[test]
 fn a_noised_surface_with_planar_curvature_lines_is_recovered() {
-    let fine = generate(&roof(31), &GenerateOptions::default())
-        .unwrap()
-        .grid;
-    let size = fine.bbox_diagonal();
-    let target: Vec<DVec3> = fine
-        .vertices
-        .iter()
-        .enumerate()
-        .map(|(k, v)| {
-            let k = 3 * k as u64;
-            *v + 1e-4 * size * DVec3::new(noise(k), noise(k + 1), noise(k + 2))
-        })
-        .collect();
+    let (_, size, target) = noised_roof();
     let r = approximate(&target, &quick(10), &mut |_| {}).unwrap();
     // Independent: both ways against the exact surface the target was sampled from, as
     // meshes of 40 × 40 faces (the result's design regenerated finer, so that the
@@ -355,19 +361,7 @@ fn to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
 
 #[test]
 fn keep_boundary_keeps_the_targets_boundary_curves_as_guides() {
-    let fine = generate(&roof(31), &GenerateOptions::default())
-        .unwrap()
-        .grid;
-    let size = fine.bbox_diagonal();
-    let target: Vec<DVec3> = fine
-        .vertices
-        .iter()
-        .enumerate()
-        .map(|(k, v)| {
-            let k = 3 * k as u64;
-            *v + 1e-4 * size * DVec3::new(noise(k), noise(k + 1), noise(k + 2))
-        })
-        .collect();
+    let (fine, size, target) = noised_roof();
     let options = ApproxOptions {
         keep_boundary: true,
         ..quick(10)
