@@ -9,16 +9,25 @@ use tempfile::TempDir;
 
 use common::{examples, generate_and_check, monge};
 
+/// `monge approximate` of the shipped paraboloid into `design`, quick: a grid of `n` × `n`
+/// faces, one start, `evaluations` meshes per search.
+fn paraboloid(design: &std::path::Path, n: usize, evaluations: usize) -> assert_cmd::Command {
+    let mut command = monge();
+    command
+        .arg("approximate")
+        .arg(examples().join("targets/paraboloid.obj"))
+        .arg("-o")
+        .arg(design)
+        .args(["--grid", &format!("{n}x{n}"), "--starts", "1"])
+        .args(["--max-evaluations", &evaluations.to_string()]);
+    command
+}
+
 #[test]
 fn approximate_writes_a_design_whose_mesh_is_exact() {
     let dir = TempDir::new().unwrap();
     let design = dir.path().join("fit.json");
-    monge()
-        .arg("approximate")
-        .arg(examples().join("targets/paraboloid.obj"))
-        .args(["-o"])
-        .arg(&design)
-        .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+    paraboloid(&design, 6, 60)
         .assert()
         .success()
         .stdout(predicate::str::contains("result: mesh → target max"))
@@ -37,12 +46,7 @@ fn approximate_draws_the_initial_guess_and_the_result() {
     let dir = TempDir::new().unwrap();
     let design = dir.path().join("fit.json");
     let picture = dir.path().join("fit.svg");
-    monge()
-        .arg("approximate")
-        .arg(examples().join("targets/paraboloid.obj"))
-        .arg("-o")
-        .arg(&design)
-        .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+    paraboloid(&design, 6, 60)
         .arg("--picture")
         .arg(&picture)
         .assert()
@@ -126,12 +130,7 @@ fn approximate_refuses_a_malformed_grid_and_time_limit() {
 fn approximate_patches_writes_a_multi_patch_design_when_it_follows_closer() {
     let dir = TempDir::new().unwrap();
     let design = dir.path().join("fit.patches.json");
-    let out = monge()
-        .arg("approximate")
-        .arg(examples().join("targets/paraboloid.obj"))
-        .arg("-o")
-        .arg(&design)
-        .args(["--grid", "8x8", "--starts", "1", "--max-evaluations", "80"])
+    let out = paraboloid(&design, 8, 80)
         .args(["--patches", "2"])
         .output()
         .unwrap();
@@ -162,12 +161,7 @@ fn approximate_patches_writes_a_multi_patch_design_when_it_follows_closer() {
         .success();
     // One patch is not several.
     let other = dir.path().join("other.json");
-    monge()
-        .arg("approximate")
-        .arg(examples().join("targets/paraboloid.obj"))
-        .arg("-o")
-        .arg(&other)
-        .args(["--grid", "8x8", "--starts", "1", "--max-evaluations", "40"])
+    paraboloid(&other, 8, 40)
         .args(["--patches", "1"])
         .assert()
         .code(2)
