@@ -30,5 +30,6 @@ fn _monge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::scan, m)?)?;
     m.add_function(wrap_pyfunction!(tools::fit, m)?)?;
     m.add_function(wrap_pyfunction!(tools::optimise_panels, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::approximate, m)?)?;
     Ok(())
 }

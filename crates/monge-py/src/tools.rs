@@ -1,10 +1,11 @@
 //! The other commands of `monge` as functions: `info`, `check`, `smooth`,
-//! `fabricate`, `scan`, `fit`, `optimise_panels`. Each calls monge-core as the
+//! `fabricate`, `scan`, `fit`, `optimise_panels`, `approximate`. Each calls monge-core as the
 //! command does and returns plain Python data (dicts, lists, numpy arrays).
 
 use std::path::PathBuf;
 
 use glam::DVec3;
+use monge_core::approximate::{approximate as core_approximate, ApproxOptions, Deviation};
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
@@ -16,7 +17,9 @@ use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
 use monge_io::{
     parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat, ScheduleJson,
 };
-use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
+use numpy::{
+    PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 use pythonize::pythonize;
@@ -461,5 +464,88 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
     d.set_item("values", values)?;
     d.set_item("evaluations", r.evaluations)?;
     d.set_item("status", r.status)?;
+    Ok(d)
+}
+
+/// A deviation as a dict: largest and RMS distances both ways, relative to `size`.
+fn deviation_dict<'py>(py: Python<'py>, d: &Deviation) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item("mesh_to_target_max", d.mesh_to_target_max)?;
+    out.set_item("mesh_to_target_rms", d.mesh_to_target_rms)?;
+    out.set_item("target_to_mesh_max", d.target_to_mesh_max)?;
+    out.set_item("target_to_mesh_rms", d.target_to_mesh_rms)?;
+    out.set_item("beyond_mesh_rms", d.beyond_mesh_rms)?;
+    out.set_item("size", d.size)?;
+    Ok(out)
+}
+
+/// The design whose exact mesh is nearest to a target, as `monge approximate`
+/// (monge's extension of the method): `points` is the target, any array of
+/// shape (..., 3) (a mesh's vertices or a point cloud). Returns the `design`
+/// found (a `Design`), the `initial` guess (a `Design`), its mesh's `vertices`
+/// and `normals` (rows, cols, 3), the deviation `before` and `after` (dicts of
+/// distances relative to the target's `size`), `theta_deg`, `evaluations`,
+/// `starts` and `timed_out`.
+#[pyfunction]
+#[pyo3(signature = (points, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn approximate<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    grid: (usize, usize),
+    kind: &str,
+    starts: usize,
+    max_evaluations: usize,
+    time_limit: Option<f64>,
+    keep_boundary: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let numpy = py.import("numpy")?;
+    let array = numpy
+        .call_method1("asarray", (points, "float64"))?
+        .call_method1("reshape", (-1, 3))
+        .map_err(|_| OptimiseError::new_err("points must be an array of shape (..., 3)"))?;
+    let array: PyReadonlyArray2<f64> = array.extract()?;
+    let a = array.as_array();
+    let target: Vec<DVec3> = a
+        .rows()
+        .into_iter()
+        .map(|r| DVec3::new(r[0], r[1], r[2]))
+        .collect();
+    if let Some(t) = time_limit.filter(|t| !(t.is_finite() && *t > 0.0)) {
+        return Err(OptimiseError::new_err(format!(
+            "time_limit {t}: give a positive number of seconds"
+        )));
+    }
+    let options = ApproxOptions {
+        faces: grid,
+        kind: parse_kind(Some(kind), MeshKind::Circular)?,
+        starts,
+        max_evaluations,
+        deadline: time_limit
+            .map(|t| std::time::Instant::now() + std::time::Duration::from_secs_f64(t)),
+        keep_boundary,
+    };
+    let r = py
+        .detach(|| core_approximate(&target, &options, &mut |_| {}))
+        .map_err(|e| OptimiseError::new_err(e.to_string()))?;
+    let d = PyDict::new(py);
+    let design = |inner| Design {
+        inner,
+        source: None,
+    };
+    d.set_item("theta_deg", r.design.theta_deg)?;
+    d.set_item("design", Bound::new(py, design(r.design))?)?;
+    d.set_item("initial", Bound::new(py, design(r.initial))?)?;
+    let g = &r.grid;
+    d.set_item(
+        "vertices",
+        points_array(py, &g.vertices, &[g.rows, g.cols])?,
+    )?;
+    d.set_item("normals", points_array(py, &g.normals, &[g.rows, g.cols])?)?;
+    d.set_item("before", deviation_dict(py, &r.before)?)?;
+    d.set_item("after", deviation_dict(py, &r.after)?)?;
+    d.set_item("evaluations", r.evaluations)?;
+    d.set_item("starts", r.starts)?;
+    d.set_item("timed_out", r.timed_out)?;
     Ok(d)
 }

@@ -216,3 +216,36 @@ def test_design_round_trips(tmp_path):
     design.theta_deg = 12.5
     assert design.to_dict()["theta_deg"] == 12.5 and monge.generate(design).theta_deg == 12.5
     assert "Design(theta_deg=12.5" in repr(design)
+
+
+def test_approximate_equals_the_command_and_its_mesh_is_exact(cli, tmp_path):
+    """monge.approximate finds the command's design from the same points (a
+    numpy array), and the mesh it returns is exact, measured with numpy."""
+    target = example("targets/paraboloid.obj")
+    out = tmp_path / "fit.json"
+    cli("approximate", target, "-o", out, "--grid", "6x6", "--starts", "1", "--max-evaluations", "60")
+    points = np.array(
+        [[float(x) for x in line.split()[1:4]] for line in open(target) if line.startswith("v ")]
+    )
+    r = monge.approximate(points, grid=(6, 6), starts=1, max_evaluations=60)
+    assert r["design"] == monge.Design.from_file(out)
+    assert r["theta_deg"] == r["design"].theta_deg
+    assert r["vertices"].shape == (7, 7, 3)
+    v = r["vertices"]
+    assert mnp.face_planarity(v) < 1e-9
+    assert mnp.circularity(v) < 1e-9
+    assert mnp.line_planarity(v) < 1e-9
+    # Its deviation from the target, both ways, never worse than the initial guess's
+    # in the search's objective; measured here by numpy: every target point's
+    # distance to the nearest mesh vertex bounds the distance to the mesh from above.
+    after, before = r["after"], r["before"]
+    assert after["size"] == pytest.approx(np.linalg.norm(points.max(0) - points.min(0)))
+    objective = lambda d: d["mesh_to_target_rms"] ** 2 + d["beyond_mesh_rms"] ** 2
+    assert objective(after) <= objective(before)
+    nearest = np.linalg.norm(points[:, None, :] - v.reshape(-1, 3)[None], axis=2).min(axis=1)
+    assert after["target_to_mesh_max"] * after["size"] <= nearest.max() + 1e-12
+    # Bad input: a message, not a crash.
+    with pytest.raises(monge.OptimiseError, match="too few"):
+        monge.approximate(points[:5])
+    with pytest.raises(monge.OptimiseError, match="positive number of seconds"):
+        monge.approximate(points, time_limit=0.0)

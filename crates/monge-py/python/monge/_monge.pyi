@@ -1,7 +1,7 @@
 """Type stubs of the native module monge._monge (re-exported by ``monge``)."""
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Sequence, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -133,5 +133,16 @@ def optimise_panels(
 
 def fit(design: Union[PathLike, Dict[str, Any]]) -> Dict[str, Any]:
     """Fit θ of a multi-patch design (§4.7), as ``monge fit``."""
+
+def approximate(
+    points: Any,
+    grid: Tuple[int, int] = (40, 40),
+    kind: str = "circular",
+    starts: int = 4,
+    max_evaluations: int = 1500,
+    time_limit: Optional[float] = None,
+    keep_boundary: bool = False,
+) -> Dict[str, Any]:
+    """The design nearest to a target's points, as ``monge approximate``."""
 
 __all__: List[str]
