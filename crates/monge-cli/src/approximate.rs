@@ -173,6 +173,9 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         ProgressStyle::with_template("{spinner} {pos} meshes generated, {elapsed} elapsed: {msg}")
             .expect("a valid progress template"),
     );
+    // The spinner and the elapsed time keep moving while the starts run in parallel
+    // (their counts arrive when they end).
+    bar.enable_steady_tick(Duration::from_millis(200));
     let r = approximate(&points, &options, &mut |p| {
         bar.set_position(p.evaluations as u64);
         bar.set_message(format!("best RMS {:.2e} of the size", p.best_rms));
