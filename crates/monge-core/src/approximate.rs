@@ -1540,7 +1540,9 @@ pub fn approximate(
             .iter()
             .map(|(g, theta)| (f64::NAN, *g, start_parameters(&guesses[*g], *theta))),
     );
-    // Refine on the full grid, from the best result whose mesh is fair there.
+    // Refine on the full grid, from the best result whose mesh is fair there; past the
+    // deadline, that result as it is.
+    let samples = samples_for(options.faces, options.kind);
     let (start, fine) = results
         .iter()
         .find_map(|(_, g, x)| {
@@ -1549,10 +1551,17 @@ pub fn approximate(
             } else {
                 search.run(&guesses[*g], x, (fu, fv), 0.005, progress)
             };
-            f.is_finite().then_some((&guesses[*g], fine))
+            if f.is_finite() {
+                return Some((&guesses[*g], fine));
+            }
+            let fair = || fair_mesh(&design_of(&guesses[*g], x, samples, options.kind)).is_some();
+            (search.timed_out && fair()).then(|| (&guesses[*g], x.clone()))
         })
-        .ok_or(ApproxError::NoStart)?;
-    let samples = samples_for(options.faces, options.kind);
+        .ok_or(if search.timed_out {
+            ApproxError::TimeLimit
+        } else {
+            ApproxError::NoStart
+        })?;
     let initial = design_of(
         &guesses[first],
         &start_parameters(&guesses[first], initial_theta_deg),

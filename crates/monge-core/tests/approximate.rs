@@ -461,3 +461,28 @@ fn patches_follow_a_target_at_least_as_closely_and_stay_exact() {
         ApproxError::PatchesNotCircular
     );
 }
+
+#[test]
+fn a_time_limit_keeps_the_best_design_found_so_far() {
+    let (_, _, target) = noised_roof();
+    // However fast the machine, one of these ends during the search, after the scan.
+    let mut stopped = 0;
+    for seconds in [0.5, 1.0, 2.0] {
+        let options = ApproxOptions {
+            deadline: Some(Instant::now() + std::time::Duration::from_secs_f64(seconds)),
+            ..quick(10)
+        };
+        match approximate(&target, &options, &mut |_| {}) {
+            Ok(r) => {
+                stopped += usize::from(r.timed_out);
+                assert!(measure(&r.grid).max_error() <= 1e-9);
+                assert!(r.after.mesh_to_target_rms.is_finite(), "{:?}", r.after);
+            }
+            Err(e) => assert_eq!(e, ApproxError::TimeLimit),
+        }
+    }
+    assert!(
+        stopped >= 1,
+        "no run was stopped by its time limit with a design"
+    );
+}
