@@ -216,10 +216,11 @@ pub enum ApproxError {
     },
     /// No design of the search gives a fair mesh on the requested grid.
     #[error(
-        "no design found gives a mesh without folds on the requested grid (θ scanned from −170° \
-         to 170° every 10° from guides fitted at each corner of the target): the target is too \
-         far from a surface with planar curvature lines for one patch; try a coarser --grid or \
-         a smaller part of the target"
+        "no design found can be generated without folds on the requested grid (θ scanned from \
+         −170° to 170° every 10° from guides fitted at each corner of the target; a guide fitted \
+         to a straight edge, for one, cannot be generated: guides must be curved): the target is \
+         too far from what one patch can make; try a coarser --grid, a smaller part of the \
+         target, or (with --keep-boundary) guides free to move"
     )]
     NoStart,
 }

@@ -346,6 +346,14 @@ fn every_error_is_triggered() {
         ..quick(8)
     };
     assert_eq!(run(&target, &keep), ApproxError::NoBoundary);
+    // A half cylinder's straight edges as guides: no design can be generated.
+    let cylinder: Vec<DVec3> = (0..31 * 31)
+        .map(|k| {
+            let (a, y) = (0.3 + 2.5 * (k % 31) as f64 / 30.0, (k / 31) as f64 / 3.0);
+            DVec3::new(5.0 * a.cos(), y, 5.0 * a.sin())
+        })
+        .collect();
+    assert_eq!(run(&cylinder, &keep), ApproxError::NoStart);
 }
 
 /// Distance from `p` to the polyline `line`.
