@@ -72,7 +72,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
 
 /// The commands of `monge bench --all`: a name, and the arguments after `monge`
 /// with `{design}`, `{dir}` standing for the design file and the temporary directory.
-const COMMANDS: [(&str, &[&str]); 8] = [
+const COMMANDS: [(&str, &[&str]); 9] = [
     (
         "generate .json",
         &["generate", "{design}", "-o", "{dir}/mesh.json"],
@@ -84,6 +84,17 @@ const COMMANDS: [(&str, &[&str]); 8] = [
     (
         "generate .ply",
         &["generate", "{design}", "-o", "{dir}/mesh.ply"],
+    ),
+    (
+        "generate .ply binary",
+        &[
+            "generate",
+            "{design}",
+            "-o",
+            "{dir}/mesh-binary.ply",
+            "--format",
+            "ply-binary",
+        ],
     ),
     (
         "generate .glb",

@@ -606,7 +606,7 @@ pub struct BenchArgs {
         value_parser = clap::value_parser!(u32).range(1..)
     )]
     pub sizes: Option<Vec<u32>>,
-    /// Time every command instead (generate to .json/.obj/.ply/.glb, check, fabricate,
+    /// Time every command instead (generate to .json/.obj/.ply (ASCII and binary)/.glb, check, fabricate,
     /// smooth to .json and .igs), each run once as a child process of this binary in a
     /// temporary directory: one JSON line per command and size with wall time, bytes
     /// written, time per million faces, peak RSS, and the ratio to the raw-write time of

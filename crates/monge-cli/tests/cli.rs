@@ -658,9 +658,10 @@ fn bench_all_prints_one_json_line_per_command_and_size() {
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
-    assert_eq!(lines.len(), 2 * 8, "{text}");
+    assert_eq!(lines.len(), 2 * 9, "{text}");
+    assert!(text.contains("\"command\":\"generate .ply binary\""), "{text}");
     for (k, v) in lines.iter().enumerate() {
-        let n: u32 = if k < 8 { 4 } else { 6 };
+        let n: u32 = if k < 9 { 4 } else { 6 };
         assert_eq!(v["faces"], format!("{n}x{n}"));
         let n = f64::from(n);
         let wall = v["wall_ms"].as_f64().unwrap();

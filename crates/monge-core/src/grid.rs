@@ -183,14 +183,17 @@ impl QuadGrid {
     /// let down = QuadGrid::new(2, 2, v, vec![-DVec3::Z; 4]);
     /// assert_eq!(down.oriented_faces().collect::<Vec<_>>(), [[0, 1, 3, 2]]);
     /// ```
-    pub fn oriented_faces(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+    ///
+    /// The orientation is decided once, when this is called: the iterator can
+    /// be cloned to go through the faces again at no cost.
+    pub fn oriented_faces(&self) -> impl Iterator<Item = [usize; 4]> + Clone + '_ {
         let reversed = self.faces_reversed();
         self.face_indices()
             .map(move |[a, b, c, d]| if reversed { [a, d, c, b] } else { [a, b, c, d] })
     }
 
     /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of every face, row by row.
-    fn face_indices(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+    fn face_indices(&self) -> impl Iterator<Item = [usize; 4]> + Clone + '_ {
         let c = self.cols;
         (0..self.rows.saturating_sub(1)).flat_map(move |i| {
             (0..c.saturating_sub(1)).map(move |j| {

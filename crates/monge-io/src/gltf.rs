@@ -318,7 +318,9 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
 
 /// The faces of a quad grid, two triangles each, wound about its node axes.
 fn grid_part(name: String, material: u32, g: &QuadGrid) -> Part<'_> {
-    quads_part(name, material, &g.vertices, move || g.oriented_faces())
+    // Oriented once (the orientation is a pass over every face), gone through twice.
+    let faces = g.oriented_faces();
+    quads_part(name, material, &g.vertices, move || faces.clone())
 }
 
 /// A part of `vertices` and the quads that `quads` yields, two triangles a quad.
