@@ -659,7 +659,10 @@ fn bench_all_prints_one_json_line_per_command_and_size() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(lines.len(), 2 * 9, "{text}");
-    assert!(text.contains("\"command\":\"generate .ply binary\""), "{text}");
+    assert!(
+        text.contains("\"command\":\"generate .ply binary\""),
+        "{text}"
+    );
     for (k, v) in lines.iter().enumerate() {
         let n: u32 = if k < 9 { 4 } else { 6 };
         assert_eq!(v["faces"], format!("{n}x{n}"));

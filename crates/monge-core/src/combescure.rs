@@ -2,12 +2,13 @@
 //! to those of the Gauss map, fitted to the two guide polylines.
 
 use std::mem::MaybeUninit;
+use std::ops::Range;
 
 use glam::DVec3;
 
-use crate::gauss_map::{GaussRows, RowLanes};
+use crate::coords::{Coords, View};
+use crate::gauss_map::GaussRows;
 use crate::grid::{quad_sides, Folds, Turn};
-use crate::lanes::{F, LANES, V};
 
 /// A face whose last vertex is undefined (§5.2): the Gauss edge along which it
 /// is reached is (nearly) parallel to the other Gauss edge at that vertex, or to
@@ -17,10 +18,10 @@ pub struct ParallelLines {
     /// The face `(i, j)`; its vertex `(i+1, j+1)` is undefined.
     pub face: (usize, usize),
     /// Sine of the angle between the two Gauss edges at the vertex or, where
-    /// smaller, between the Gauss edge `(i+1, j) → (i+1, j+1)` and the plane of
-    /// column `j + 1` (the first is the same for any construction of the mesh,
+    /// smaller, between the Gauss edge `(i, j+1) → (i+1, j+1)` and the plane of
+    /// row `i + 1` (the first is the same for any construction of the mesh,
     /// the second is at most the first: their ratio is the sine of the angle
-    /// between the Gauss face's plane and the column's).
+    /// between the Gauss face's plane and the row's).
     pub sine: f64,
     /// Whether one of the two Gauss edges has (nearly) zero length: the surface
     /// has zero curvature along a curvature line there (a parabolic line such as
@@ -70,14 +71,15 @@ pub struct Transform {
 /// `guide_u[i]` becomes vertex `(i, 0)` and `guide_v[j]` vertex `(0, j)`. Every
 /// mesh edge is parallel to the corresponding Gauss edge, so each mesh line lies
 /// in a plane parallel to its Gauss line's pencil plane (Joachimsthal; cf. the
-/// proof of Proposition 4): column `j` in the plane through `guide_v[j]` with
-/// the normal [`GaussRows::column_normal`]`(j)`. So vertex `(i, j+1)` is where
-/// the line through `(i, j)` parallel to the Gauss edge `(i, j) → (i, j+1)`
-/// meets the plane of column `j + 1`: the rows are independent chains, computed
-/// four rows at a time in SIMD lanes and, with the `parallel`
-/// feature, in parallel (rayon), each written once, in place. Every row is
-/// computed by the same operations whatever rows share its lanes and whatever
-/// the number of threads, so the result is the same to the bit.
+/// proof of Proposition 4): row `i` in the plane through `guide_u[i]` with
+/// the normal [`GaussRows::row_normal`]`(i)`. So vertex `(i+1, j)` is where
+/// the line through `(i, j)` parallel to the Gauss edge `(i, j) → (i+1, j)`
+/// meets the plane of row `i + 1`: the columns are independent chains. Row
+/// after row, the columns of a row are computed in SIMD lanes and, with the
+/// `parallel` feature, blocks of columns in parallel (rayon), each vertex
+/// written once, in place. Every column is computed by the same operations
+/// whatever columns share its lanes and whatever the number of threads, so the
+/// result is the same to the bit.
 ///
 /// The computation is relative to the start point `guide_u[0]` (added back on
 /// output; the guide samples are copied bit for bit), so that round-off stays
@@ -109,63 +111,77 @@ pub fn combescure(
     guide_u: &[DVec3],
     guide_v: &[DVec3],
 ) -> Result<Transform, ParallelLines> {
-    combescure_in_chunks(gauss, guide_u, guide_v, chunk_rows(guide_u.len()))
+    let width = block_columns(guide_v.len());
+    combescure_in_blocks(gauss, guide_u, guide_v, width, Kernel::best())
 }
 
-/// [`combescure`] in tasks of `chunk` rows (a multiple of [`LANES`]).
-fn combescure_in_chunks(
+/// [`combescure`] in tasks of `width` columns each (the last one narrower),
+/// computed by `kernel`.
+fn combescure_in_blocks(
     gauss: &GaussRows,
     guide_u: &[DVec3],
     guide_v: &[DVec3],
-    chunk: usize,
+    width: usize,
+    kernel: Kernel,
 ) -> Result<Transform, ParallelLines> {
     let (rows, cols) = (guide_u.len(), guide_v.len());
     let origin = guide_u[0];
-    let rows_of = Rows {
+    let columns = Columns {
         gauss,
         guide_u,
         guide_v,
-        local_u: guide_u.iter().map(|p| *p - origin).collect(),
-        columns: guide_v
+        local_v: Coords::from_points(guide_v.iter().map(|p| *p - origin)),
+        rows: guide_u
             .iter()
             .enumerate()
-            .map(|(j, p)| {
-                let n2 = gauss.column_normal(j);
-                (n2, n2.dot(*p - origin), *p - origin)
+            .map(|(i, p)| {
+                let n1 = gauss.row_normal(i);
+                (n1, n1.dot(*p - origin), *p - origin)
             })
             .collect(),
         origin,
-        cols,
     };
     let len = rows * cols;
     let mut vertices = Vec::with_capacity(len);
     let mut normals = Vec::with_capacity(len);
-    let chunk = chunk * cols.max(1);
-    let xs = &mut vertices.spare_capacity_mut()[..len];
-    let ns = &mut normals.spare_capacity_mut()[..len];
-    let run = |(c, (x, n))| rows_of.chunk(c * chunk / cols.max(1), x, n);
+    let blocks: Vec<Range<usize>> = (0..cols)
+        .step_by(width.max(1))
+        .map(|c| c..(c + width).min(cols))
+        .collect();
+    // Each block's part of every row: disjoint pieces of the two outputs.
+    let mut parts: Vec<Vec<Piece>> = blocks.iter().map(|_| Vec::with_capacity(rows)).collect();
+    let xs = vertices.spare_capacity_mut()[..len].chunks_mut(cols.max(1));
+    let ns = normals.spare_capacity_mut()[..len].chunks_mut(cols.max(1));
+    for (mut x, mut n) in xs.zip(ns) {
+        for (b, part) in blocks.iter().zip(&mut parts) {
+            let (x_here, x_rest) = std::mem::take(&mut x).split_at_mut(b.len());
+            let (n_here, n_rest) = std::mem::take(&mut n).split_at_mut(b.len());
+            part.push((x_here, n_here));
+            (x, n) = (x_rest, n_rest);
+        }
+    }
+    let run = |(b, part): (&Range<usize>, Vec<Piece>)| columns.block(kernel, b.clone(), part);
     #[cfg(feature = "parallel")]
     let seen = {
         use rayon::prelude::*;
-        xs.par_chunks_mut(chunk)
-            .zip(ns.par_chunks_mut(chunk))
-            .enumerate()
+        blocks
+            .par_iter()
+            .zip(parts)
             .map(run)
             .reduce(Seen::default, Seen::merge)
     };
     #[cfg(not(feature = "parallel"))]
-    let seen = xs
-        .chunks_mut(chunk)
-        .zip(ns.chunks_mut(chunk))
-        .enumerate()
+    let seen = blocks
+        .iter()
+        .zip(parts)
         .map(run)
         .fold(Seen::default(), Seen::merge);
     if let Some(e) = seen.error {
         return Err(e);
     }
-    // SAFETY: the chunks cover `xs` and `ns`, and `Rows::chunk` writes every
-    // element of its chunks (every row of its lanes, every column), so the first
-    // `len` elements of both vectors are initialised.
+    // SAFETY: the blocks' pieces cover every row of `vertices` and `normals`,
+    // and `Columns::block` writes every element of its pieces, so the first `len`
+    // elements of both vectors are initialised.
     unsafe {
         vertices.set_len(len);
         normals.set_len(len);
@@ -186,18 +202,45 @@ fn combescure_in_chunks(
     })
 }
 
-/// Rows per task: a multiple of [`LANES`], at least 8 rows per lane, and about
-/// four tasks per thread (the result does not depend on it).
-fn chunk_rows(rows: usize) -> usize {
+/// How the loops over a row's columns are compiled: every kernel runs the same
+/// IEEE operations on each column (none adds a fused multiply-add), so the
+/// result is the same to the bit; they differ in how many columns one
+/// instruction takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kernel {
+    /// The target's baseline (SSE2 on x86-64: two columns at a time).
+    Baseline,
+    /// AVX2 (four columns at a time).
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+}
+
+impl Kernel {
+    /// The fastest kernel this processor runs.
+    fn best() -> Kernel {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return Kernel::Avx2;
+        }
+        Kernel::Baseline
+    }
+}
+
+/// One block's part of one row of the outputs: vertices and normals.
+type Piece<'a> = (&'a mut [MaybeUninit<DVec3>], &'a mut [MaybeUninit<DVec3>]);
+
+/// Columns per task: at least 64, and about four tasks per thread (the result
+/// does not depend on it).
+fn block_columns(cols: usize) -> usize {
     #[cfg(feature = "parallel")]
     let tasks = 4 * rayon::current_num_threads();
     #[cfg(not(feature = "parallel"))]
     let tasks = 1;
-    let chunks = rows.div_ceil(8 * LANES).clamp(1, tasks);
-    rows.div_ceil(chunks).div_ceil(LANES) * LANES
+    let blocks = cols.div_ceil(64).clamp(1, tasks);
+    cols.div_ceil(blocks)
 }
 
-/// What the rows of a task saw (§5.2); merged over tasks in any order.
+/// What the columns of a task saw (§5.2); merged over tasks in any order.
 #[derive(Clone, Copy, Debug)]
 struct Seen {
     /// How the faces turn.
@@ -240,136 +283,261 @@ impl Seen {
     }
 }
 
-/// Everything the rows of the mesh need (§2.2.3).
-struct Rows<'a> {
+/// [`MIN_CROSSING_SINE`] squared.
+const MIN_CROSSING2: f64 = MIN_CROSSING_SINE * MIN_CROSSING_SINE;
+
+/// `1 + 1e-12`: a relative margin, far above round-off, by which a product
+/// must clear a bound for a comparison of quotients to be settled without
+/// dividing (see [`Columns::faces`]).
+const MARGIN: f64 = 1.0 + 1e-12;
+
+/// Everything the columns of the mesh need (§2.2.3).
+struct Columns<'a> {
     gauss: &'a GaussRows<'a>,
     guide_u: &'a [DVec3],
     guide_v: &'a [DVec3],
-    /// guide_u relative to its start point.
-    local_u: Vec<DVec3>,
-    /// Per column `j`: the normal `n` and offset `h` of its plane `n · Y = h`, and
-    /// guide_v's sample `j`, relative to the start point.
-    columns: Vec<(DVec3, f64, DVec3)>,
+    /// guide_v relative to the start point.
+    local_v: Coords,
+    /// Per row `i`: the normal `n` and offset `h` of its plane `n · Y = h`, and
+    /// guide_u's sample `i`, relative to the start point.
+    rows: Vec<(DVec3, f64, DVec3)>,
     /// The start point.
     origin: DVec3,
-    cols: usize,
 }
 
-impl Rows<'_> {
-    /// Vertex and Gauss rows `r0..` into `xs` and `ns` (whole rows), and the
-    /// faces between them and the row before (§2.2.3, §5.2).
-    ///
-    /// Lane `k` takes the `k`-th quarter of the rows, one row per step,
-    /// starting one row early (computed, not written) so that it also sees the
-    /// face row between its first row and the one before.
-    fn chunk(
-        &self,
-        r0: usize,
-        xs: &mut [MaybeUninit<DVec3>],
-        ns: &mut [MaybeUninit<DVec3>],
-    ) -> Seen {
-        let cols = self.cols;
-        let rows = self.local_u.len();
-        let count = xs.len() / cols;
-        let per_lane = count.div_ceil(LANES);
-        let starts: [usize; LANES] = std::array::from_fn(|k| r0 + (k * per_lane).min(count));
-        let ends: [usize; LANES] = std::array::from_fn(|k| r0 + ((k + 1) * per_lane).min(count));
-        let mut seen = [Seen::default(); LANES];
-        // The previous row of each lane: Gauss vertices and vertices.
-        let mut prev = vec![(V::splat(DVec3::ZERO), V::splat(DVec3::ZERO)); cols];
-        for step in 0..=per_lane {
-            // Lane k's row at this step is starts[k] + step − 1.
-            let row = |k: usize| (starts[k] + step).checked_sub(1);
-            let write: [bool; LANES] =
-                std::array::from_fn(|k| row(k).is_some_and(|r| r >= starts[k] && r < ends[k]));
-            let check: [bool; LANES] =
-                std::array::from_fn(|k| write[k] && step > 0 && row(k) > Some(0));
-            let lanes = self
-                .gauss
-                .rows(std::array::from_fn(|k| row(k).unwrap_or(0).min(rows - 1)));
-            let mut n = self.gauss.vertex(&lanes, 0);
-            let mut x = V::from_lanes(lanes.rows.map(|i| self.local_u[i]));
-            let (mut np, mut xp) = prev[0];
-            prev[0] = (n, x);
-            self.write((r0, &lanes, write), 0, (xs, ns), (x, n));
-            let columns = prev.iter_mut().zip(&self.columns).enumerate();
-            for (j, (prev, &(normal, h, on_guide_v))) in columns.skip(1) {
-                let (n_left, x_left, np_left, xp_left) = (n, x, np, xp);
-                (np, xp) = *prev;
-                n = self.gauss.vertex(&lanes, j);
-                let normal = V::splat(normal);
-                // Vertex (i, j) = x_left + t·d1 on the plane normal·Y = h of column j.
-                let d1 = n - n_left;
-                let across = normal.dot(d1);
-                let t = (F::splat(h) - normal.dot(x_left)) * across.recip();
-                x = (x_left + d1.scale(t)).select(lanes.row0, V::splat(on_guide_v));
-                *prev = (n, x);
-                self.write((r0, &lanes, write), j, (xs, ns), (x, n));
-                if check == [false; LANES] {
-                    continue;
-                }
-                // Face (i − 1, j − 1): its Gauss edges at vertex (i, j), and its turn.
-                let d2 = n - np;
-                let (a11, a12, a22) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
-                let product = a11 * a22;
-                let g = product - a12 * a12;
-                let sine2 = g.zip(product, |g, p| g / p);
-                let plane2 = (across * across).zip(a11, |c, a| c / a);
-                let axis = np_left + n_left + n + np;
-                let sides = quad_sides(&[xp_left, x_left, x, xp], axis, V::cross, V::dot, |s| {
-                    F::splat(0.0) - s
-                });
-                for k in (0..LANES).filter(|&k| check[k]) {
-                    let face = (lanes.rows[k] - 1, j - 1);
-                    let seen = &mut seen[k];
-                    let (a11, a22) = (a11.0[k], a22.0[k]);
-                    let zero_edge = a11.is_nan()
-                        || a22.is_nan()
-                        || a11.min(a22) < ZERO_GAUSS_EDGE * ZERO_GAUSS_EDGE;
-                    let worst2 = sine2.0[k].min(plane2.0[k]);
-                    let parallel = g.0[k].is_nan()
-                        || plane2.0[k].is_nan()
-                        || worst2 <= MIN_CROSSING_SINE * MIN_CROSSING_SINE;
-                    if (zero_edge || parallel) && seen.error.is_none() {
-                        seen.error = Some(ParallelLines {
-                            face,
-                            sine: worst2.max(0.0).sqrt(),
-                            zero_edge,
-                        });
-                    }
-                    if sine2.0[k] < seen.min_crossing.0 {
-                        seen.min_crossing = (sine2.0[k], face);
-                    }
-                    let turn = Turn::of_sides(sides.map(|s| s.0[k]));
-                    seen.folds.add(face, turn);
-                }
-            }
+/// The vertices and Gauss vertices of one row of a block of columns.
+struct Row {
+    x: Coords,
+    n: Coords,
+}
+
+/// A [`Row`]'s first `m` columns, to read without bound checks.
+#[derive(Clone, Copy)]
+struct RowView<'a> {
+    x: View<'a>,
+    n: View<'a>,
+}
+
+impl Row {
+    #[inline(always)]
+    fn view(&self, m: usize) -> RowView<'_> {
+        RowView {
+            x: self.x.view(m),
+            n: self.n.view(m),
         }
-        seen.into_iter().fold(Seen::default(), Seen::merge)
+    }
+}
+
+/// What a face of the mesh and of its Gauss map give (§5.2), from the face's
+/// four vertices `(i − 1, j − 1)`, `(i, j − 1)`, `(i, j)`, `(i − 1, j)`.
+struct Face {
+    /// Squared lengths and dot product of the Gauss edges at vertex `(i, j)`:
+    /// `d1` along the row, `d2` along the column.
+    a11: f64,
+    a12: f64,
+    a22: f64,
+    /// Component of `d2` along the normal of row `i`'s plane.
+    across: f64,
+    /// The signed sides of the face's turn (see [`quad_sides`]).
+    sides: [f64; 4],
+}
+
+impl Face {
+    /// The face at column `k` of `prev` and `cur` (its right side), in a row
+    /// whose plane has the normal `normal`.
+    #[inline(always)]
+    fn at(prev: RowView, cur: RowView, k: usize, normal: DVec3) -> Face {
+        let (np_left, xp_left) = (prev.n.get(k - 1), prev.x.get(k - 1));
+        let (np, xp) = (prev.n.get(k), prev.x.get(k));
+        let (n_left, x_left) = (cur.n.get(k - 1), cur.x.get(k - 1));
+        let (n, x) = (cur.n.get(k), cur.x.get(k));
+        let (d1, d2) = (n - n_left, n - np);
+        let axis = np_left + n_left + n + np;
+        Face {
+            a11: d1.dot(d1),
+            a12: d1.dot(d2),
+            a22: d2.dot(d2),
+            across: normal.dot(d2),
+            sides: quad_sides(
+                &[xp_left, x_left, x, xp],
+                axis,
+                DVec3::cross,
+                DVec3::dot,
+                |s| -s,
+            ),
+        }
     }
 
-    /// Column `j` of the rows of `lanes` that are written, into their places
-    /// in `xs` and `ns` (whose first row is `r0`): the guide samples bit for
-    /// bit, the other vertices moved back from the start point.
+    /// `|d1|²·|d2|²` and its part `|d1 × d2|²`: their ratio is the squared sine
+    /// between the Gauss edges.
     #[inline(always)]
-    fn write(
-        &self,
-        (r0, lanes, write): (usize, &RowLanes, [bool; LANES]),
-        j: usize,
-        (xs, ns): (&mut [MaybeUninit<DVec3>], &mut [MaybeUninit<DVec3>]),
-        (x, n): (V, V),
-    ) {
-        for k in (0..LANES).filter(|&k| write[k]) {
-            let i = lanes.rows[k];
-            let at = (i - r0) * self.cols + j;
-            xs[at].write(if j == 0 {
-                self.guide_u[i]
-            } else if i == 0 {
-                self.guide_v[j]
+    fn product_and_gram(&self) -> (f64, f64) {
+        let product = self.a11 * self.a22;
+        (product, product - self.a12 * self.a12)
+    }
+
+    /// 0 or 1 for a usual face turning positively or negatively, 2 otherwise.
+    /// A usual face's Gauss edges are long and cross well (sine above the
+    /// larger of [`MIN_CROSSING_SINE`] and `sqrt(bound)`): the tests need no
+    /// division and are conservative (NaN is not usual), so that a usual face
+    /// only needs counting.
+    #[inline(always)]
+    fn code(&self, bound: f64) -> u64 {
+        let s = self.sides;
+        let pos = (s[0] > 0.0) & (s[1] > 0.0) & (s[2] > 0.0) & (s[3] > 0.0);
+        let neg = (s[0] < 0.0) & (s[1] < 0.0) & (s[2] < 0.0) & (s[3] < 0.0);
+        let (product, g) = self.product_and_gram();
+        let zero2 = ZERO_GAUSS_EDGE * ZERO_GAUSS_EDGE;
+        let well = (self.a11 >= zero2)
+            & (self.a22 >= zero2)
+            & (g > bound * (product * MARGIN))
+            & (self.across * self.across > MIN_CROSSING2 * self.a22 * MARGIN);
+        2 - 2 * u64::from(well & pos) - u64::from(well & neg)
+    }
+}
+
+impl Columns<'_> {
+    /// [`Columns::block_with`], by `kernel`.
+    fn block(&self, kernel: Kernel, cols: Range<usize>, pieces: Vec<Piece>) -> Seen {
+        match kernel {
+            // SAFETY: `Kernel::Avx2` is only made where the processor has AVX2.
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx2 => unsafe { self.block_avx2(cols, pieces) },
+            Kernel::Baseline => self.block_with(cols, pieces),
+        }
+    }
+
+    /// [`Columns::block_with`] with AVX2 instructions.
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn block_avx2(&self, cols: Range<usize>, pieces: Vec<Piece>) -> Seen {
+        self.block_with(cols, pieces)
+    }
+
+    /// The columns `cols` of every row into `pieces` (one per row), and the
+    /// faces on their left (§2.2.3, §5.2). Column `cols.start − 1` is computed
+    /// too (not written) for the faces between it and the block.
+    #[inline(always)]
+    fn block_with(&self, cols: Range<usize>, pieces: Vec<Piece>) -> Seen {
+        let first = cols.start.saturating_sub(1);
+        let span = first..cols.end;
+        let (m, skip) = (span.len(), cols.start - first);
+        let local_v = self.local_v.slice(span.clone());
+        let new_row = || Row {
+            x: Coords::zeros(m),
+            n: Coords::zeros(m),
+        };
+        let (mut prev, mut cur) = (new_row(), new_row());
+        let mut seen = Seen::default();
+        // Usual faces per turn (positive, negative), counted apart (see `faces`).
+        let mut more = [0usize; 2];
+        let mut codes = vec![2u64; m];
+        for (i, (xs, ns)) in pieces.into_iter().enumerate() {
+            self.gauss.row_into(i, span.clone(), &mut cur.n);
+            let (normal, h, on_guide_u) = self.rows[i];
+            if i == 0 {
+                cur.x.clone_from(&local_v);
             } else {
-                x.lane(k) + self.origin
-            });
-            ns[at].write(n.lane(k));
+                // Vertex (i, j) = xp + t·d on the plane normal·Y = h of row i.
+                let (p, n) = (prev.view(m), cur.n.view(m));
+                let mut x = cur.x.view_mut(m);
+                for k in 0..m {
+                    let (xp, d) = (p.x.get(k), n.get(k) - p.n.get(k));
+                    let t = (h - normal.dot(xp)) * (1.0 / normal.dot(d));
+                    x.set(k, xp + d * t);
+                }
+                if first == 0 {
+                    cur.x.set(0, on_guide_u);
+                }
+                self.faces(i, (first, &prev, &cur), &mut codes, (&mut seen, &mut more));
+            }
+            // The guide samples bit for bit, the other vertices moved back from
+            // the start point.
+            let (x, n) = (cur.x.range(skip..m), cur.n.range(skip..m));
+            let (xs, ns) = (&mut xs[..m - skip], &mut ns[..m - skip]);
+            for k in 0..m - skip {
+                xs[k].write(x.get(k) + self.origin);
+                ns[k].write(n.get(k));
+            }
+            if i == 0 {
+                for (x, p) in xs.iter_mut().zip(&self.guide_v[cols.clone()]) {
+                    x.write(*p);
+                }
+            }
+            if cols.start == 0 {
+                xs[0].write(self.guide_u[i]);
+            }
+            std::mem::swap(&mut prev, &mut cur);
+        }
+        seen.folds.add_more(Turn::Positive, more[0]);
+        seen.folds.add_more(Turn::Negative, more[1]);
+        seen
+    }
+
+    /// The faces `(i − 1, j − 1)` between `prev` and `cur`, rows `i − 1` and
+    /// `i` of the columns from `first` (§5.2): where a vertex is defined badly,
+    /// the smallest crossing, and how the faces turn. Usual faces (see
+    /// [`Face::code`]) are classified in SIMD lanes and only counted into
+    /// `more`; the others take the exact path.
+    #[inline(always)]
+    fn faces(
+        &self,
+        i: usize,
+        (first, prev, cur): (usize, &Row, &Row),
+        codes: &mut [u64],
+        (seen, more): (&mut Seen, &mut [usize; 2]),
+    ) {
+        let normal = self.rows[i].0;
+        let bound = seen.min_crossing.0.max(MIN_CROSSING2);
+        let m = codes.len();
+        let (prev, cur) = (prev.view(m), cur.view(m));
+        for (k, code) in (1..m).zip(&mut codes[1..]) {
+            *code = Face::at(prev, cur, k, normal).code(bound);
+        }
+        // Usually every face is usual and turns a way seen before: then counting
+        // (in SIMD lanes) is all.
+        let (mut count, mut other) = ([0usize; 2], 0usize);
+        for &code in &codes[1..] {
+            count[0] += usize::from(code == 0);
+            count[1] += usize::from(code == 1);
+            other += usize::from(code == 2);
+        }
+        let seen_before = |k: usize, t: Turn| count[k] == 0 || seen.folds.has(t);
+        if other == 0 && seen_before(0, Turn::Positive) && seen_before(1, Turn::Negative) {
+            more[0] += count[0];
+            more[1] += count[1];
+            return;
+        }
+        for (k, &code) in codes.iter().enumerate().skip(1) {
+            let turn = [Turn::Positive, Turn::Negative].get(code as usize);
+            if let Some(&t) = turn.filter(|&&t| seen.folds.has(t)) {
+                more[t as usize] += 1;
+                continue;
+            }
+            let f = Face::at(prev, cur, k, normal);
+            let face = (i - 1, first + k - 1);
+            let (product, g) = f.product_and_gram();
+            let sine2 = g / product;
+            let plane2 = f.across * f.across / f.a22;
+            let zero_edge = f.a11.is_nan()
+                || f.a22.is_nan()
+                || f.a11.min(f.a22) < ZERO_GAUSS_EDGE * ZERO_GAUSS_EDGE;
+            let worst2 = sine2.min(plane2);
+            let parallel = g.is_nan() || plane2.is_nan() || worst2 <= MIN_CROSSING2;
+            if (zero_edge || parallel) && seen.error.is_none() {
+                seen.error = Some(ParallelLines {
+                    face,
+                    sine: worst2.max(0.0).sqrt(),
+                    zero_edge,
+                });
+            }
+            if sine2 < seen.min_crossing.0 {
+                seen.min_crossing = (sine2, face);
+            }
+            seen.folds.add(face, Turn::of_sides(f.sides));
         }
     }
 }
@@ -384,9 +552,11 @@ mod tests {
     }
 
     #[test]
-    fn the_result_does_not_depend_on_the_tasks() {
-        // A folded design (θ = 60° on these guides) with 37 rows: tasks of 4 to
-        // 40 rows, the whole grid in one task as without the `parallel` feature.
+    fn the_result_depends_neither_on_the_tasks_nor_on_the_kernel() {
+        // A folded design (θ = 60° on these guides) with 23 columns: tasks of 1
+        // to 40 columns (the whole grid in one task, as without the `parallel`
+        // feature), computed by the baseline and the best kernel in turn (AVX2
+        // where the processor has it).
         let u: Vec<DVec3> = (0..37)
             .map(|k| {
                 let t = k as f64 * 0.1;
@@ -404,10 +574,14 @@ mod tests {
         let n_p = frame.n_p;
         let (nu, nv) = (guide_normals(&u, n_p), guide_normals(&v, n_p));
         let gauss = GaussRows::new(&pencil_axes(&frame, 60.0).unwrap(), &nu, &nv);
-        let whole = combescure_in_chunks(&gauss, &u, &v, 40).unwrap();
+        let whole = combescure_in_blocks(&gauss, &u, &v, 40, Kernel::Baseline).unwrap();
         assert!(whole.report.folded_faces > 0, "{:?}", whole.report);
-        for chunk in [4, 8, 12, 36] {
-            let t = combescure_in_chunks(&gauss, &u, &v, chunk).unwrap();
+        let kernels = [Kernel::Baseline, Kernel::best()];
+        for (chunk, kernel) in [1, 2, 3, 5, 8, 12, 22, 40]
+            .into_iter()
+            .zip(kernels.iter().cycle())
+        {
+            let t = combescure_in_blocks(&gauss, &u, &v, chunk, *kernel).unwrap();
             assert_eq!(bits(&t.vertices), bits(&whole.vertices), "{chunk}");
             assert_eq!(bits(&t.normals), bits(&whole.normals), "{chunk}");
             assert_eq!(t.report, whole.report, "{chunk}");

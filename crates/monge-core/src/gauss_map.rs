@@ -20,7 +20,7 @@
 
 use glam::DVec3;
 
-use crate::lanes::{F, LANES, V};
+use crate::coords::Coords;
 use crate::projective::{HPoint, Line};
 
 /// Round-off allowed when testing whether θ is admissible.
@@ -255,15 +255,11 @@ pub struct GaussMap {
 pub fn gauss_map(axes: &PencilAxes, along_u: &[DVec3], along_v: &[DVec3]) -> GaussMap {
     let gauss = GaussRows::new(axes, along_u, along_v);
     let (rows, cols) = (along_u.len(), along_v.len());
-    let mut normals = vec![DVec3::ZERO; rows * cols];
-    for (block, out) in normals.chunks_mut(LANES * cols).enumerate() {
-        // Rows past the end repeat the last row; they are not written.
-        let lanes = gauss.rows(std::array::from_fn(|k| (block * LANES + k).min(rows - 1)));
-        for (k, row) in out.chunks_exact_mut(cols).enumerate() {
-            for (j, n) in row.iter_mut().enumerate() {
-                *n = gauss.vertex(&lanes, j).lane(k);
-            }
-        }
+    let mut normals = Vec::with_capacity(rows * cols);
+    let mut row = Coords::zeros(cols);
+    for i in 0..rows {
+        gauss.row_into(i, 0..cols, &mut row);
+        normals.extend((0..cols).map(|j| row.get(j)));
     }
     GaussMap {
         rows,
@@ -274,38 +270,28 @@ pub fn gauss_map(axes: &PencilAxes, along_u: &[DVec3], along_v: &[DVec3]) -> Gau
 
 /// The pencil planes of the Gauss map's rows and columns (§2.2.1), from which
 /// [`gauss_map`] computes every vertex and [`crate::combescure::combescure`]
-/// the mesh rows, four rows at a time.
+/// the mesh, row after row (the columns of a row in SIMD lanes).
 #[derive(Clone, Debug)]
 pub struct GaussRows<'a> {
     along_u: &'a [DVec3],
     along_v: &'a [DVec3],
     /// Per row: the plane through L1 and N_i0, as `n1 · (Y − N00) = e1`, with `u = N_i0 − N00`.
     row_planes: Vec<(DVec3, DVec3, f64)>,
-    /// Per column: the plane through L2 and N_0j, likewise.
-    col_planes: Vec<(DVec3, DVec3, f64)>,
-}
-
-/// The row planes of [`LANES`] rows of the Gauss map (§2.2.1), one row per lane.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct RowLanes {
-    /// The rows.
-    pub rows: [usize; LANES],
-    /// Unit normals of the row planes.
-    n1: V,
-    /// `N_i0 − N00`.
-    u: V,
-    /// Offsets of the row planes.
-    e1: F,
-    /// `N_i0`, the rows' first normals (guide_u's).
-    first: V,
-    /// Which lanes hold row 0 (guide_v's normals).
-    pub row0: [bool; LANES],
+    /// Per column: the plane through L2 and N_0j, likewise, coordinate by
+    /// coordinate: normals `n2`, `w = N_0j − N00`, offsets `e2`.
+    col_n2: Coords,
+    col_w: Coords,
+    col_e2: Vec<f64>,
 }
 
 impl<'a> GaussRows<'a> {
     /// The pencil planes of every row and column (§2.2.1, §3.1 iii).
     pub fn new(axes: &PencilAxes, along_u: &'a [DVec3], along_v: &'a [DVec3]) -> Self {
         let n00 = along_u[0];
+        let col_planes: Vec<_> = along_v
+            .iter()
+            .map(|&nj| offset_plane(&axes.l2, nj, n00))
+            .collect();
         GaussRows {
             along_u,
             along_v,
@@ -313,54 +299,58 @@ impl<'a> GaussRows<'a> {
                 .iter()
                 .map(|&ni| offset_plane(&axes.l1, ni, n00))
                 .collect(),
-            col_planes: along_v
-                .iter()
-                .map(|&nj| offset_plane(&axes.l2, nj, n00))
-                .collect(),
+            col_n2: Coords::from_points(col_planes.iter().map(|p| p.0)),
+            col_w: Coords::from_points(col_planes.iter().map(|p| p.1)),
+            col_e2: col_planes.iter().map(|p| p.2).collect(),
         }
+    }
+
+    /// Unit normal of the pencil plane of row `i` (§2.2.1): by Combescure
+    /// parallelism (Joachimsthal) the mesh's row `i` lies in a plane with this
+    /// normal too.
+    pub fn row_normal(&self, i: usize) -> DVec3 {
+        self.row_planes[i].0
     }
 
     /// Unit normal of the pencil plane of column `j` (§2.2.1): by Combescure
     /// parallelism (Joachimsthal) the mesh's column `j` lies in a plane with this
     /// normal too.
     pub fn column_normal(&self, j: usize) -> DVec3 {
-        self.col_planes[j].0
+        self.col_n2.get(j)
     }
 
-    /// The row planes of `rows`, one row per lane (§2.2.1).
-    pub(crate) fn rows(&self, rows: [usize; LANES]) -> RowLanes {
-        let planes = rows.map(|i| self.row_planes[i]);
-        RowLanes {
-            rows,
-            n1: V::from_lanes(planes.map(|p| p.0)),
-            u: V::from_lanes(planes.map(|p| p.1)),
-            e1: F(planes.map(|p| p.2)),
-            first: V::from_lanes(rows.map(|i| self.along_u[i])),
-            row0: rows.map(|i| i == 0),
-        }
-    }
-
-    /// The Gauss vertices `(i, j)` of the rows `i` of `lanes` (§2.2.1, §3.1 iii):
-    /// the intersection of the row's pencil plane, the column's, and the plane
-    /// through `N00`, `N_i0` and `N_0j` (Proposition 1), in closed form;
-    /// guide_u's and guide_v's normals themselves in column and row 0.
+    /// The Gauss vertices `(i, j)` of row `i`, `j` in `cols`, into `out[j − cols.start]`
+    /// (§2.2.1, §3.1 iii): the intersection of the row's pencil plane, the
+    /// column's, and the plane through `N00`, `N_i0` and `N_0j` (Proposition 1),
+    /// in closed form; guide_u's and guide_v's normals themselves in column and
+    /// row 0. The columns are independent: the loop runs in SIMD lanes.
     #[inline(always)]
-    pub(crate) fn vertex(&self, lanes: &RowLanes, j: usize) -> V {
-        if j == 0 {
-            return lanes.first;
+    pub(crate) fn row_into(&self, i: usize, cols: std::ops::Range<usize>, out: &mut Coords) {
+        if i == 0 {
+            for (k, j) in cols.enumerate() {
+                out.set(k, self.along_v[j]);
+            }
+            return;
         }
-        let (n2, w, e2) = self.col_planes[j];
-        let (n2, w, e2) = (V::splat(n2), V::splat(w), F::splat(e2));
-        let (n1, u, e1) = (lanes.n1, lanes.u, lanes.e1);
-        let alpha = n1.dot(w);
-        let beta = n2.dot(u);
-        let inv_det = (e1 * e2 - alpha * beta).recip();
-        let n = V::splat(self.along_u[0])
-            + u.scale(e2 * (e1 - alpha) * inv_det)
-            + w.scale(e1 * (e2 - beta) * inv_det);
-        // n is on S² up to round-off: one Newton step makes it unit to round-off.
-        let n = n.scale(F::splat(1.5) - F::splat(0.5) * n.dot(n));
-        n.select(lanes.row0, V::splat(self.along_v[j]))
+        let (n1, u, e1) = self.row_planes[i];
+        let n00 = self.along_u[0];
+        let m = cols.len();
+        let n2s = self.col_n2.view(cols.end);
+        let ws = self.col_w.view(cols.end);
+        let e2s = &self.col_e2[..cols.end];
+        let mut out = out.view_mut(m);
+        for (k, j) in cols.clone().enumerate() {
+            let (n2, w, e2) = (n2s.get(j), ws.get(j), e2s[j]);
+            let alpha = n1.dot(w);
+            let beta = n2.dot(u);
+            let inv_det = 1.0 / (e1 * e2 - alpha * beta);
+            let n = n00 + u * (e2 * (e1 - alpha) * inv_det) + w * (e1 * (e2 - beta) * inv_det);
+            // n is on S² up to round-off: one Newton step makes it unit to round-off.
+            out.set(k, n * (1.5 - 0.5 * n.dot(n)));
+        }
+        if cols.start == 0 {
+            out.set(0, self.along_u[i]);
+        }
     }
 }
 

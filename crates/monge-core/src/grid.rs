@@ -390,6 +390,21 @@ impl Folds {
         self.first[k].get_or_insert(face);
     }
 
+    /// Whether a face turning as `turn` was counted already: then counting
+    /// more such faces ([`Folds::add_more`]) needs no face.
+    #[inline(always)]
+    pub(crate) fn has(&self, turn: Turn) -> bool {
+        self.first[turn as usize].is_some()
+    }
+
+    /// Counts `n` more faces turning as `turn`, after a first one (row-major
+    /// before them) was counted by [`Folds::add`].
+    #[inline]
+    pub(crate) fn add_more(&mut self, turn: Turn, n: usize) {
+        debug_assert!(self.has(turn) || n == 0);
+        self.count[turn as usize] += n;
+    }
+
     /// The way that counts as wrong: the fewer of the two ways (on a tie, the
     /// way of the later first face).
     fn wrong_way(&self) -> usize {
