@@ -39,7 +39,7 @@ impl Coords {
     /// Vector `k`.
     #[inline(always)]
     pub fn get(&self, k: usize) -> DVec3 {
-        self.view(self.x.len()).get(k)
+        DVec3::new(self.x[k], self.y[k], self.z[k])
     }
 
     /// Sets vector `k`.
