@@ -111,7 +111,7 @@ pub fn combescure(
     guide_u: &[DVec3],
     guide_v: &[DVec3],
 ) -> Result<Transform, ParallelLines> {
-    let width = block_columns(guide_v.len());
+    let width = block_columns(guide_u.len(), guide_v.len());
     combescure_in_blocks(gauss, guide_u, guide_v, width, Kernel::best())
 }
 
@@ -161,14 +161,21 @@ fn combescure_in_blocks(
         }
     }
     let run = |(b, part): (&Range<usize>, Vec<Piece>)| columns.block(kernel, b.clone(), part);
+    // One block runs on this thread (no task handed to the pool and waited for).
     #[cfg(feature = "parallel")]
-    let seen = {
+    let seen = if blocks.len() > 1 {
         use rayon::prelude::*;
         blocks
             .par_iter()
             .zip(parts)
             .map(run)
             .reduce(Seen::default, Seen::merge)
+    } else {
+        blocks
+            .iter()
+            .zip(parts)
+            .map(run)
+            .fold(Seen::default(), Seen::merge)
     };
     #[cfg(not(feature = "parallel"))]
     let seen = blocks
@@ -229,16 +236,21 @@ impl Kernel {
 /// One block's part of one row of the outputs: vertices and normals.
 type Piece<'a> = (&'a mut [MaybeUninit<DVec3>], &'a mut [MaybeUninit<DVec3>]);
 
-/// Columns per task: at least 64, and about four tasks per thread (the result
+/// Columns per task for a grid of `rows` × `cols` vertices: at least 64 and
+/// [`TASK_VERTICES`] vertices, and about four tasks per thread (the result
 /// does not depend on it).
-fn block_columns(cols: usize) -> usize {
+fn block_columns(rows: usize, cols: usize) -> usize {
     #[cfg(feature = "parallel")]
     let tasks = 4 * rayon::current_num_threads();
     #[cfg(not(feature = "parallel"))]
     let tasks = 1;
-    let blocks = cols.div_ceil(64).clamp(1, tasks);
-    cols.div_ceil(blocks)
+    let most = cols.div_ceil(64).min((rows * cols).div_ceil(TASK_VERTICES));
+    cols.div_ceil(most.clamp(1, tasks))
 }
+
+/// Fewest vertices worth a task of their own: below, handing work to another
+/// thread costs more than it saves.
+const TASK_VERTICES: usize = 1 << 15;
 
 /// What the columns of a task saw (§5.2); merged over tasks in any order.
 #[derive(Clone, Copy, Debug)]
