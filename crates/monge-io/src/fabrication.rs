@@ -43,7 +43,7 @@ pub fn write_fabrication(
         path: dir.to_owned(),
         source,
     })?;
-    type Writer<'a> = Box<dyn Fn(&mut dyn io::Write) -> io::Result<()> + 'a>;
+    type Writer<'a> = Box<dyn Fn(&mut dyn io::Write) -> io::Result<()> + Send + Sync + 'a>;
     let writers: [Writer<'_>; 9] = [
         Box::new(|w| write_panels_csv(f, w)),
         Box::new(|w| write_beams_csv(f, w)),
@@ -55,11 +55,43 @@ pub fn write_fabrication(
         Box::new(|w| write_overview_svg(f, w)),
         Box::new(|w| write_glb(f, section.0, section.1, w)),
     ];
-    let mut paths = Vec::with_capacity(writers.len());
-    for (name, writer) in FABRICATION_FILES.iter().zip(writers) {
-        let path = dir.join(name);
-        write_atomic(&path, |w| writer(w))?;
-        paths.push(path);
+    let paths: Vec<PathBuf> = FABRICATION_FILES
+        .iter()
+        .map(|name| dir.join(name))
+        .collect();
+    // The files are independent: as many are formatted and written at once as
+    // the machine has cores (each one atomically, as alone).
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(writer) = writers.get(k) else {
+                return done;
+            };
+            done.push((k, write_atomic(&paths[k], |w| writer(w))));
+        }
+    };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut results: Vec<(usize, Result<(), IoError>)> = std::thread::scope(|scope| {
+        let helpers: Vec<_> = (1..threads.min(writers.len()))
+            .map(|_| scope.spawn(work))
+            .collect();
+        let mut all = work();
+        for helper in helpers {
+            // A writer that panicked is a bug: pass the panic on.
+            all.extend(
+                helper
+                    .join()
+                    .unwrap_or_else(|p| std::panic::resume_unwind(p)),
+            );
+        }
+        all
+    });
+    // The first error in the order of the files, as when written one by one.
+    results.sort_by_key(|(k, _)| *k);
+    for (_, result) in results {
+        result?;
     }
     Ok(paths)
 }

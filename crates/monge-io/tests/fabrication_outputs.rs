@@ -288,3 +288,28 @@ fn gltf_reads_back_with_counts_and_bounds() {
         assert!(indices.iter().all(|&i| (i as usize) < 4 * n));
     }
 }
+
+#[test]
+fn files_written_side_by_side_are_those_written_alone() {
+    // write_fabrication writes its files in parallel: each must hold exactly the
+    // bytes that its writer gives on its own.
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(dir.path());
+    type Alone = fn(&Fabrication, &mut Vec<u8>) -> std::io::Result<()>;
+    let alone: [(&str, Alone); 8] = [
+        ("panels.csv", |f, w| monge_io::write_panels_csv(f, w)),
+        ("beams.csv", |f, w| monge_io::write_beams_csv(f, w)),
+        ("segments.csv", |f, w| monge_io::write_segments_csv(f, w)),
+        ("nodes.csv", |f, w| monge_io::write_nodes_csv(f, w)),
+        ("panels.dxf", |f, w| monge_io::write_panels_dxf(f, w)),
+        ("beams.dxf", |f, w| monge_io::write_beams_dxf(f, w)),
+        ("overview.svg", |f, w| monge_io::write_overview_svg(f, w)),
+        ("gridshell.glb", |f, w| monge_io::write_glb(f, 0.05, 0.1, w)),
+    ];
+    for (name, writer) in alone {
+        let mut bytes = Vec::new();
+        writer(&f, &mut bytes).unwrap();
+        assert!(!bytes.is_empty(), "{name}");
+        assert_eq!(std::fs::read(dir.path().join(name)).unwrap(), bytes, "{name}");
+    }
+}
