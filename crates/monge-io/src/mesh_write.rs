@@ -240,11 +240,11 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
         let with_normals = !self.normals.is_empty();
         emit(w, |out| {
             for (tag, points) in [("v ", self.vertices), ("vn ", self.normals)] {
-                for p in points {
-                    out.str(tag);
-                    out.xyz(*p, b' ');
-                    out.end()?;
-                }
+                out.each(points, |o, _, p| {
+                    o.str(tag);
+                    o.xyz(*p, b' ');
+                    o.push(b'\n');
+                })?;
             }
             for corners in self.faces {
                 out.push(b'f');
@@ -266,14 +266,15 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
     pub(crate) fn ply<W: Write + ?Sized>(self, w: &mut W) -> io::Result<()> {
         self.ply_header("ascii", "double", w)?;
         emit(w, |out| {
-            for (k, p) in self.vertices.iter().enumerate() {
-                out.xyz(*p, b' ');
-                if let Some(n) = self.normals.get(k) {
-                    out.push(b' ');
-                    out.xyz(*n, b' ');
+            let normals = self.normals;
+            out.each(self.vertices, |o, k, p| {
+                o.xyz(*p, b' ');
+                if let Some(n) = normals.get(k) {
+                    o.push(b' ');
+                    o.xyz(*n, b' ');
                 }
-                out.end()?;
-            }
+                o.push(b'\n');
+            })?;
             for corners in self.faces {
                 out.push(b'4');
                 for c in corners {
@@ -405,12 +406,11 @@ pub fn write_mesh_json<W: Write + ?Sized>(
             out.str(",\"");
             out.str(key);
             out.str("\":[");
-            for (k, p) in points.iter().enumerate() {
-                out.str(if k == 0 { "\n[" } else { ",\n[" });
-                out.xyz(*p, b',');
-                out.push(b']');
-                out.maybe_flush()?;
-            }
+            out.each(points, |o, k, p| {
+                o.str(if k == 0 { "\n[" } else { ",\n[" });
+                o.xyz(*p, b',');
+                o.push(b']');
+            })?;
             out.str("\n]");
         }
         out.str("}\n");

@@ -84,6 +84,58 @@ impl<W: Write + ?Sized> Out<'_, W> {
         Ok(())
     }
 
+    /// Appends `line(k, item)` for every item, in order, formatted in chunks
+    /// side by side (one thread per core; one thread where there are no
+    /// threads, as in WebAssembly): the bytes are the same whatever the
+    /// number of threads.
+    pub(crate) fn each<T: Sync>(
+        &mut self,
+        items: &[T],
+        line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
+    ) -> io::Result<()> {
+        /// Items per chunk: about a megabyte of text.
+        const ITEMS: usize = 1 << 14;
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let format = |first: usize, chunk: &[T], bytes: &mut Vec<u8>| {
+            bytes.clear();
+            emit(bytes, |o| {
+                for (k, item) in chunk.iter().enumerate() {
+                    line(o, first + k, item);
+                    o.maybe_flush()?;
+                }
+                Ok(())
+            })
+        };
+        let mut buffers = vec![Vec::new(); threads];
+        for (b, batch) in items.chunks(ITEMS * threads).enumerate() {
+            let first = b * ITEMS * threads;
+            let mut jobs = batch.chunks(ITEMS).zip(buffers.iter_mut()).enumerate();
+            std::thread::scope(|scope| -> io::Result<()> {
+                let Some((_, (mine, my_bytes))) = jobs.next() else {
+                    return Ok(());
+                };
+                let helpers: Vec<_> = jobs
+                    .map(|(c, (chunk, bytes))| {
+                        scope.spawn(move || format(first + c * ITEMS, chunk, bytes))
+                    })
+                    .collect();
+                format(first, mine, my_bytes)?;
+                for helper in helpers {
+                    // A formatter that panicked is a bug: pass the panic on.
+                    helper
+                        .join()
+                        .unwrap_or_else(|p| std::panic::resume_unwind(p))?;
+                }
+                Ok(())
+            })?;
+            self.flush()?;
+            for bytes in buffers.iter().take(batch.len().div_ceil(ITEMS)) {
+                self.w.write_all(bytes)?;
+            }
+        }
+        Ok(())
+    }
+
     /// Passes on whatever is buffered.
     fn flush(&mut self) -> io::Result<()> {
         if !self.buf.is_empty() {
@@ -97,6 +149,34 @@ impl<W: Write + ?Sized> Out<'_, W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn items_formatted_side_by_side_come_out_in_order() {
+        // Several batches of chunks (2^14 items each), the last ones partial.
+        let items: Vec<f64> = (0..100_003).map(|k| k as f64 * 0.37 - 1e3).collect();
+        let line = |o: &mut Out<'_, Vec<u8>>, k: usize, x: &f64| {
+            o.int(k);
+            o.push(b' ');
+            o.float(*x);
+            o.push(b'\n');
+        };
+        let mut side_by_side = Vec::new();
+        emit(&mut side_by_side, |o| {
+            o.str("head\n");
+            o.each(&items, line)?;
+            o.end()
+        })
+        .unwrap();
+        let mut alone = b"head\n".to_vec();
+        for (k, x) in items.iter().enumerate() {
+            alone.extend(format!("{k} {}\n", zmij::Buffer::new().format_finite(*x)).bytes());
+        }
+        alone.push(b'\n');
+        assert_eq!(
+            String::from_utf8(side_by_side).unwrap(),
+            String::from_utf8(alone).unwrap()
+        );
+    }
 
     #[test]
     fn floats_are_shortest_and_conventional() {

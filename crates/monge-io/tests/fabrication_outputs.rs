@@ -310,6 +310,10 @@ fn files_written_side_by_side_are_those_written_alone() {
         let mut bytes = Vec::new();
         writer(&f, &mut bytes).unwrap();
         assert!(!bytes.is_empty(), "{name}");
-        assert_eq!(std::fs::read(dir.path().join(name)).unwrap(), bytes, "{name}");
+        assert_eq!(
+            std::fs::read(dir.path().join(name)).unwrap(),
+            bytes,
+            "{name}"
+        );
     }
 }
