@@ -304,23 +304,34 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
             w,
         )?;
         emit(w, |out| {
+            // One fixed-size record per vertex and per face (copied whole).
+            let size = if f32 { 4 } else { 8 };
+            let len = if self.normals.is_empty() { 3 } else { 6 } * size;
+            let mut record = [0u8; 48];
             for (k, p) in self.vertices.iter().enumerate() {
-                let normal = self.normals.get(k).copied();
-                for x in std::iter::once(*p).chain(normal).flat_map(|q| q.to_array()) {
+                let normal = self.normals.get(k).copied().unwrap_or_default();
+                for (x, bytes) in p
+                    .to_array()
+                    .into_iter()
+                    .chain(normal.to_array())
+                    .zip(record.chunks_exact_mut(size))
+                {
                     if f32 {
-                        out.bytes(&(x as f32).to_le_bytes());
+                        bytes.copy_from_slice(&(x as f32).to_le_bytes());
                     } else {
-                        out.bytes(&x.to_le_bytes());
+                        bytes.copy_from_slice(&x.to_le_bytes());
                     }
                 }
+                out.bytes(&record[..len]);
                 out.maybe_flush()?;
             }
+            let mut record = [4u8; 17];
             for corners in self.faces {
-                out.push(4);
-                for c in corners {
+                for (c, bytes) in corners.into_iter().zip(record[1..].chunks_exact_mut(4)) {
                     // In range: checked above.
-                    out.bytes(&(c as i32).to_le_bytes());
+                    bytes.copy_from_slice(&(c as i32).to_le_bytes());
                 }
+                out.bytes(&record);
                 out.maybe_flush()?;
             }
             Ok(())
