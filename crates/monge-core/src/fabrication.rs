@@ -530,43 +530,52 @@ fn check_edges(k: usize, layer: &LayerMesh, tol: f64) -> Result<(), FabricationE
 /// Every face of a layer as a flat panel.
 fn layer_panels(k: usize, layer: &LayerMesh) -> Result<Vec<Panel>, FabricationError> {
     let g = &layer.grid;
+    // Rows side by side; the first degenerate face (row-major) is the error.
+    let rows = crate::tasks::map(g.rows - 1, |i| row_panels(k, layer, i));
     let mut panels = Vec::with_capacity(g.face_count());
-    for i in 0..g.rows - 1 {
-        for j in 0..g.cols - 1 {
-            let quad = g.face(i, j);
-            let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
-            let edge = quad[1] - quad[0];
-            if normal.length()
-                <= 1e-12 * (quad[2] - quad[0]).length() * (quad[3] - quad[1]).length()
-                || normal.cross(edge) == DVec3::ZERO
-            {
-                return Err(FabricationError::DegenerateFace {
-                    layer: k,
-                    distance: layer.distance,
-                    face: (i, j),
-                });
-            }
-            let frame = PlaneFrame::new(quad[0], normal, edge);
-            let outline = quad.map(|p| frame.to_plane(p));
-            let edge_lengths = [0, 1, 2, 3].map(|c| (quad[(c + 1) % 4] - quad[c]).length());
-            let angles = [0, 1, 2, 3].map(|c| {
-                let (prev, next) = (quad[(c + 3) % 4] - quad[c], quad[(c + 1) % 4] - quad[c]);
-                angle_between(prev, next)
-            });
-            panels.push(Panel {
+    for row in rows {
+        panels.extend(row?);
+    }
+    Ok(panels)
+}
+
+/// The panels of the faces of row `i` of layer `k` (§6).
+fn row_panels(k: usize, layer: &LayerMesh, i: usize) -> Result<Vec<Panel>, FabricationError> {
+    let g = &layer.grid;
+    let mut panels = Vec::with_capacity(g.cols - 1);
+    for j in 0..g.cols - 1 {
+        let quad = g.face(i, j);
+        let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
+        let edge = quad[1] - quad[0];
+        if normal.length() <= 1e-12 * (quad[2] - quad[0]).length() * (quad[3] - quad[1]).length()
+            || normal.cross(edge) == DVec3::ZERO
+        {
+            return Err(FabricationError::DegenerateFace {
                 layer: k,
-                i,
-                j,
-                frame,
-                outline,
-                edge_lengths,
-                angles,
-                area: quad_area(&quad),
-                circumradius: circumradius(quad[0], quad[1], quad[2]),
-                planarity: face_planarity(&quad),
-                circularity: circularity(&quad),
+                distance: layer.distance,
+                face: (i, j),
             });
         }
+        let frame = PlaneFrame::new(quad[0], normal, edge);
+        let outline = quad.map(|p| frame.to_plane(p));
+        let edge_lengths = [0, 1, 2, 3].map(|c| (quad[(c + 1) % 4] - quad[c]).length());
+        let angles = [0, 1, 2, 3].map(|c| {
+            let (prev, next) = (quad[(c + 3) % 4] - quad[c], quad[(c + 1) % 4] - quad[c]);
+            angle_between(prev, next)
+        });
+        panels.push(Panel {
+            layer: k,
+            i,
+            j,
+            frame,
+            outline,
+            edge_lengths,
+            angles,
+            area: quad_area(&quad),
+            circumradius: circumradius(quad[0], quad[1], quad[2]),
+            planarity: face_planarity(&quad),
+            circularity: circularity(&quad),
+        });
     }
     Ok(panels)
 }
@@ -584,15 +593,17 @@ fn circumradius(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 
 /// Every row and every column of a layer as a beam.
 fn layer_beams(k: usize, g: &QuadGrid, tol: f64) -> Vec<Beam> {
-    let rows = (0..g.rows).map(|i| {
-        let idx: Vec<usize> = (0..g.cols).map(|j| g.index(i, j)).collect();
-        beam(k, LineFamily::Row, i, g, &idx, tol)
-    });
-    let cols = (0..g.cols).map(|j| {
-        let idx: Vec<usize> = (0..g.rows).map(|i| g.index(i, j)).collect();
-        beam(k, LineFamily::Column, j, g, &idx, tol)
-    });
-    rows.chain(cols).collect()
+    // Rows, then columns, side by side.
+    crate::tasks::map(g.rows + g.cols, |b| {
+        if b < g.rows {
+            let idx: Vec<usize> = (0..g.cols).map(|j| g.index(b, j)).collect();
+            beam(k, LineFamily::Row, b, g, &idx, tol)
+        } else {
+            let j = b - g.rows;
+            let idx: Vec<usize> = (0..g.rows).map(|i| g.index(i, j)).collect();
+            beam(k, LineFamily::Column, j, g, &idx, tol)
+        }
+    })
 }
 
 /// One beam: the vertices `idx` of `g`.
