@@ -435,6 +435,34 @@ fn error_degenerate_face() {
     );
 }
 
+#[test]
+fn error_degenerate_face_is_the_first_of_several() {
+    // Rows are computed side by side: of two degenerate faces, (1, 0) and
+    // (2, 0), the first (row-major) is the error. Face (0, 0) is a square.
+    let v = [
+        [0.0, -1.0],
+        [1.0, -1.0],
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [3.0, 0.0],
+        [2.0, 0.0],
+        [5.0, 0.0],
+        [4.0, 0.0],
+    ]
+    .map(|[x, y]| DVec3::new(x, y, 0.0))
+    .to_vec();
+    let g = QuadGrid::new(4, 2, v, vec![DVec3::Z; 8]);
+    let e = error(&g, &options(&[0.0]));
+    assert_eq!(
+        e,
+        FabricationError::DegenerateFace {
+            layer: 0,
+            distance: 0.0,
+            face: (1, 0)
+        }
+    );
+}
+
 /// Node types of `f` by the definition (§6), by brute force: each node, in
 /// order, takes the smallest type whose first node has the same directions and
 /// all angles within `angle_tol`, else a new type.
