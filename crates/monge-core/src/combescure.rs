@@ -12,7 +12,7 @@ use crate::grid::{quad_sides, Folds, Turn};
 
 /// A face whose last vertex is undefined (§5.2): the Gauss edge along which it
 /// is reached is (nearly) parallel to the other Gauss edge at that vertex, or to
-/// the plane of its column that cuts it, or has (nearly) zero length.
+/// the plane of its row that cuts it, or has (nearly) zero length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParallelLines {
     /// The face `(i, j)`; its vertex `(i+1, j+1)` is undefined.
