@@ -226,7 +226,7 @@ pub enum ApproxError {
 }
 
 /// Distances between a mesh and a target both ways, relative to the target's size.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Deviation {
     /// Largest distance from a mesh vertex to the target.
     pub mesh_to_target_max: f64,

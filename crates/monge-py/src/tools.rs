@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
-use monge_core::approximate::{approximate as core_approximate, ApproxOptions, Deviation};
+use monge_core::approximate::{approximate as core_approximate, ApproxOptions};
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
@@ -467,18 +467,6 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
     Ok(d)
 }
 
-/// A deviation as a dict: largest and RMS distances both ways, relative to `size`.
-fn deviation_dict<'py>(py: Python<'py>, d: &Deviation) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("mesh_to_target_max", d.mesh_to_target_max)?;
-    out.set_item("mesh_to_target_rms", d.mesh_to_target_rms)?;
-    out.set_item("target_to_mesh_max", d.target_to_mesh_max)?;
-    out.set_item("target_to_mesh_rms", d.target_to_mesh_rms)?;
-    out.set_item("beyond_mesh_rms", d.beyond_mesh_rms)?;
-    out.set_item("size", d.size)?;
-    Ok(out)
-}
-
 /// The design whose exact mesh is nearest to a target, as `monge approximate`
 /// (monge's extension of the method): `points` is the target, any array of
 /// shape (..., 3) (a mesh's vertices or a point cloud). Returns the `design`
@@ -542,8 +530,8 @@ pub fn approximate<'py>(
         points_array(py, &g.vertices, &[g.rows, g.cols])?,
     )?;
     d.set_item("normals", points_array(py, &g.normals, &[g.rows, g.cols])?)?;
-    d.set_item("before", deviation_dict(py, &r.before)?)?;
-    d.set_item("after", deviation_dict(py, &r.after)?)?;
+    d.set_item("before", pythonize(py, &r.before)?)?;
+    d.set_item("after", pythonize(py, &r.after)?)?;
     d.set_item("evaluations", r.evaluations)?;
     d.set_item("starts", r.starts)?;
     d.set_item("timed_out", r.timed_out)?;
