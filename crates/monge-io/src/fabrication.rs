@@ -60,37 +60,12 @@ pub fn write_fabrication(
         .map(|name| dir.join(name))
         .collect();
     // The files are independent: as many are formatted and written at once as
-    // the machine has cores (each one atomically, as alone).
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let work = || {
-        let mut done = Vec::new();
-        loop {
-            let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            let Some(writer) = writers.get(k) else {
-                return done;
-            };
-            done.push((k, write_atomic(&paths[k], |w| writer(w))));
-        }
-    };
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut results: Vec<(usize, Result<(), IoError>)> = std::thread::scope(|scope| {
-        let helpers: Vec<_> = (1..threads.min(writers.len()))
-            .map(|_| scope.spawn(work))
-            .collect();
-        let mut all = work();
-        for helper in helpers {
-            // A writer that panicked is a bug: pass the panic on.
-            all.extend(
-                helper
-                    .join()
-                    .unwrap_or_else(|p| std::panic::resume_unwind(p)),
-            );
-        }
-        all
+    // the machine has cores (each one atomically, as alone); the first error
+    // in the order of the files is returned, as when written one by one.
+    let results = crate::tasks::map(writers.len(), |k| {
+        write_atomic(&paths[k], |w| writers[k](w))
     });
-    // The first error in the order of the files, as when written one by one.
-    results.sort_by_key(|(k, _)| *k);
-    for (_, result) in results {
+    for result in results {
         result?;
     }
     Ok(paths)

@@ -41,6 +41,7 @@ mod net;
 mod points_read;
 mod schedule;
 mod svg;
+mod tasks;
 mod text;
 
 use std::fs::{File, Metadata};

@@ -95,42 +95,25 @@ impl<W: Write + ?Sized> Out<'_, W> {
     ) -> io::Result<()> {
         /// Items per chunk: about a megabyte of text.
         const ITEMS: usize = 1 << 14;
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-        let format = |first: usize, chunk: &[T], bytes: &mut Vec<u8>| {
-            bytes.clear();
-            emit(bytes, |o| {
-                for (k, item) in chunk.iter().enumerate() {
-                    line(o, first + k, item);
-                    o.maybe_flush()?;
-                }
-                Ok(())
-            })
-        };
-        let mut buffers = vec![Vec::new(); threads];
-        for (b, batch) in items.chunks(ITEMS * threads).enumerate() {
-            let first = b * ITEMS * threads;
-            let mut jobs = batch.chunks(ITEMS).zip(buffers.iter_mut()).enumerate();
-            std::thread::scope(|scope| -> io::Result<()> {
-                let Some((_, (mine, my_bytes))) = jobs.next() else {
-                    return Ok(());
-                };
-                let helpers: Vec<_> = jobs
-                    .map(|(c, (chunk, bytes))| {
-                        scope.spawn(move || format(first + c * ITEMS, chunk, bytes))
-                    })
-                    .collect();
-                format(first, mine, my_bytes)?;
-                for helper in helpers {
-                    // A formatter that panicked is a bug: pass the panic on.
-                    helper
-                        .join()
-                        .unwrap_or_else(|p| std::panic::resume_unwind(p))?;
-                }
-                Ok(())
-            })?;
+        /// Chunks formatted before they are passed on: a few per core.
+        const BATCH: usize = 8;
+        for (b, batch) in items.chunks(ITEMS * BATCH).enumerate() {
+            let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
+            let texts = crate::tasks::map(chunks.len(), |c| {
+                let first = (b * BATCH + c) * ITEMS;
+                let mut bytes = Vec::new();
+                emit(&mut bytes, |o| {
+                    for (k, item) in chunks[c].iter().enumerate() {
+                        line(o, first + k, item);
+                        o.maybe_flush()?;
+                    }
+                    Ok(())
+                })
+                .map(|()| bytes)
+            });
             self.flush()?;
-            for bytes in buffers.iter().take(batch.len().div_ceil(ITEMS)) {
-                self.w.write_all(bytes)?;
+            for bytes in texts {
+                self.w.write_all(&bytes?)?;
             }
         }
         Ok(())
