@@ -1270,6 +1270,15 @@ impl Search<'_> {
         }
     }
 
+    /// Where the search stands, for the progress callback.
+    fn progress(&self) -> Progress {
+        Progress {
+            evaluations: self.evaluations,
+            budget: self.total,
+            best_rms: self.best.sqrt(),
+        }
+    }
+
     /// Objective at `x` (real units) from `start` on a grid of `faces`, or NaN when
     /// infeasible (or past the deadline).
     fn objective(&mut self, start: &Start, x: &[f64], faces: (usize, usize)) -> f64 {
@@ -1327,11 +1336,7 @@ impl Search<'_> {
             |t: &[f64]| {
                 // In units of the start's objective, for BOBYQA's relative tests.
                 let f = self.objective(start, &to_real(t), faces) / unit;
-                progress(&Progress {
-                    evaluations: self.evaluations,
-                    budget: self.total,
-                    best_rms: self.best.sqrt(),
-                });
+                progress(&self.progress());
                 f
             },
             &mut t,
@@ -1362,11 +1367,7 @@ impl Search<'_> {
             let mut x = x0.to_vec();
             x[8] = theta.clamp(-179.0, 179.0);
             let value = search.objective(start, &x, faces);
-            progress(&Progress {
-                evaluations: search.evaluations,
-                budget: search.total,
-                best_rms: search.best.sqrt(),
-            });
+            progress(&search.progress());
             (
                 if value.is_finite() {
                     value
@@ -1529,11 +1530,7 @@ pub fn approximate(
         starts += usize::from(!local.timed_out);
         results.push(result);
     }
-    progress(&Progress {
-        evaluations: search.evaluations,
-        budget: search.total,
-        best_rms: search.best.sqrt(),
-    });
+    progress(&search.progress());
     results.sort_by(|a, b| a.0.total_cmp(&b.0));
     // A design fair on the coarse grid may fold on the full one: then the starts themselves.
     results.extend(
