@@ -6,7 +6,7 @@ use std::ops::Range;
 
 use glam::DVec3;
 
-use crate::coords::{Coords, View};
+use crate::coords::{self, Coords, View};
 use crate::gauss_map::GaussRows;
 use crate::grid::{quad_sides, Folds, Turn};
 
@@ -111,18 +111,20 @@ pub fn combescure(
     guide_u: &[DVec3],
     guide_v: &[DVec3],
 ) -> Result<Transform, ParallelLines> {
-    let width = block_columns(guide_u.len(), guide_v.len());
-    combescure_in_blocks(gauss, guide_u, guide_v, width, Kernel::best())
+    let (rows, cols) = (guide_u.len(), guide_v.len());
+    let width = block_columns(rows, cols);
+    let stream = 2 * rows * cols * std::mem::size_of::<DVec3>() > STREAM_BYTES;
+    combescure_in_blocks(gauss, guide_u, guide_v, width, (Kernel::best(), stream))
 }
 
 /// [`combescure`] in tasks of `width` columns each (the last one narrower),
-/// computed by `kernel`.
+/// computed by `kernel`, its outputs written past the cache if `stream`.
 fn combescure_in_blocks(
     gauss: &GaussRows,
     guide_u: &[DVec3],
     guide_v: &[DVec3],
     width: usize,
-    kernel: Kernel,
+    (kernel, stream): (Kernel, bool),
 ) -> Result<Transform, ParallelLines> {
     let (rows, cols) = (guide_u.len(), guide_v.len());
     let origin = guide_u[0];
@@ -140,6 +142,7 @@ fn combescure_in_blocks(
             })
             .collect(),
         origin,
+        stream,
     };
     let len = rows * cols;
     let mut vertices = Vec::with_capacity(len);
@@ -252,6 +255,12 @@ fn block_columns(rows: usize, cols: usize) -> usize {
 /// thread costs more than it saves.
 const TASK_VERTICES: usize = 1 << 15;
 
+/// Output size (vertices and normals) above which they are written past the
+/// cache ([`View::write_to`]): larger than a usual last-level cache, so that
+/// it would only be evicted again, and the stores save reading its lines in
+/// first. Below, the output stays in the cache for whatever reads it next.
+const STREAM_BYTES: usize = 32 << 20;
+
 /// What the columns of a task saw (§5.2); merged over tasks in any order.
 #[derive(Clone, Copy, Debug)]
 struct Seen {
@@ -315,6 +324,8 @@ struct Columns<'a> {
     rows: Vec<(DVec3, f64, DVec3)>,
     /// The start point.
     origin: DVec3,
+    /// Whether the outputs are written past the cache (see [`STREAM_BYTES`]).
+    stream: bool,
 }
 
 /// The vertices and Gauss vertices of one row of a block of columns.
@@ -468,22 +479,23 @@ impl Columns<'_> {
             }
             // The guide samples bit for bit, the other vertices moved back from
             // the start point.
-            let (x, n) = (cur.x.range(skip..m), cur.n.range(skip..m));
             let (xs, ns) = (&mut xs[..m - skip], &mut ns[..m - skip]);
-            for k in 0..m - skip {
-                xs[k].write(x.get(k) + self.origin);
-                ns[k].write(n.get(k));
-            }
+            cur.n.range(skip..m).write_to(None, ns, self.stream);
             if i == 0 {
                 for (x, p) in xs.iter_mut().zip(&self.guide_v[cols.clone()]) {
                     x.write(*p);
                 }
+            } else {
+                let lead = usize::from(cols.start == 0);
+                let x = cur.x.range(skip + lead..m);
+                x.write_to(Some(self.origin), &mut xs[lead..], self.stream);
             }
             if cols.start == 0 {
                 xs[0].write(self.guide_u[i]);
             }
             std::mem::swap(&mut prev, &mut cur);
         }
+        coords::fence();
         seen.folds.add_more(Turn::Positive, more[0]);
         seen.folds.add_more(Turn::Negative, more[1]);
         seen
@@ -568,7 +580,7 @@ mod tests {
         // A folded design (θ = 60° on these guides) with 23 columns: tasks of 1
         // to 40 columns (the whole grid in one task, as without the `parallel`
         // feature), computed by the baseline and the best kernel in turn (AVX2
-        // where the processor has it).
+        // where the processor has it), written through the cache or past it.
         let u: Vec<DVec3> = (0..37)
             .map(|k| {
                 let t = k as f64 * 0.1;
@@ -586,14 +598,14 @@ mod tests {
         let n_p = frame.n_p;
         let (nu, nv) = (guide_normals(&u, n_p), guide_normals(&v, n_p));
         let gauss = GaussRows::new(&pencil_axes(&frame, 60.0).unwrap(), &nu, &nv);
-        let whole = combescure_in_blocks(&gauss, &u, &v, 40, Kernel::Baseline).unwrap();
+        let whole = combescure_in_blocks(&gauss, &u, &v, 40, (Kernel::Baseline, false)).unwrap();
         assert!(whole.report.folded_faces > 0, "{:?}", whole.report);
-        let kernels = [Kernel::Baseline, Kernel::best()];
-        for (chunk, kernel) in [1, 2, 3, 5, 8, 12, 22, 40]
+        let ways = [Kernel::Baseline, Kernel::best()].map(|k| [(k, false), (k, true)]);
+        for (chunk, way) in [1, 2, 3, 5, 8, 12, 22, 40]
             .into_iter()
-            .zip(kernels.iter().cycle())
+            .zip(ways.as_flattened().iter().cycle())
         {
-            let t = combescure_in_blocks(&gauss, &u, &v, chunk, *kernel).unwrap();
+            let t = combescure_in_blocks(&gauss, &u, &v, chunk, *way).unwrap();
             assert_eq!(bits(&t.vertices), bits(&whole.vertices), "{chunk}");
             assert_eq!(bits(&t.normals), bits(&whole.normals), "{chunk}");
             assert_eq!(t.report, whole.report, "{chunk}");
