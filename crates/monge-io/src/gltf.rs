@@ -14,7 +14,7 @@ use json::validation::{Checked::Valid, USize64};
 use monge_core::fabrication::{Beam, Fabrication};
 use monge_core::QuadGrid;
 
-use crate::text::emit;
+use crate::text::{emit, Out};
 
 /// Calls its argument with every item of a part, in order.
 type Producer<'a, T> = Box<dyn Fn(&mut dyn FnMut(T)) + 'a>;
@@ -25,10 +25,118 @@ type Producer<'a, T> = Box<dyn Fn(&mut dyn FnMut(T)) + 'a>;
 struct Part<'a> {
     name: String,
     material: u32,
-    /// Calls its argument with every vertex, in order.
-    positions: Producer<'a, DVec3>,
-    /// Calls its argument with every triangle (indices into the vertices).
-    triangles: Producer<'a, [u32; 3]>,
+    shape: Shape<'a>,
+}
+
+/// The vertices and triangles of a [`Part`].
+enum Shape<'a> {
+    /// The vertices of a quad grid of `cols` columns, and its faces, two
+    /// triangles each, wound as [`QuadGrid::oriented_faces`]: reversed or not.
+    Grid {
+        vertices: &'a [DVec3],
+        cols: usize,
+        reversed: bool,
+    },
+    /// Vertices and triangles from producers.
+    Produced {
+        /// Calls its argument with every vertex, in order.
+        positions: Producer<'a, DVec3>,
+        /// Calls its argument with every triangle (indices into the vertices).
+        triangles: Producer<'a, [u32; 3]>,
+    },
+}
+
+impl Shape<'_> {
+    /// The number of vertices, their bounds (`f32`) and the number of indices.
+    fn size(&self) -> (usize, [[f32; 3]; 2], usize) {
+        let mut bounds = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
+        let mut bound = |p: DVec3| {
+            let p = p.as_vec3().to_array();
+            for k in 0..3 {
+                bounds[0][k] = bounds[0][k].min(p[k]);
+                bounds[1][k] = bounds[1][k].max(p[k]);
+            }
+        };
+        match self {
+            Shape::Grid { vertices, cols, .. } => {
+                vertices.iter().for_each(|p| bound(*p));
+                let faces =
+                    (vertices.len() / cols.max(&1)).saturating_sub(1) * cols.saturating_sub(1);
+                (vertices.len(), bounds, 6 * faces)
+            }
+            Shape::Produced {
+                positions,
+                triangles,
+            } => {
+                let mut count = 0;
+                positions(&mut |p| {
+                    bound(p);
+                    count += 1;
+                });
+                let mut indices = 0;
+                triangles(&mut |_| indices += 3);
+                (count, bounds, indices)
+            }
+        }
+    }
+
+    /// Appends the positions (`f32`), then the indices (`u32`).
+    fn write<W: Write + ?Sized>(&self, o: &mut Out<'_, W>) -> io::Result<()> {
+        match self {
+            Shape::Grid {
+                vertices,
+                cols,
+                reversed,
+            } => {
+                o.each(vertices, |o, _, p| put_position(o, *p))?;
+                // Vertex (i, j) is the first corner of face (i, j), but in the
+                // last row and column.
+                let c = *cols;
+                let firsts = &vertices[..vertices.len().saturating_sub(c)];
+                o.each(firsts, |o, k, _| {
+                    if (k + 1) % c != 0 {
+                        let [a, b, cc, d] = [k, k + c, k + c + 1, k + 1].map(|v| v as u32);
+                        let [b, d] = if *reversed { [d, b] } else { [b, d] };
+                        put_triangle(o, [a, b, cc]);
+                        put_triangle(o, [a, cc, d]);
+                    }
+                })
+            }
+            Shape::Produced {
+                positions,
+                triangles,
+            } => {
+                let mut result = Ok(());
+                positions(&mut |p| {
+                    if result.is_ok() {
+                        put_position(o, p);
+                        result = o.maybe_flush();
+                    }
+                });
+                triangles(&mut |t| {
+                    if result.is_ok() {
+                        put_triangle(o, t);
+                        result = o.maybe_flush();
+                    }
+                });
+                result
+            }
+        }
+    }
+}
+
+/// Appends a position as three little-endian `f32`.
+fn put_position<W: Write + ?Sized>(o: &mut Out<'_, W>, p: DVec3) {
+    for c in p.as_vec3().to_array() {
+        o.bytes(&c.to_le_bytes());
+    }
+}
+
+/// Appends a triangle as three little-endian `u32`.
+fn put_triangle<W: Write + ?Sized>(o: &mut Out<'_, W>, t: [u32; 3]) {
+    for i in t {
+        o.bytes(&i.to_le_bytes());
+    }
 }
 
 /// A buffer view of `len` bytes at `offset` of the binary chunk.
@@ -105,17 +213,7 @@ fn write_parts<W: Write + ?Sized>(
     let mut offset = 0;
     let mut kept = Vec::new();
     for part in parts {
-        let (mut count, mut lo, mut hi) = (0, [f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-        (part.positions)(&mut |p| {
-            let p = p.as_vec3().to_array();
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-            count += 1;
-        });
-        let mut indices = 0;
-        (part.triangles)(&mut |_| indices += 3);
+        let (count, [lo, hi], indices) = part.shape.size();
         if indices == 0 {
             continue;
         }
@@ -198,28 +296,10 @@ fn write_parts<W: Write + ?Sized>(
         o.bytes(&text);
         o.bytes(&bin.to_le_bytes());
         o.str("BIN\0");
-        let mut result = Ok(());
         for part in kept {
-            (part.positions)(&mut |p| {
-                if result.is_err() {
-                    return;
-                }
-                for c in p.as_vec3().to_array() {
-                    o.bytes(&c.to_le_bytes());
-                }
-                result = o.maybe_flush();
-            });
-            (part.triangles)(&mut |t| {
-                if result.is_err() {
-                    return;
-                }
-                for i in t {
-                    o.bytes(&i.to_le_bytes());
-                }
-                result = o.maybe_flush();
-            });
+            part.shape.write(o)?;
         }
-        result
+        Ok(())
     })
 }
 
@@ -291,22 +371,26 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
     for (k, layer) in f.layers.iter().enumerate() {
         parts.push(grid_part(format!("layer {k} panels"), 0, &layer.grid));
         let beams = move || f.beams.iter().filter(move |beam| beam.layer == k);
+        let positions = Box::new(move |emit: &mut dyn FnMut(DVec3)| {
+            for beam in beams() {
+                sweep_positions(beam, width, depth, emit);
+            }
+        });
+        let triangles = Box::new(move |emit: &mut dyn FnMut([u32; 3])| {
+            let mut base = 0;
+            for beam in beams() {
+                let n = beam.nodes.len() as u32;
+                sweep_triangles(base, n, emit);
+                base += 4 * n;
+            }
+        });
         parts.push(Part {
             name: format!("layer {k} beams"),
             material: 1,
-            positions: Box::new(move |emit| {
-                for beam in beams() {
-                    sweep_positions(beam, width, depth, emit);
-                }
-            }),
-            triangles: Box::new(move |emit| {
-                let mut base = 0;
-                for beam in beams() {
-                    let n = beam.nodes.len() as u32;
-                    sweep_triangles(base, n, emit);
-                    base += 4 * n;
-                }
-            }),
+            shape: Shape::Produced {
+                positions,
+                triangles,
+            },
         });
     }
     let materials = vec![
@@ -318,9 +402,16 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
 
 /// The faces of a quad grid, two triangles each, wound about its node axes.
 fn grid_part(name: String, material: u32, g: &QuadGrid) -> Part<'_> {
-    // Oriented once (the orientation is a pass over every face), gone through twice.
-    let faces = g.oriented_faces();
-    quads_part(name, material, &g.vertices, move || faces.clone())
+    let shape = Shape::Grid {
+        vertices: &g.vertices,
+        cols: g.cols,
+        reversed: g.faces_reversed(),
+    };
+    Part {
+        name,
+        material,
+        shape,
+    }
 }
 
 /// A part of `vertices` and the quads that `quads` yields, two triangles a quad.
@@ -330,17 +421,22 @@ fn quads_part<'a, I: IntoIterator<Item = [usize; 4]>>(
     vertices: &'a [DVec3],
     quads: impl Fn() -> I + 'a,
 ) -> Part<'a> {
+    let positions =
+        Box::new(move |emit: &mut dyn FnMut(DVec3)| vertices.iter().for_each(|p| emit(*p)));
+    let triangles = Box::new(move |emit: &mut dyn FnMut([u32; 3])| {
+        for q in quads() {
+            let [a, b, c, d] = q.map(|v| v as u32);
+            emit([a, b, c]);
+            emit([a, c, d]);
+        }
+    });
     Part {
         name,
         material,
-        positions: Box::new(move |emit| vertices.iter().for_each(|p| emit(*p))),
-        triangles: Box::new(move |emit| {
-            for q in quads() {
-                let [a, b, c, d] = q.map(|v| v as u32);
-                emit([a, b, c]);
-                emit([a, c, d]);
-            }
-        }),
+        shape: Shape::Produced {
+            positions,
+            triangles,
+        },
     }
 }
 

@@ -3,6 +3,7 @@
 //! back to the same `f64` (`zmij`), and bytes are passed on in large chunks.
 
 use std::io::{self, Write};
+use std::sync::{Mutex, PoisonError};
 
 use glam::DVec3;
 
@@ -97,23 +98,28 @@ impl<W: Write + ?Sized> Out<'_, W> {
         const ITEMS: usize = 1 << 14;
         /// Chunks formatted before they are passed on: a few per core.
         const BATCH: usize = 8;
+        // One buffer per chunk of a batch, kept for the next batches: memory
+        // touched once (fresh pages cost more than formatting).
+        let buffers: Vec<Mutex<Vec<u8>>> = (0..BATCH).map(|_| Mutex::default()).collect();
         for (b, batch) in items.chunks(ITEMS * BATCH).enumerate() {
             let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
-            let texts = crate::tasks::map(chunks.len(), |c| {
+            let done = crate::tasks::map(chunks.len(), |c| {
                 let first = (b * BATCH + c) * ITEMS;
-                let mut bytes = Vec::new();
-                emit(&mut bytes, |o| {
+                let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
+                bytes.clear();
+                emit(&mut *bytes, |o| {
                     for (k, item) in chunks[c].iter().enumerate() {
                         line(o, first + k, item);
                         o.maybe_flush()?;
                     }
                     Ok(())
                 })
-                .map(|()| bytes)
             });
             self.flush()?;
-            for bytes in texts {
-                self.w.write_all(&bytes?)?;
+            for (done, bytes) in done.into_iter().zip(&buffers) {
+                done?;
+                let bytes = bytes.lock().unwrap_or_else(PoisonError::into_inner);
+                self.w.write_all(&bytes)?;
             }
         }
         Ok(())
