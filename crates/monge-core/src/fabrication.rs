@@ -312,7 +312,7 @@ pub struct Node {
     /// Unit node axis.
     pub axis: DVec3,
     /// Directions present, in the order `+i, +j, −i, −j` (which neighbours exist).
-    pub directions: Vec<String>,
+    pub directions: Vec<&'static str>,
     /// Angles between consecutive present edges (in that cyclic order), radians.
     pub beam_angles: Vec<f64>,
     /// Angle between each present edge and the node axis, radians.
@@ -853,8 +853,9 @@ const DIRECTIONS: [((isize, isize), &str); 4] = [
 fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> Vec<Node> {
     let base = &layers[0].grid;
     let (lo, hi) = extreme_layers(layers);
-    let mut nodes = Vec::with_capacity(base.vertices.len());
-    for i in 0..base.rows {
+    // Row by row, side by side.
+    let rows = crate::tasks::map(base.rows, |i| {
+        let mut nodes = Vec::with_capacity(base.cols);
         for j in 0..base.cols {
             let x = base.vertex(i, j);
             let axis = base.normals[base.index(i, j)];
@@ -871,7 +872,7 @@ fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> Vec<Node> {
                 let other = base.normals[base.index(ni, nj)];
                 torsion = torsion.max(e.normalize().dot(axis.cross(other)).abs());
                 edges.push(e);
-                directions.push(name.to_owned());
+                directions.push(name);
             }
             let beam_angles = if edges.len() < 2 {
                 Vec::new()
@@ -897,6 +898,11 @@ fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> Vec<Node> {
                 node_type: 0,
             });
         }
+        nodes
+    });
+    let mut nodes = Vec::with_capacity(base.vertices.len());
+    for row in rows {
+        nodes.extend(row);
     }
     assign_types(&mut nodes, angle_tol);
     nodes
