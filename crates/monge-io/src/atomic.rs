@@ -141,6 +141,8 @@ impl Staged {
     }
 
     /// Renames the complete file to `path` (in `dir`), replacing any file there.
+    /// (`dir` and `builder` serve the unnamed file, which only Linux makes.)
+    #[cfg_attr(not(target_os = "linux"), allow(unused_variables))]
     fn persist(self, dir: &Path, path: &Path, builder: &tempfile::Builder) -> io::Result<()> {
         match self {
             #[cfg(target_os = "linux")]
