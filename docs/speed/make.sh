@@ -1,11 +1,11 @@
 #!/bin/sh
 # Regenerates the "Speed" table of README.md from `monge bench --all` (release build):
-# every command on 100², 400² and 1000² faces of the bundled design, once each.
-# Usage: docs/speed/make.sh  (from the repository root; a minute or two).
+# every command on 100², 400² and 1000² faces of the bundled design, three times each.
+# Usage: docs/speed/make.sh  (from the repository root; about five minutes).
 set -eu
 cargo build --release --locked -q -p monge-cli
 out=docs/speed/bench.jsonl
-./target/release/monge bench --all "$@" > "$out"
+./target/release/monge bench --all --runs 3 "$@" > "$out"
 python3 - "$out" <<'PY'
 import json, re, subprocess, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
@@ -13,9 +13,10 @@ cpu = next(l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.starts
 cores = subprocess.run(["nproc"], capture_output=True, text=True).stdout.strip()
 sizes = list(dict.fromkeys(r["faces"] for r in rows))
 table = ["Measured on %s, %s cores (`nproc`), by `docs/speed/make.sh` (`monge bench --all`, release"
-         " build, each command once as a child process; raw lines in `docs/speed/bench.jsonl`)."
-         " Each cell: wall time, peak RSS, bytes written, and the ratio of the wall time to one"
-         " `write_all` + `sync_all` of as many bytes in the same directory." % (cpu, cores), "",
+         " build, each command three times as a child process; raw lines in `docs/speed/bench.jsonl`)."
+         " Each cell: median wall time, largest peak RSS, bytes written, and the ratio of the wall"
+         " time to the median of one `write_all` + `sync_all` of as many bytes in the same"
+         " directory after each run." % (cpu, cores), "",
          "| command | " + " | ".join(s.replace("x", " × ") + " faces" for s in sizes) + " |",
          "|---|" + "---|" * len(sizes)]
 def cell(r):

@@ -27,7 +27,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<Outcome> {
         let exe = std::env::current_exe().context("cannot find the monge binary to run")?;
         if args.all {
             let sizes = args.sizes.as_deref().unwrap_or(&[100, 400, 1000]);
-            run_all(&exe, sizes, args.max_vertices)?;
+            run_all(&exe, sizes, args.runs.unwrap_or(1), args.max_vertices)?;
         }
         if args.approximate {
             run_approximate(&exe)?;
@@ -141,8 +141,13 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
 }
 
 /// `monge bench --all`: every command of [`COMMANDS`] on the bundled design at
-/// each size, once each, as a child process of this binary.
-fn run_all(exe: &std::path::Path, sizes: &[u32], max_vertices: usize) -> anyhow::Result<()> {
+/// each size, `runs` times each, as a child process of this binary.
+fn run_all(
+    exe: &std::path::Path,
+    sizes: &[u32],
+    runs: u32,
+    max_vertices: usize,
+) -> anyhow::Result<()> {
     for &n in sizes {
         let dir = tempfile::tempdir().context("cannot create a temporary directory")?;
         let design = dir.path().join("design.json");
@@ -163,20 +168,32 @@ fn run_all(exe: &std::path::Path, sizes: &[u32], max_vertices: usize) -> anyhow:
                         .replace("{dir}", &dir.path().to_string_lossy())
                 })
                 .collect();
-            let before = dir_bytes(dir.path())?;
-            let (wall, peak_rss_kb) = run_child(exe, &args)
-                .with_context(|| format!("`monge {}` on {n} × {n} faces", args.join(" ")))?;
-            let bytes = dir_bytes(dir.path())?.saturating_sub(before);
-            // Nothing written (check): no raw-write time to compare with.
-            let raw = if bytes > 0 {
-                raw_write(dir.path(), bytes)?
-            } else {
+            let (mut walls, mut raws, mut peak_rss_kb, mut bytes) = (Vec::new(), Vec::new(), 0, 0);
+            for run in 0..runs {
+                let before = dir_bytes(dir.path())?;
+                let (wall, rss) = run_child(exe, &args)
+                    .with_context(|| format!("`monge {}` on {n} × {n} faces", args.join(" ")))?;
+                // The first run creates the files, the others replace them.
+                if run == 0 {
+                    bytes = dir_bytes(dir.path())?.saturating_sub(before);
+                }
+                walls.push(wall);
+                peak_rss_kb = peak_rss_kb.max(rss);
+                // Nothing written (check): no raw-write time to compare with.
+                if bytes > 0 {
+                    raws.push(raw_write(dir.path(), bytes)?);
+                }
+            }
+            let wall = median(&mut walls);
+            let raw = if raws.is_empty() {
                 0.0
+            } else {
+                median(&mut raws)
             };
             let mfaces = (n as f64).powi(2) / 1e6;
             print(&format!(
-                "{{\"command\":\"{name}\",\"faces\":\"{n}x{n}\",\"wall_ms\":{:.1},\"bytes\":{bytes},\
-                 \"ms_per_mface\":{:.1},\"peak_rss_mb\":{:.1},\"raw_write_ms\":{:.1},\
+                "{{\"command\":\"{name}\",\"faces\":\"{n}x{n}\",\"runs\":{runs},\"wall_ms\":{:.1},\
+                 \"bytes\":{bytes},\"ms_per_mface\":{:.1},\"peak_rss_mb\":{:.1},\"raw_write_ms\":{:.1},\
                  \"ratio_to_raw\":{}}}\n",
                 wall * 1e3,
                 wall * 1e3 / mfaces,

@@ -594,7 +594,8 @@ pub struct SmoothArgs {
 /// Arguments of `monge bench`.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Timed runs per size [default: enough for about 1 s per size, at least 5].
+    /// Timed runs per size [default: enough for about 1 s per size, at least 5; with
+    /// --all, runs of each command and size: 1].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub runs: Option<u32>,
     /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1
@@ -607,10 +608,11 @@ pub struct BenchArgs {
     )]
     pub sizes: Option<Vec<u32>>,
     /// Time every command instead (generate to .json/.obj/.ply (ASCII and binary)/.glb, check, fabricate,
-    /// smooth to .json and .igs), each run once as a child process of this binary in a
-    /// temporary directory: one JSON line per command and size with wall time, bytes
-    /// written, time per million faces, peak RSS, and the ratio to the raw-write time of
-    /// as many bytes (`write_all` and `sync_all` of one file in the same directory).
+    /// smooth to .json and .igs), each run --runs times as a child process of this binary
+    /// in a temporary directory: one JSON line per command and size with the median wall
+    /// time, bytes written, time per million faces, the largest peak RSS, and the ratio to
+    /// the median raw-write time of as many bytes (`write_all` and `sync_all` of one file in
+    /// the same directory, after each run).
     #[arg(long)]
     pub all: bool,
     /// Time `monge approximate` of the shipped 10 m roof target (2000 points, the default

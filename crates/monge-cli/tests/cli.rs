@@ -666,6 +666,7 @@ fn bench_all_prints_one_json_line_per_command_and_size() {
     for (k, v) in lines.iter().enumerate() {
         let n: u32 = if k < 9 { 4 } else { 6 };
         assert_eq!(v["faces"], format!("{n}x{n}"));
+        assert_eq!(v["runs"], 1);
         let n = f64::from(n);
         let wall = v["wall_ms"].as_f64().unwrap();
         assert!(wall > 0.0, "{v}");
