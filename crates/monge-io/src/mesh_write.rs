@@ -246,19 +246,18 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
                     o.push(b'\n');
                 })?;
             }
-            for corners in self.faces {
-                out.push(b'f');
-                for c in corners {
-                    out.push(b' ');
-                    out.int(c + 1);
+            out.each_of(self.faces, |o, _, corners| {
+                o.push(b'f');
+                for &c in corners {
+                    o.push(b' ');
+                    o.int(c + 1);
                     if with_normals {
-                        out.str("//");
-                        out.int(c + 1);
+                        o.str("//");
+                        o.int(c + 1);
                     }
                 }
-                out.end()?;
-            }
-            Ok(())
+                o.push(b'\n');
+            })
         })
     }
 
@@ -275,15 +274,14 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
                 }
                 o.push(b'\n');
             })?;
-            for corners in self.faces {
-                out.push(b'4');
-                for c in corners {
-                    out.push(b' ');
-                    out.int(c);
+            out.each_of(self.faces, |o, _, corners| {
+                o.push(b'4');
+                for &c in corners {
+                    o.push(b' ');
+                    o.int(c);
                 }
-                out.end()?;
-            }
-            Ok(())
+                o.push(b'\n');
+            })
         })
     }
 
@@ -307,9 +305,10 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
             // One fixed-size record per vertex and per face (copied whole).
             let size = if f32 { 4 } else { 8 };
             let len = if self.normals.is_empty() { 3 } else { 6 } * size;
-            let mut record = [0u8; 48];
-            for (k, p) in self.vertices.iter().enumerate() {
-                let normal = self.normals.get(k).copied().unwrap_or_default();
+            let normals = self.normals;
+            out.each(self.vertices, |o, k, p| {
+                let mut record = [0u8; 48];
+                let normal = normals.get(k).copied().unwrap_or_default();
                 for (x, bytes) in p
                     .to_array()
                     .into_iter()
@@ -322,19 +321,16 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
                         bytes.copy_from_slice(&x.to_le_bytes());
                     }
                 }
-                out.bytes(&record[..len]);
-                out.maybe_flush()?;
-            }
-            let mut record = [4u8; 17];
-            for corners in self.faces {
-                for (c, bytes) in corners.into_iter().zip(record[1..].chunks_exact_mut(4)) {
+                o.bytes(&record[..len]);
+            })?;
+            out.each_of(self.faces, |o, _, corners| {
+                let mut record = [4u8; 17];
+                for (&c, bytes) in corners.iter().zip(record[1..].chunks_exact_mut(4)) {
                     // In range: checked above.
                     bytes.copy_from_slice(&(c as i32).to_le_bytes());
                 }
-                out.bytes(&record);
-                out.maybe_flush()?;
-            }
-            Ok(())
+                o.bytes(&record);
+            })
         })
     }
 

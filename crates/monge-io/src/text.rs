@@ -19,6 +19,7 @@ pub(crate) fn emit<W: Write + ?Sized>(
         buf: Vec::with_capacity(CHUNK + 1024),
         float: zmij::Buffer::new(),
         int: itoa::Buffer::new(),
+        chunks: Vec::new(),
         w,
     };
     body(&mut out)?;
@@ -31,8 +32,17 @@ pub(crate) struct Out<'w, W: Write + ?Sized> {
     buf: Vec<u8>,
     float: zmij::Buffer,
     int: itoa::Buffer,
+    /// The chunks of [`Out::each`], kept from batch to batch and call to
+    /// call: memory touched once (fresh pages cost more than formatting).
+    chunks: Vec<Mutex<Vec<u8>>>,
     w: &'w mut W,
 }
+
+/// Items per chunk of [`Out::each`]: about a megabyte of text.
+const ITEMS: usize = 1 << 14;
+
+/// Chunks formatted side by side before they are passed on: a few per core.
+const BATCH: usize = 8;
 
 impl<W: Write + ?Sized> Out<'_, W> {
     /// Appends one byte.
@@ -94,33 +104,56 @@ impl<W: Write + ?Sized> Out<'_, W> {
         items: &[T],
         line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
     ) -> io::Result<()> {
-        /// Items per chunk: about a megabyte of text.
-        const ITEMS: usize = 1 << 14;
-        /// Chunks formatted before they are passed on: a few per core.
-        const BATCH: usize = 8;
-        // One buffer per chunk of a batch, kept for the next batches: memory
-        // touched once (fresh pages cost more than formatting).
-        let buffers: Vec<Mutex<Vec<u8>>> = (0..BATCH).map(|_| Mutex::default()).collect();
         for (b, batch) in items.chunks(ITEMS * BATCH).enumerate() {
-            let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
-            let done = crate::tasks::map(chunks.len(), |c| {
-                let first = (b * BATCH + c) * ITEMS;
-                let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
-                bytes.clear();
-                emit(&mut *bytes, |o| {
-                    for (k, item) in chunks[c].iter().enumerate() {
-                        line(o, first + k, item);
-                        o.maybe_flush()?;
-                    }
-                    Ok(())
-                })
-            });
-            self.flush()?;
-            for (done, bytes) in done.into_iter().zip(&buffers) {
-                done?;
-                let bytes = bytes.lock().unwrap_or_else(PoisonError::into_inner);
-                self.w.write_all(&bytes)?;
+            self.batch(b * ITEMS * BATCH, batch, &line)?;
+        }
+        Ok(())
+    }
+
+    /// [`Out::each`] of the items an iterator yields, gathered a batch at a time.
+    pub(crate) fn each_of<T: Sync>(
+        &mut self,
+        items: impl IntoIterator<Item = T>,
+        line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
+    ) -> io::Result<()> {
+        let (mut items, mut batch, mut first) = (items.into_iter(), Vec::new(), 0);
+        loop {
+            batch.clear();
+            batch.extend(items.by_ref().take(ITEMS * BATCH));
+            if batch.is_empty() {
+                return Ok(());
             }
+            self.batch(first, &batch, &line)?;
+            first += batch.len();
+        }
+    }
+
+    /// `line(first + k, item k)` for the items of one batch, in chunks side by side.
+    fn batch<T: Sync>(
+        &mut self,
+        first: usize,
+        batch: &[T],
+        line: &(impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync),
+    ) -> io::Result<()> {
+        let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
+        self.chunks.resize_with(BATCH, Mutex::default);
+        let buffers = &self.chunks;
+        let done = crate::tasks::map(chunks.len(), |c| {
+            let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
+            bytes.clear();
+            emit(&mut *bytes, |o| {
+                for (k, item) in chunks[c].iter().enumerate() {
+                    line(o, first + c * ITEMS + k, item);
+                    o.maybe_flush()?;
+                }
+                Ok(())
+            })
+        });
+        self.flush()?;
+        for (done, bytes) in done.into_iter().zip(&self.chunks) {
+            done?;
+            let bytes = bytes.lock().unwrap_or_else(PoisonError::into_inner);
+            self.w.write_all(&bytes)?;
         }
         Ok(())
     }
@@ -141,8 +174,9 @@ mod tests {
 
     #[test]
     fn items_formatted_side_by_side_come_out_in_order() {
-        // Several batches of chunks (2^14 items each), the last ones partial.
-        let items: Vec<f64> = (0..100_003).map(|k| k as f64 * 0.37 - 1e3).collect();
+        // Several batches of 8 chunks of 2^14 items, the last ones partial, from
+        // a slice and from an iterator.
+        let items: Vec<f64> = (0..300_003).map(|k| k as f64 * 0.37 - 1e3).collect();
         let line = |o: &mut Out<'_, Vec<u8>>, k: usize, x: &f64| {
             o.int(k);
             o.push(b' ');
@@ -153,12 +187,15 @@ mod tests {
         emit(&mut side_by_side, |o| {
             o.str("head\n");
             o.each(&items, line)?;
+            o.each_of(items.iter().copied(), line)?;
             o.end()
         })
         .unwrap();
         let mut alone = b"head\n".to_vec();
-        for (k, x) in items.iter().enumerate() {
-            alone.extend(format!("{k} {}\n", zmij::Buffer::new().format_finite(*x)).bytes());
+        for _ in 0..2 {
+            for (k, x) in items.iter().enumerate() {
+                alone.extend(format!("{k} {}\n", zmij::Buffer::new().format_finite(*x)).bytes());
+            }
         }
         alone.push(b'\n');
         assert_eq!(
