@@ -138,20 +138,32 @@ impl<W: Write + ?Sized> Out<'_, W> {
         let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
         self.chunks.resize_with(BATCH, Mutex::default);
         let buffers = &self.chunks;
-        let done = crate::tasks::map(chunks.len(), |c| {
+        crate::tasks::map(chunks.len(), |c| {
             let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
-            bytes.clear();
-            emit(&mut *bytes, |o| {
-                for (k, item) in chunks[c].iter().enumerate() {
-                    line(o, first + c * ITEMS + k, item);
-                    o.maybe_flush()?;
-                }
-                Ok(())
-            })
+            // Formatted straight into the chunk's buffer; whatever a line
+            // passes on (none does) goes first.
+            let mut passed = Vec::new();
+            let mut o = Out {
+                buf: std::mem::take(&mut *bytes),
+                float: zmij::Buffer::new(),
+                int: itoa::Buffer::new(),
+                chunks: Vec::new(),
+                w: &mut passed,
+            };
+            o.buf.clear();
+            for (k, item) in chunks[c].iter().enumerate() {
+                line(&mut o, first + c * ITEMS + k, item);
+            }
+            let formatted = std::mem::take(&mut o.buf);
+            *bytes = if passed.is_empty() {
+                formatted
+            } else {
+                passed.extend_from_slice(&formatted);
+                passed
+            };
         });
         self.flush()?;
-        for (done, bytes) in done.into_iter().zip(&self.chunks) {
-            done?;
+        for bytes in &self.chunks[..chunks.len()] {
             let bytes = bytes.lock().unwrap_or_else(PoisonError::into_inner);
             self.w.write_all(&bytes)?;
         }
@@ -183,10 +195,17 @@ mod tests {
             o.float(*x);
             o.push(b'\n');
         };
+        // A line may also pass its chunk's bytes on (`end`), in order.
+        let ending = |o: &mut Out<'_, Vec<u8>>, k: usize, x: &f64| {
+            o.int(k);
+            o.push(b' ');
+            o.float(*x);
+            o.end().unwrap();
+        };
         let mut side_by_side = Vec::new();
         emit(&mut side_by_side, |o| {
             o.str("head\n");
-            o.each(&items, line)?;
+            o.each(&items, ending)?;
             o.each_of(items.iter().copied(), line)?;
             o.end()
         })
