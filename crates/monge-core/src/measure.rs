@@ -18,6 +18,7 @@ use glam::DVec3;
 use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
 
+use crate::grid::Folds;
 use crate::QuadGrid;
 
 /// Where a measurement is worst, and its value (§2.2).
@@ -194,80 +195,115 @@ pub fn largest(values: impl IntoIterator<Item = f64>) -> f64 {
 pub fn measure(grid: &QuadGrid) -> Measurements {
     let diagonal = grid.bbox_diagonal();
     let scale = if diagonal > 0.0 { diagonal } else { 1.0 };
-
-    let mut planar = Worst::NONE;
-    let mut circular = Worst::NONE;
-    for i in 0..grid.rows.saturating_sub(1) {
-        for j in 0..grid.cols.saturating_sub(1) {
-            let q = grid.face(i, j);
-            planar.update(face_planarity(&q), (i, j));
-            circular.update(circularity(&q), (i, j));
-        }
-    }
-
-    let mut rows = Worst::NONE;
-    let mut points = Vec::with_capacity(grid.cols.max(grid.rows));
-    for i in 0..grid.rows {
-        points.clear();
-        points.extend(grid.row(i));
-        let (d, j) = polyline_planarity(&points);
-        rows.update(d, (i, j));
+    // Row by row and column by column, side by side, merged in order: the same
+    // worst elements (the first of equal ones) as one pass, whatever the threads.
+    let mut all = RowMeasures::default();
+    for row in crate::tasks::map(grid.rows, |i| RowMeasures::of(grid, i, scale)) {
+        all.merge(row);
     }
     let mut columns = Worst::NONE;
-    for j in 0..grid.cols {
-        points.clear();
-        points.extend(grid.column(j));
-        let (d, i) = polyline_planarity(&points);
+    let column = |j: usize| polyline_planarity(&grid.column(j).collect::<Vec<_>>());
+    for (j, (d, i)) in crate::tasks::map(grid.cols, column).into_iter().enumerate() {
         columns.update(d, (i, j));
     }
-
     let (torsion, normal_length) = if grid.normals.is_empty() {
         (None, None)
     } else {
-        let (t, l) = node_axes(grid, scale);
-        (Some(t), Some(l))
+        (Some(all.torsion), Some(all.length))
     };
-
-    let folds = grid.folds();
     Measurements {
         scale,
-        folded_faces: folds.count(),
-        first_fold: folds.first(),
-        face_planarity: planar.relative(scale),
-        circularity: circular.relative(scale),
-        row_planarity: rows.relative(scale),
+        folded_faces: all.folds.count(),
+        first_fold: all.folds.first(),
+        face_planarity: all.planar.relative(scale),
+        circularity: all.circular.relative(scale),
+        row_planarity: all.row.relative(scale),
         column_planarity: columns.relative(scale),
         torsion,
         normal_length,
     }
 }
 
-/// Torsion and unit length of the node axes (§2.2): `(torsion, normal_length)`.
-fn node_axes(grid: &QuadGrid, scale: f64) -> (Worst, Worst) {
-    let mut torsion = Worst::NONE;
-    let mut length = Worst::NONE;
-    for i in 0..grid.rows {
-        for j in 0..grid.cols {
-            let k = grid.index(i, j);
-            let (p, n) = (grid.vertices[k], grid.normals[k]);
-            length.update((n.length() - 1.0).abs(), (i, j));
-            let mut edge = |q: usize| {
-                let e = grid.vertices[q] - p;
-                let det = e.dot(
-                    n.normalize_or_zero()
-                        .cross(grid.normals[q].normalize_or_zero()),
-                );
-                torsion.update(det.abs() / scale, (i, j));
-            };
-            if j + 1 < grid.cols {
-                edge(k + 1);
-            }
-            if i + 1 < grid.rows {
-                edge(k + grid.cols);
-            }
+/// What [`measure`] finds in one row: its faces (below it), its polyline and
+/// its node axes.
+struct RowMeasures {
+    planar: Worst,
+    circular: Worst,
+    row: Worst,
+    torsion: Worst,
+    length: Worst,
+    folds: Folds,
+}
+
+impl Default for RowMeasures {
+    fn default() -> Self {
+        RowMeasures {
+            planar: Worst::NONE,
+            circular: Worst::NONE,
+            row: Worst::NONE,
+            torsion: Worst::NONE,
+            length: Worst::NONE,
+            folds: Folds::default(),
         }
     }
-    (torsion, length)
+}
+
+impl RowMeasures {
+    /// Row `i` of `grid`, lengths divided by `scale` where [`node_axes`] does.
+    fn of(grid: &QuadGrid, i: usize, scale: f64) -> RowMeasures {
+        let mut m = RowMeasures::default();
+        if i + 1 < grid.rows {
+            for j in 0..grid.cols.saturating_sub(1) {
+                let q = grid.face(i, j);
+                m.planar.update(face_planarity(&q), (i, j));
+                m.circular.update(circularity(&q), (i, j));
+                m.folds.add((i, j), grid.face_turn(i, j));
+            }
+        }
+        let (d, j) = polyline_planarity(&grid.row(i).collect::<Vec<_>>());
+        m.row.update(d, (i, j));
+        if !grid.normals.is_empty() {
+            node_axes(grid, i, scale, (&mut m.torsion, &mut m.length));
+        }
+        m
+    }
+
+    /// `self` then `next` (a later row).
+    fn merge(&mut self, next: RowMeasures) {
+        for (worst, later) in [
+            (&mut self.planar, next.planar),
+            (&mut self.circular, next.circular),
+            (&mut self.row, next.row),
+            (&mut self.torsion, next.torsion),
+            (&mut self.length, next.length),
+        ] {
+            worst.update(later.value, later.at);
+        }
+        self.folds = self.folds.merge(next.folds);
+    }
+}
+
+/// Torsion and unit length of the node axes of row `i` (§2.2), into `(torsion, length)`.
+fn node_axes(grid: &QuadGrid, i: usize, scale: f64, (torsion, length): (&mut Worst, &mut Worst)) {
+    for j in 0..grid.cols {
+        let k = grid.index(i, j);
+        let (p, n) = (grid.vertices[k], grid.normals[k]);
+        length.update((n.length() - 1.0).abs(), (i, j));
+        let mut edge = |q: usize| {
+            let e = grid.vertices[q] - p;
+            let det = e.dot(
+                n.normalize_or_zero()
+                    .cross(grid.normals[q].normalize_or_zero()),
+            );
+            torsion.update(det.abs() / scale, (i, j));
+        };
+        if j + 1 < grid.cols {
+            edge(k + 1);
+        }
+        if i + 1 < grid.rows {
+            edge(k + grid.cols);
+        }
+    }
 }
 
 /// Face planarity of a quad `[A, B, C, D]` (§2.2): the distance between the
@@ -486,6 +522,26 @@ mod tests {
     /// A one-face grid with corners `A, B, C, D` = `(0,0), (1,0), (1,1), (0,1)`.
     fn one_face([a, b, c, d]: [DVec3; 4]) -> QuadGrid {
         QuadGrid::new(2, 2, vec![a, d, b, c], vec![])
+    }
+
+    #[test]
+    fn the_first_of_equal_worst_elements_is_reported_and_a_nan_wins() {
+        // A flat 6 × 3 grid; faces (1, 1) and (3, 1) twisted alike (corner
+        // (i + 1, 2) lifted): rows are measured side by side and merged in order.
+        let flat = |i: usize, j: usize| v(i as f64, j as f64, 0.0);
+        let mut g = QuadGrid::new(6, 3, (0..18).map(|k| flat(k / 3, k % 3)).collect(), vec![]);
+        for i in [1, 3] {
+            g.vertices[(i + 1) * 3 + 2].z = 0.25;
+        }
+        let m = measure(&g);
+        assert!(m.face_planarity.value > 0.0);
+        assert_eq!(m.face_planarity.at, (1, 1));
+        // A NaN in row 5 (the last) beats every number, wherever it is.
+        g.vertices[5 * 3].x = f64::NAN;
+        let m = measure(&g);
+        assert!(m.face_planarity.value.is_nan());
+        assert_eq!(m.face_planarity.at, (4, 0));
+        assert!(m.row_planarity.value.is_nan() && m.row_planarity.at == (5, 0));
     }
 
     const TORUS_R: f64 = 3.0;
