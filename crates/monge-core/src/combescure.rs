@@ -165,27 +165,19 @@ fn combescure_in_blocks(
     }
     let run = |(b, part): (&Range<usize>, Vec<Piece>)| columns.block(kernel, b.clone(), part);
     // One block runs on this thread (no task handed to the pool and waited for).
-    #[cfg(feature = "parallel")]
-    let seen = if blocks.len() > 1 {
-        use rayon::prelude::*;
-        blocks
-            .par_iter()
-            .zip(parts)
-            .map(run)
-            .reduce(Seen::default, Seen::merge)
-    } else {
-        blocks
+    let seen = match blocks.len() {
+        #[cfg(feature = "parallel")]
+        2.. => {
+            use rayon::prelude::*;
+            let tasks = blocks.par_iter().zip(parts);
+            tasks.map(run).reduce(Seen::default, Seen::merge)
+        }
+        _ => blocks
             .iter()
             .zip(parts)
             .map(run)
-            .fold(Seen::default(), Seen::merge)
+            .fold(Seen::default(), Seen::merge),
     };
-    #[cfg(not(feature = "parallel"))]
-    let seen = blocks
-        .iter()
-        .zip(parts)
-        .map(run)
-        .fold(Seen::default(), Seen::merge);
     if let Some(e) = seen.error {
         return Err(e);
     }
