@@ -38,7 +38,7 @@ pub mod panels;
 pub mod projective;
 pub mod scan;
 pub mod symmetry;
-mod tasks;
+pub mod tasks;
 
 pub use design::{Design, GuideSpec, MeshKind, Tolerances};
 pub use generate::{

@@ -62,7 +62,7 @@ pub fn write_fabrication(
     // The files are independent: as many are formatted and written at once as
     // the machine has cores (each one atomically, as alone); the first error
     // in the order of the files is returned, as when written one by one.
-    let results = crate::tasks::map(writers.len(), |k| {
+    let results = monge_core::tasks::map(writers.len(), |k| {
         write_atomic(&paths[k], |w| writers[k](w))
     });
     for result in results {

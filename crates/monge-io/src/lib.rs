@@ -41,7 +41,6 @@ mod net;
 mod points_read;
 mod schedule;
 mod svg;
-mod tasks;
 mod text;
 
 use std::fs::{File, Metadata};

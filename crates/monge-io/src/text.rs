@@ -138,7 +138,7 @@ impl<W: Write + ?Sized> Out<'_, W> {
         let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
         self.chunks.resize_with(BATCH, Mutex::default);
         let buffers = &self.chunks;
-        crate::tasks::map(chunks.len(), |c| {
+        monge_core::tasks::map(chunks.len(), |c| {
             let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
             // Formatted straight into the chunk's buffer; whatever a line
             // passes on (none does) goes first.
