@@ -37,6 +37,37 @@ fn failing_closure_leaves_no_file() {
 }
 
 #[test]
+fn files_larger_than_the_writeback_step_come_out_whole() {
+    // Over 8 MiB the staged file is handed to the disk as it grows (Linux):
+    // pieces of every size, from one byte to 3 MiB, give the same bytes, and
+    // a failure after that still leaves nothing behind.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("big.bin");
+    let bytes: Vec<u8> = (0..20_000_003u32)
+        .map(|k| (k.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect();
+    let mut sizes = [1, 4096, 70_000, 3 << 20, 65_536, 7].into_iter().cycle();
+    write_atomic(&path, |w| {
+        let mut rest = &bytes[..];
+        while !rest.is_empty() {
+            let (piece, tail) = rest.split_at(sizes.next().unwrap().min(rest.len()));
+            w.write_all(piece)?;
+            rest = tail;
+        }
+        Ok(())
+    })
+    .unwrap();
+    assert!(std::fs::read(&path).unwrap() == bytes, "the file differs");
+    let failed = dir.path().join("failed.bin");
+    write_atomic(&failed, |w| {
+        w.write_all(&bytes)?;
+        Err(io::Error::other("stopped after 20 MB"))
+    })
+    .unwrap_err();
+    assert_eq!(entries(dir.path()), ["big.bin"]);
+}
+
+#[test]
 fn failing_closure_leaves_an_existing_file_untouched() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("out.json");
