@@ -23,6 +23,39 @@ pub fn map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
     }
 }
 
+/// `(a(), b())`, with `b` run by the pool while `a` runs on this thread
+/// (one after the other without the `parallel` feature): for work that has to
+/// stay on this thread, such as writing to a file that is not `Send`, beside
+/// work that can move. A panic in either is passed on, once both are done.
+///
+/// ```
+/// let mut written = Vec::new();
+/// let (len, squares) = monge_core::tasks::beside(
+///     || {
+///         written.extend_from_slice(b"first batch");
+///         written.len()
+///     },
+///     || monge_core::tasks::map(4, |k| k * k),
+/// );
+/// assert_eq!((len, squares), (11, vec![0, 1, 4, 9]));
+/// ```
+pub fn beside<A, B: Send>(a: impl FnOnce() -> A, b: impl FnOnce() -> B + Send) -> (A, B) {
+    #[cfg(feature = "parallel")]
+    {
+        let mut moved = None;
+        let here = rayon::in_place_scope(|s| {
+            s.spawn(|_| moved = Some(b()));
+            a()
+        });
+        // The scope returns once the spawned `b` has run (or passes its panic on).
+        (here, moved.expect("the scope ran b"))
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        (a(), b())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #[test]
@@ -31,5 +64,21 @@ mod tests {
             super::map(1000, |k| k * k),
             (0..1000).map(|k| k * k).collect::<Vec<_>>()
         );
+    }
+
+    #[test]
+    fn beside_runs_both_and_keeps_the_first_here() {
+        let here = std::thread::current().id();
+        let (a, b) = super::beside(
+            || std::thread::current().id(),
+            || super::map(100, |k| k + 1).into_iter().sum::<usize>(),
+        );
+        assert_eq!((a, b), (here, 5050));
+    }
+
+    #[test]
+    #[should_panic(expected = "b failed")]
+    fn a_panic_beside_is_passed_on() {
+        super::beside(|| 1, || panic!("b failed"));
     }
 }

@@ -20,6 +20,7 @@ pub(crate) fn emit<W: Write + ?Sized>(
         float: zmij::Buffer::new(),
         int: itoa::Buffer::new(),
         chunks: Vec::new(),
+        ready: Vec::new(),
         w,
     };
     body(&mut out)?;
@@ -35,6 +36,9 @@ pub(crate) struct Out<'w, W: Write + ?Sized> {
     /// The chunks of [`Out::each`], kept from batch to batch and call to
     /// call: memory touched once (fresh pages cost more than formatting).
     chunks: Vec<Mutex<Vec<u8>>>,
+    /// The batch of [`Out::each`] formatted last, written while the next
+    /// one is formatted.
+    ready: Vec<Vec<u8>>,
     w: &'w mut W,
 }
 
@@ -97,17 +101,18 @@ impl<W: Write + ?Sized> Out<'_, W> {
 
     /// Appends `line(k, item)` for every item, in order, formatted in chunks
     /// side by side (one thread per core; one thread where there are no
-    /// threads, as in WebAssembly): the bytes are the same whatever the
-    /// number of threads.
+    /// threads, as in WebAssembly), each batch of chunks written while the
+    /// next is formatted: the bytes are the same whatever the number of threads.
     pub(crate) fn each<T: Sync>(
         &mut self,
         items: &[T],
         line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
     ) -> io::Result<()> {
+        self.flush()?;
         for (b, batch) in items.chunks(ITEMS * BATCH).enumerate() {
             self.batch(b * ITEMS * BATCH, batch, &line)?;
         }
-        Ok(())
+        self.write_ready()
     }
 
     /// [`Out::each`] of the items an iterator yields, gathered a batch at a time.
@@ -116,19 +121,22 @@ impl<W: Write + ?Sized> Out<'_, W> {
         items: impl IntoIterator<Item = T>,
         line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
     ) -> io::Result<()> {
+        self.flush()?;
         let (mut items, mut batch, mut first) = (items.into_iter(), Vec::new(), 0);
         loop {
             batch.clear();
             batch.extend(items.by_ref().take(ITEMS * BATCH));
             if batch.is_empty() {
-                return Ok(());
+                return self.write_ready();
             }
             self.batch(first, &batch, &line)?;
             first += batch.len();
         }
     }
 
-    /// `line(first + k, item k)` for the items of one batch, in chunks side by side.
+    /// Formats `line(first + k, item k)` for the items of one batch, in chunks
+    /// side by side, while the batch before is written; the new batch is then
+    /// the one ready to be written.
     fn batch<T: Sync>(
         &mut self,
         first: usize,
@@ -137,35 +145,54 @@ impl<W: Write + ?Sized> Out<'_, W> {
     ) -> io::Result<()> {
         let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
         self.chunks.resize_with(BATCH, Mutex::default);
-        let buffers = &self.chunks;
-        monge_core::tasks::map(chunks.len(), |c| {
-            let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
-            // Formatted straight into the chunk's buffer; whatever a line
-            // passes on (none does) goes first.
-            let mut passed = Vec::new();
-            let mut o = Out {
-                buf: std::mem::take(&mut *bytes),
-                float: zmij::Buffer::new(),
-                int: itoa::Buffer::new(),
-                chunks: Vec::new(),
-                w: &mut passed,
-            };
-            o.buf.clear();
-            for (k, item) in chunks[c].iter().enumerate() {
-                line(&mut o, first + c * ITEMS + k, item);
-            }
-            let formatted = std::mem::take(&mut o.buf);
-            *bytes = if passed.is_empty() {
-                formatted
-            } else {
-                passed.extend_from_slice(&formatted);
-                passed
-            };
-        });
-        self.flush()?;
-        for bytes in &self.chunks[..chunks.len()] {
-            let bytes = bytes.lock().unwrap_or_else(PoisonError::into_inner);
-            self.w.write_all(&bytes)?;
+        let (buffers, ready, w) = (&self.chunks, &self.ready, &mut *self.w);
+        let (written, ()) = monge_core::tasks::beside(
+            || ready.iter().try_for_each(|bytes| w.write_all(bytes)),
+            || {
+                monge_core::tasks::map(chunks.len(), |c| {
+                    let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
+                    // Formatted straight into the chunk's buffer; whatever a
+                    // line passes on (none does) goes first.
+                    let mut passed = Vec::new();
+                    let mut o = Out {
+                        buf: std::mem::take(&mut *bytes),
+                        float: zmij::Buffer::new(),
+                        int: itoa::Buffer::new(),
+                        chunks: Vec::new(),
+                        ready: Vec::new(),
+                        w: &mut passed,
+                    };
+                    o.buf.clear();
+                    for (k, item) in chunks[c].iter().enumerate() {
+                        line(&mut o, first + c * ITEMS + k, item);
+                    }
+                    let formatted = std::mem::take(&mut o.buf);
+                    *bytes = if passed.is_empty() {
+                        formatted
+                    } else {
+                        passed.extend_from_slice(&formatted);
+                        passed
+                    };
+                });
+            },
+        );
+        written?;
+        // The written buffers go back to be formatted into next time.
+        self.ready.resize_with(chunks.len(), Vec::new);
+        for (ready, chunk) in self.ready.iter_mut().zip(&mut self.chunks) {
+            std::mem::swap(
+                ready,
+                chunk.get_mut().unwrap_or_else(PoisonError::into_inner),
+            );
+        }
+        Ok(())
+    }
+
+    /// Writes the batch formatted last (its buffers kept, emptied).
+    fn write_ready(&mut self) -> io::Result<()> {
+        for bytes in &mut self.ready {
+            self.w.write_all(bytes)?;
+            bytes.clear();
         }
         Ok(())
     }
