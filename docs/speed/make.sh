@@ -13,10 +13,10 @@ cpu = next(l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.starts
 cores = subprocess.run(["nproc"], capture_output=True, text=True).stdout.strip()
 sizes = list(dict.fromkeys(r["faces"] for r in rows))
 table = ["Measured on %s, %s cores (`nproc`), by `docs/speed/make.sh` (`monge bench --all`, release"
-         " build, each command three times as a child process; raw lines in `docs/speed/bench.jsonl`)."
-         " Each cell: median wall time, largest peak RSS, bytes written, and the ratio of the wall"
-         " time to the median of one `write_all` + `sync_all` of as many bytes in the same"
-         " directory after each run." % (cpu, cores), "",
+         " build, each command three times as a child process, each time into a new output; raw"
+         " lines in `docs/speed/bench.jsonl`). Each cell: median wall time, largest peak RSS, bytes"
+         " written, and the ratio of the wall time to the median of one `write_all` + `sync_all` of"
+         " as many bytes into a new file in the same directory after each run." % (cpu, cores), "",
          "| command | " + " | ".join(s.replace("x", " × ") + " faces" for s in sizes) + " |",
          "|---|" + "---|" * len(sizes)]
 def cell(r):

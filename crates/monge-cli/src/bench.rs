@@ -170,10 +170,13 @@ fn run_all(
                 .collect();
             let (mut walls, mut raws, mut peak_rss_kb, mut bytes) = (Vec::new(), Vec::new(), 0, 0);
             for run in 0..runs {
+                // Every run writes a new output, as the raw write writes a new
+                // file: replacing one would add the file system's freeing of
+                // the old one (14 ms for 65 MB on ext4 here) to the command only.
+                remove_output(&args)?;
                 let before = dir_bytes(dir.path())?;
                 let (wall, rss) = run_child(exe, &args)
                     .with_context(|| format!("`monge {}` on {n} × {n} faces", args.join(" ")))?;
-                // The first run creates the files, the others replace them.
                 if run == 0 {
                     bytes = dir_bytes(dir.path())?.saturating_sub(before);
                 }
@@ -238,6 +241,26 @@ fn run_child(exe: &std::path::Path, args: &[String]) -> anyhow::Result<(f64, i64
         anyhow::bail!("it failed: {}", message.trim_end());
     }
     Ok((wall, usage.ru_maxrss))
+}
+
+/// Removes the output (file or directory) that `args` name after `-o`, if any,
+/// and if it exists.
+fn remove_output(args: &[String]) -> anyhow::Result<()> {
+    let Some(k) = args.iter().position(|a| a == "-o") else {
+        return Ok(());
+    };
+    let path = std::path::Path::new(&args[k + 1]);
+    let removed = if path.is_dir() {
+        std::fs::remove_dir_all(path)
+    } else {
+        std::fs::remove_file(path)
+    };
+    match removed {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            Err(e).with_context(|| format!("cannot remove `{}`", path.display()))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// Total size of the files under `dir`, in bytes.

@@ -609,9 +609,10 @@ pub struct BenchArgs {
     pub sizes: Option<Vec<u32>>,
     /// Time every command instead (generate to .json/.obj/.ply (ASCII and binary)/.glb, check, fabricate,
     /// smooth to .json and .igs), each run --runs times as a child process of this binary
-    /// in a temporary directory: one JSON line per command and size with the median wall
+    /// in a temporary directory, each time into a new output (the last run's removed
+    /// first, untimed): one JSON line per command and size with the median wall
     /// time, bytes written, time per million faces, the largest peak RSS, and the ratio to
-    /// the median raw-write time of as many bytes (`write_all` and `sync_all` of one file in
+    /// the median raw-write time of as many bytes (`write_all` and `sync_all` of a new file in
     /// the same directory, after each run).
     #[arg(long)]
     pub all: bool,

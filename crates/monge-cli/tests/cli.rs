@@ -645,7 +645,9 @@ fn bench_prints_one_json_line_per_size() {
 #[test]
 fn bench_all_prints_one_json_line_per_command_and_size() {
     let out = monge()
-        .args(["bench", "--all", "--sizes", "4,6"])
+        // Two runs each: the second removes the first's output (a file, or
+        // fabricate's directory) before it writes anew.
+        .args(["bench", "--all", "--sizes", "4,6", "--runs", "2"])
         .output()
         .unwrap();
     assert!(
@@ -666,7 +668,7 @@ fn bench_all_prints_one_json_line_per_command_and_size() {
     for (k, v) in lines.iter().enumerate() {
         let n: u32 = if k < 9 { 4 } else { 6 };
         assert_eq!(v["faces"], format!("{n}x{n}"));
-        assert_eq!(v["runs"], 1);
+        assert_eq!(v["runs"], 2);
         let n = f64::from(n);
         let wall = v["wall_ms"].as_f64().unwrap();
         assert!(wall > 0.0, "{v}");
