@@ -66,12 +66,7 @@ impl QuadGrid {
     /// The four corners of face `(i, j)`, in the order
     /// `(i, j), (i+1, j), (i+1, j+1), (i, j+1)`.
     pub fn face(&self, i: usize, j: usize) -> [DVec3; 4] {
-        [
-            self.vertex(i, j),
-            self.vertex(i + 1, j),
-            self.vertex(i + 1, j + 1),
-            self.vertex(i, j + 1),
-        ]
+        self.face_ids(i, j).map(|k| self.vertices[k])
     }
 
     /// Area of face `(i, j)` (§4.8): [`quad_area`] of [`QuadGrid::face`].
@@ -159,14 +154,19 @@ impl QuadGrid {
         if self.normals.is_empty() {
             return false;
         }
-        let mut sum = 0.0;
-        for [a, b, c, d] in self.face_indices() {
-            let p = |k: usize| self.vertices[k];
-            let area = (p(c) - p(a)).cross(p(d) - p(b));
-            let n = self.normals[a] + self.normals[b] + self.normals[c] + self.normals[d];
-            sum += area.dot(n);
-        }
-        sum < 0.0
+        // Row by row side by side, the rows' sums added in order: the same
+        // whatever the number of threads.
+        let (p, n) = (&self.vertices, &self.normals);
+        let rows = crate::tasks::map(self.rows.saturating_sub(1), |i| {
+            let mut sum = 0.0;
+            for j in 0..self.cols.saturating_sub(1) {
+                let [a, b, c, d] = self.face_ids(i, j);
+                let area = (p[c] - p[a]).cross(p[d] - p[b]);
+                sum += area.dot(n[a] + n[b] + n[c] + n[d]);
+            }
+            sum
+        });
+        rows.iter().sum::<f64>() < 0.0
     }
 
     /// The vertex indices of every face, row by row, wound counter-clockwise
@@ -194,13 +194,14 @@ impl QuadGrid {
 
     /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of every face, row by row.
     fn face_indices(&self) -> impl Iterator<Item = [usize; 4]> + Clone + '_ {
-        let c = self.cols;
-        (0..self.rows.saturating_sub(1)).flat_map(move |i| {
-            (0..c.saturating_sub(1)).map(move |j| {
-                let k = i * c + j;
-                [k, k + c, k + c + 1, k + 1]
-            })
-        })
+        (0..self.rows.saturating_sub(1))
+            .flat_map(move |i| (0..self.cols.saturating_sub(1)).map(move |j| self.face_ids(i, j)))
+    }
+
+    /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of face `(i, j)`.
+    fn face_ids(&self, i: usize, j: usize) -> [usize; 4] {
+        let (c, k) = (self.cols, i * self.cols + j);
+        [k, k + c, k + c + 1, k + 1]
     }
 
     /// Number of faces, `(rows − 1) · (cols − 1)`.
@@ -464,10 +465,33 @@ impl Folds {
 
 /// Diagonal of the axis-aligned bounding box of `points` (0 for none).
 pub fn bbox_diagonal(points: &[DVec3]) -> f64 {
-    let mut it = points.iter();
-    let Some(first) = it.next() else { return 0.0 };
-    let (lo, hi) = it.fold((*first, *first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
-    (hi - lo).length()
+    bounds(points).map_or(0.0, |b| (b.hi - b.lo).length())
+}
+
+/// The corners of the bounding box of some points, and their largest |coordinate|.
+struct Bounds {
+    lo: DVec3,
+    hi: DVec3,
+    far: f64,
+}
+
+/// Points per task of [`bounds`].
+const BOUNDS_BLOCK: usize = 1 << 16;
+
+/// The [`Bounds`] of `points` (`None` for none), blocks of them side by side.
+fn bounds(points: &[DVec3]) -> Option<Bounds> {
+    let blocks = crate::tasks::ranges(points.len(), BOUNDS_BLOCK, |r| {
+        let (mut lo, mut hi, mut far) = (points[r.start], points[r.start], 0.0f64);
+        for p in &points[r] {
+            (lo, hi, far) = (lo.min(*p), hi.max(*p), far.max(p.abs().max_element()));
+        }
+        Bounds { lo, hi, far }
+    });
+    blocks.into_iter().reduce(|a, b| Bounds {
+        lo: a.lo.min(b.lo),
+        hi: a.hi.max(b.hi),
+        far: a.far.max(b.far),
+    })
 }
 
 /// Distance from the origin, relative to the size, beyond which f64 coordinates
@@ -488,13 +512,8 @@ pub const FAR_FROM_ORIGIN: f64 = 1e-9 / (4.0 * f64::EPSILON);
 /// assert_eq!(origin_ratio(&p), 1e8);
 /// ```
 pub fn origin_ratio(points: &[DVec3]) -> f64 {
-    let far = points
-        .iter()
-        .map(|p| p.abs().max_element())
-        .fold(0.0, f64::max);
-    if far == 0.0 {
-        0.0
-    } else {
-        far / bbox_diagonal(points)
+    match bounds(points) {
+        Some(b) if b.far != 0.0 => b.far / (b.hi - b.lo).length(),
+        _ => 0.0,
     }
 }

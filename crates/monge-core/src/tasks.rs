@@ -23,6 +23,24 @@ pub fn map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
     }
 }
 
+/// `f` of the consecutive ranges of `0..len`, `block` long but the last,
+/// side by side with [`map`], in order: for one pass over many elements.
+///
+/// ```
+/// let sums = monge_core::tasks::ranges(10, 4, |r| r.sum::<usize>());
+/// assert_eq!(sums, [0 + 1 + 2 + 3, 4 + 5 + 6 + 7, 8 + 9]);
+/// ```
+pub fn ranges<T: Send>(
+    len: usize,
+    block: usize,
+    f: impl Fn(std::ops::Range<usize>) -> T + Sync + Send,
+) -> Vec<T> {
+    let block = block.max(1);
+    map(len.div_ceil(block), |b| {
+        f(b * block..len.min((b + 1) * block))
+    })
+}
+
 /// `(a(), b())`, with `b` run by the pool while `a` runs on this thread
 /// (one after the other without the `parallel` feature): for work that has to
 /// stay on this thread, such as writing to a file that is not `Send`, beside

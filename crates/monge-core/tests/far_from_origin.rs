@@ -13,6 +13,7 @@
 use glam::DVec3;
 use monge_core::design::BSplineSpec;
 use monge_core::developable::{developable, DevelopableSpec};
+use monge_core::grid::{bbox_diagonal, origin_ratio};
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid, Tolerances};
 use nalgebra::{DMatrix, Vector2};
 
@@ -230,4 +231,33 @@ fn developable_meshes_stay_exact_far_from_the_origin() {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn ratio_and_diagonal_over_many_blocks_match_one_plain_pass() {
+    // 200 003 points: several blocks of the side-by-side pass, the last partial;
+    // the extremes sit in different blocks.
+    let points: Vec<DVec3> = (0..200_003u32)
+        .map(|k| {
+            let t = f64::from(k);
+            DVec3::new(
+                (t * 0.37).sin() * 3.0 + 1e4,
+                (t * 0.011).cos() - 2.0,
+                t * 1e-6,
+            )
+        })
+        .collect();
+    let (mut lo, mut hi, mut far) = ([f64::MAX; 3], [f64::MIN; 3], 0.0f64);
+    for p in &points {
+        for (k, x) in p.to_array().into_iter().enumerate() {
+            lo[k] = lo[k].min(x);
+            hi[k] = hi[k].max(x);
+            far = far.max(x.abs());
+        }
+    }
+    let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    assert_eq!(bbox_diagonal(&points), diagonal);
+    assert_eq!(origin_ratio(&points), far / diagonal);
+    assert_eq!(bbox_diagonal(&[]), 0.0);
+    assert_eq!(origin_ratio(&[]), 0.0);
 }

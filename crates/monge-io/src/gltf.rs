@@ -49,17 +49,26 @@ enum Shape<'a> {
 impl Shape<'_> {
     /// The number of vertices, their bounds (`f32`) and the number of indices.
     fn size(&self) -> (usize, [[f32; 3]; 2], usize) {
-        let mut bounds = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
-        let mut bound = |p: DVec3| {
-            let p = p.as_vec3().to_array();
+        let widen = |bounds: &mut [[f32; 3]; 2], [lo, hi]: [[f32; 3]; 2]| {
             for k in 0..3 {
-                bounds[0][k] = bounds[0][k].min(p[k]);
-                bounds[1][k] = bounds[1][k].max(p[k]);
+                bounds[0][k] = bounds[0][k].min(lo[k]);
+                bounds[1][k] = bounds[1][k].max(hi[k]);
             }
         };
+        let bound = |bounds: &mut [[f32; 3]; 2], p: DVec3| {
+            let p = p.as_vec3().to_array();
+            widen(bounds, [p, p]);
+        };
+        let mut bounds = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
         match self {
             Shape::Grid { vertices, cols, .. } => {
-                vertices.iter().for_each(|p| bound(*p));
+                // Blocks of vertices side by side (min and max in any order).
+                let blocks = monge_core::tasks::ranges(vertices.len(), 1 << 16, |r| {
+                    let mut block = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
+                    vertices[r].iter().for_each(|p| bound(&mut block, *p));
+                    block
+                });
+                blocks.into_iter().for_each(|b| widen(&mut bounds, b));
                 let faces =
                     (vertices.len() / cols.max(&1)).saturating_sub(1) * cols.saturating_sub(1);
                 (vertices.len(), bounds, 6 * faces)
@@ -70,7 +79,7 @@ impl Shape<'_> {
             } => {
                 let mut count = 0;
                 positions(&mut |p| {
-                    bound(p);
+                    bound(&mut bounds, p);
                     count += 1;
                 });
                 let mut indices = 0;

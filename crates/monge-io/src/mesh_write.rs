@@ -446,7 +446,11 @@ fn check_grid(grid: &QuadGrid) -> io::Result<()> {
         ));
     }
     for (what, points) in [("vertex", &grid.vertices), ("normal", &grid.normals)] {
-        if let Some(k) = points.iter().position(|p| !p.is_finite()) {
+        // The first non-finite point, blocks of points searched side by side.
+        let firsts = monge_core::tasks::ranges(points.len(), 1 << 16, |r| {
+            r.clone().find(|&k| !points[k].is_finite())
+        });
+        if let Some(k) = firsts.into_iter().flatten().next() {
             let (i, j) = (k / grid.cols, k % grid.cols);
             return invalid(format!("{what} ({i}, {j}) is not finite: {}", points[k]));
         }

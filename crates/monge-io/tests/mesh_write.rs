@@ -249,6 +249,19 @@ fn non_finite_or_inconsistent_grids_are_refused_before_writing() {
         assert!(err.to_string().contains("is not finite"), "{err}");
         assert!(!path.exists());
     }
+    // Large grids are searched in blocks side by side: still the first bad
+    // point of the first bad kind is named (vertex 70 000, not 80 000 in a
+    // later block nor the normal before it).
+    let mut grid = random_grid(300, 300, true, 3);
+    grid.vertices[80_000].x = f64::INFINITY;
+    grid.vertices[70_000].z = f64::NAN;
+    grid.normals[10].x = f64::NAN;
+    let err = write_ply(&grid, &mut std::io::sink()).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("vertex (233, 100) is not finite"),
+        "{err}"
+    );
     let mut grid = random_grid(3, 3, true, 3);
     grid.normals.pop();
     let err = write_obj(&grid, &mut std::io::sink()).unwrap_err();
