@@ -136,16 +136,21 @@ impl Shape<'_> {
 
 /// Appends a position as three little-endian `f32`.
 fn put_position<W: Write + ?Sized>(o: &mut Out<'_, W>, p: DVec3) {
-    for c in p.as_vec3().to_array() {
-        o.bytes(&c.to_le_bytes());
-    }
+    o.bytes(&le_bytes(p.as_vec3().to_array().map(f32::to_bits)));
 }
 
 /// Appends a triangle as three little-endian `u32`.
 fn put_triangle<W: Write + ?Sized>(o: &mut Out<'_, W>, t: [u32; 3]) {
-    for i in t {
-        o.bytes(&i.to_le_bytes());
+    o.bytes(&le_bytes(t));
+}
+
+/// Three `u32` as 12 little-endian bytes, appended at once.
+fn le_bytes(words: [u32; 3]) -> [u8; 12] {
+    let mut bytes = [0; 12];
+    for (b, w) in bytes.chunks_exact_mut(4).zip(words) {
+        b.copy_from_slice(&w.to_le_bytes());
     }
+    bytes
 }
 
 /// A buffer view of `len` bytes at `offset` of the binary chunk.
