@@ -187,15 +187,51 @@ impl QuadGrid {
     /// The orientation is decided once, when this is called: the iterator can
     /// be cloned to go through the faces again at no cost.
     pub fn oriented_faces(&self) -> impl Iterator<Item = [usize; 4]> + Clone + '_ {
-        let reversed = self.faces_reversed();
-        self.face_indices()
-            .map(move |[a, b, c, d]| if reversed { [a, d, c, b] } else { [a, b, c, d] })
+        self.faces_wound(self.faces_reversed(), 0..self.face_count())
     }
 
-    /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of every face, row by row.
-    fn face_indices(&self) -> impl Iterator<Item = [usize; 4]> + Clone + '_ {
-        (0..self.rows.saturating_sub(1))
-            .flat_map(move |i| (0..self.cols.saturating_sub(1)).map(move |j| self.face_ids(i, j)))
+    /// The faces numbered `range` (row by row, as [`QuadGrid::oriented_faces`]
+    /// numbers them), wound as [`QuadGrid::oriented_faces`] if `reversed` is
+    /// [`QuadGrid::faces_reversed`]: for going through the faces in parts, side
+    /// by side. A range past the last face stops there.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::QuadGrid;
+    /// let v = (0..9).map(|k| DVec3::new((k / 3) as f64, (k % 3) as f64, 0.0)).collect();
+    /// let grid = QuadGrid::new(3, 3, v, vec![DVec3::Z; 9]);
+    /// let all: Vec<_> = grid.oriented_faces().collect();
+    /// let reversed = grid.faces_reversed();
+    /// let parts: Vec<_> = grid.faces_wound(reversed, 0..1).chain(grid.faces_wound(reversed, 1..4)).collect();
+    /// assert_eq!(parts, all);
+    /// assert_eq!(grid.faces_wound(reversed, 3..9).collect::<Vec<_>>(), [all[3]]);
+    /// ```
+    pub fn faces_wound(
+        &self,
+        reversed: bool,
+        range: std::ops::Range<usize>,
+    ) -> impl Iterator<Item = [usize; 4]> + Clone + '_ {
+        let w = self.cols.saturating_sub(1);
+        // Row and column of the first face, then step (no division per face).
+        let (i0, j0) = (
+            range.start.checked_div(w).unwrap_or(0),
+            range.start % w.max(1),
+        );
+        (i0..self.rows.saturating_sub(1))
+            .flat_map(move |i| (if i == i0 { j0 } else { 0 }..w).map(move |j| (i, j)))
+            .take(
+                range
+                    .len()
+                    .min(self.face_count().saturating_sub(range.start)),
+            )
+            .map(move |(i, j)| {
+                let [a, b, c, d] = self.face_ids(i, j);
+                if reversed {
+                    [a, d, c, b]
+                } else {
+                    [a, b, c, d]
+                }
+            })
     }
 
     /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of face `(i, j)`.

@@ -30,13 +30,9 @@ struct Part<'a> {
 
 /// The vertices and triangles of a [`Part`].
 enum Shape<'a> {
-    /// The vertices of a quad grid of `cols` columns, and its faces, two
-    /// triangles each, wound as [`QuadGrid::oriented_faces`]: reversed or not.
-    Grid {
-        vertices: &'a [DVec3],
-        cols: usize,
-        reversed: bool,
-    },
+    /// The vertices of a quad grid, and its faces, two triangles each, wound
+    /// as [`QuadGrid::oriented_faces`] if `reversed` is [`QuadGrid::faces_reversed`].
+    Grid { grid: &'a QuadGrid, reversed: bool },
     /// Vertices and triangles from producers.
     Produced {
         /// Calls its argument with every vertex, in order.
@@ -61,7 +57,8 @@ impl Shape<'_> {
         };
         let mut bounds = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
         match self {
-            Shape::Grid { vertices, cols, .. } => {
+            Shape::Grid { grid, .. } => {
+                let vertices = &grid.vertices;
                 // Blocks of vertices side by side (min and max in any order).
                 let blocks = monge_core::tasks::ranges(vertices.len(), 1 << 16, |r| {
                     let mut block = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
@@ -69,9 +66,7 @@ impl Shape<'_> {
                     block
                 });
                 blocks.into_iter().for_each(|b| widen(&mut bounds, b));
-                let faces =
-                    (vertices.len() / cols.max(&1)).saturating_sub(1) * cols.saturating_sub(1);
-                (vertices.len(), bounds, 6 * faces)
+                (vertices.len(), bounds, 6 * grid.face_count())
             }
             Shape::Produced {
                 positions,
@@ -92,22 +87,13 @@ impl Shape<'_> {
     /// Appends the positions (`f32`), then the indices (`u32`).
     fn write<W: Write + ?Sized>(&self, o: &mut Out<'_, W>) -> io::Result<()> {
         match self {
-            Shape::Grid {
-                vertices,
-                cols,
-                reversed,
-            } => {
-                o.each(vertices, |o, _, p| put_position(o, *p))?;
-                // Vertex (i, j) is the first corner of face (i, j), but in the
-                // last row and column.
-                let c = *cols;
-                let firsts = &vertices[..vertices.len().saturating_sub(c)];
-                o.each(firsts, |o, k, _| {
-                    if (k + 1) % c != 0 {
-                        let [a, b, cc, d] = [k, k + c, k + c + 1, k + 1].map(|v| v as u32);
-                        let [b, d] = if *reversed { [d, b] } else { [b, d] };
-                        put_triangle(o, [a, b, cc]);
-                        put_triangle(o, [a, cc, d]);
+            Shape::Grid { grid, reversed } => {
+                o.each(&grid.vertices, |o, _, p| put_position(o, *p))?;
+                o.each_range(grid.face_count(), |o, range| {
+                    for [a, b, c, d] in grid.faces_wound(*reversed, range) {
+                        let [a, b, c, d] = [a, b, c, d].map(|v| v as u32);
+                        put_triangle(o, [a, b, c]);
+                        put_triangle(o, [a, c, d]);
                     }
                 })
             }
@@ -417,8 +403,7 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
 /// The faces of a quad grid, two triangles each, wound about its node axes.
 fn grid_part(name: String, material: u32, g: &QuadGrid) -> Part<'_> {
     let shape = Shape::Grid {
-        vertices: &g.vertices,
-        cols: g.cols,
+        grid: g,
         reversed: g.faces_reversed(),
     };
     Part {

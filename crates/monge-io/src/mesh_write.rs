@@ -8,6 +8,7 @@
 //! ([`QuadGrid::oriented_faces`]).
 
 use std::io::{self, Write};
+use std::ops::Range;
 use std::path::Path;
 
 use glam::DVec3;
@@ -17,7 +18,7 @@ use serde_json::{Map, Value};
 use crate::atomic::{is_stdio, write_output};
 use crate::design::{extension, unknown_extension};
 use crate::error::IoError;
-use crate::text::emit;
+use crate::text::{emit, Out};
 
 const ACCEPTED: &str = "`.obj`, `.ply`, `.json` or `.glb` (glTF, written only)";
 
@@ -214,26 +215,70 @@ pub(crate) struct Quads<'a, F> {
     pub(crate) vertices: &'a [DVec3],
     pub(crate) normals: &'a [DVec3],
     pub(crate) faces: F,
-    pub(crate) face_count: usize,
     pub(crate) comment: &'a str,
+}
+
+/// Faces that can be gone through in parts, side by side.
+pub(crate) trait Faces: Sync {
+    /// The number of faces.
+    fn count(&self) -> usize;
+    /// The faces numbered `range` (within `0..count`), in order.
+    fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]>;
+}
+
+/// Quads listed one by one.
+impl Faces for &[[usize; 4]] {
+    fn count(&self) -> usize {
+        self.len()
+    }
+
+    fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]> {
+        self[range].iter().copied()
+    }
+}
+
+/// A grid's faces, wound as [`QuadGrid::oriented_faces`].
+struct GridFaces<'a> {
+    grid: &'a QuadGrid,
+    reversed: bool,
+}
+
+impl Faces for GridFaces<'_> {
+    fn count(&self) -> usize {
+        self.grid.face_count()
+    }
+
+    fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]> {
+        self.grid.faces_wound(self.reversed, range)
+    }
 }
 
 /// A grid's vertices, normals and [`QuadGrid::oriented_faces`], with the
 /// comment `monge quad grid rows=R cols=C`.
-fn grid_quads<'a>(
-    grid: &'a QuadGrid,
-    comment: &'a str,
-) -> Quads<'a, impl Iterator<Item = [usize; 4]> + 'a> {
+fn grid_quads<'a>(grid: &'a QuadGrid, comment: &'a str) -> Quads<'a, GridFaces<'a>> {
     Quads {
         vertices: &grid.vertices,
         normals: &grid.normals,
-        faces: grid.oriented_faces(),
-        face_count: grid.face_count(),
+        faces: GridFaces {
+            grid,
+            reversed: grid.faces_reversed(),
+        },
         comment,
     }
 }
 
-impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
+impl<F: Faces> Quads<'_, F> {
+    /// Appends `face(corners)` for every face, in order, side by side.
+    fn each_face<W: Write + ?Sized>(
+        &self,
+        out: &mut Out<'_, W>,
+        face: impl Fn(&mut Out<'_, Vec<u8>>, [usize; 4]) + Sync,
+    ) -> io::Result<()> {
+        out.each_range(self.faces.count(), |o, range| {
+            self.faces.range(range).for_each(|corners| face(o, corners));
+        })
+    }
+
     /// OBJ: `# comment`, `v`, `vn`, then `f a//a …` (`f a …` without normals), 1-based.
     pub(crate) fn obj<W: Write + ?Sized>(self, w: &mut W) -> io::Result<()> {
         writeln!(w, "# {}", self.comment)?;
@@ -246,9 +291,9 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
                     o.push(b'\n');
                 })?;
             }
-            out.each_of(self.faces, |o, _, corners| {
+            self.each_face(out, |o, corners| {
                 o.push(b'f');
-                for &c in corners {
+                for c in corners {
                     o.push(b' ');
                     o.int(c + 1);
                     if with_normals {
@@ -274,9 +319,9 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
                 }
                 o.push(b'\n');
             })?;
-            out.each_of(self.faces, |o, _, corners| {
+            self.each_face(out, |o, corners| {
                 o.push(b'4');
-                for &c in corners {
+                for c in corners {
                     o.push(b' ');
                     o.int(c);
                 }
@@ -323,9 +368,9 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
                 }
                 o.bytes(&record[..len]);
             })?;
-            out.each_of(self.faces, |o, _, corners| {
+            self.each_face(out, |o, corners| {
                 let mut record = [4u8; 17];
-                for (&c, bytes) in corners.iter().zip(record[1..].chunks_exact_mut(4)) {
+                for (c, bytes) in corners.into_iter().zip(record[1..].chunks_exact_mut(4)) {
                     // In range: checked above.
                     bytes.copy_from_slice(&(c as i32).to_le_bytes());
                 }
@@ -358,7 +403,7 @@ impl<F: Iterator<Item = [usize; 4]>> Quads<'_, F> {
         writeln!(
             w,
             "element face {}\nproperty list uchar int vertex_indices\nend_header",
-            self.face_count
+            self.faces.count()
         )
     }
 }

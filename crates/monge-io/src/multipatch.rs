@@ -142,8 +142,7 @@ pub fn write_quad_mesh_to<W: Write + ?Sized>(
     let quads = Quads {
         vertices: &mesh.vertices,
         normals: &mesh.normals,
-        faces: mesh.quads.iter().copied(),
-        face_count: mesh.quads.len(),
+        faces: &mesh.quads[..],
         comment: &comment,
     };
     match format {

@@ -3,6 +3,7 @@
 //! back to the same `f64` (`zmij`), and bytes are passed on in large chunks.
 
 use std::io::{self, Write};
+use std::ops::Range;
 use std::sync::{Mutex, PoisonError};
 
 use glam::DVec3;
@@ -102,56 +103,50 @@ impl<W: Write + ?Sized> Out<'_, W> {
     }
 
     /// Appends `line(k, item)` for every item, in order, formatted in chunks
-    /// side by side (one thread per core; one thread where there are no
-    /// threads, as in WebAssembly), each batch of chunks written while the
-    /// next is formatted: the bytes are the same whatever the number of threads.
+    /// side by side (see [`Out::each_range`]).
     pub(crate) fn each<T: Sync>(
         &mut self,
         items: &[T],
         line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
     ) -> io::Result<()> {
+        self.each_range(items.len(), |o, range| {
+            for k in range {
+                line(o, k, &items[k]);
+            }
+        })
+    }
+
+    /// Appends `lines(range)` for consecutive ranges of at most [`ITEMS`]
+    /// that cover `0..n`, in order, formatted side by side (one thread per
+    /// core; one thread where there are no threads, as in WebAssembly), each
+    /// batch of them written while the next is formatted: the bytes are the
+    /// same whatever the number of threads.
+    pub(crate) fn each_range(
+        &mut self,
+        n: usize,
+        lines: impl Fn(&mut Out<'_, Vec<u8>>, Range<usize>) + Sync,
+    ) -> io::Result<()> {
         self.flush()?;
-        for (b, batch) in items.chunks(ITEMS * BATCH).enumerate() {
-            self.batch(b * ITEMS * BATCH, batch, &line)?;
+        for first in (0..n).step_by(ITEMS * BATCH) {
+            self.batch(first..n.min(first + ITEMS * BATCH), &lines)?;
         }
         self.write_ready()
     }
 
-    /// [`Out::each`] of the items an iterator yields, gathered a batch at a time.
-    pub(crate) fn each_of<T: Sync>(
+    /// Formats `lines` of the chunks of `batch`, side by side, while the batch
+    /// before is written; the new batch is then the one ready to be written.
+    fn batch(
         &mut self,
-        items: impl IntoIterator<Item = T>,
-        line: impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync,
+        batch: Range<usize>,
+        lines: &(impl Fn(&mut Out<'_, Vec<u8>>, Range<usize>) + Sync),
     ) -> io::Result<()> {
-        self.flush()?;
-        let (mut items, mut batch, mut first) = (items.into_iter(), Vec::new(), 0);
-        loop {
-            batch.clear();
-            batch.extend(items.by_ref().take(ITEMS * BATCH));
-            if batch.is_empty() {
-                return self.write_ready();
-            }
-            self.batch(first, &batch, &line)?;
-            first += batch.len();
-        }
-    }
-
-    /// Formats `line(first + k, item k)` for the items of one batch, in chunks
-    /// side by side, while the batch before is written; the new batch is then
-    /// the one ready to be written.
-    fn batch<T: Sync>(
-        &mut self,
-        first: usize,
-        batch: &[T],
-        line: &(impl Fn(&mut Out<'_, Vec<u8>>, usize, &T) + Sync),
-    ) -> io::Result<()> {
-        let chunks: Vec<&[T]> = batch.chunks(ITEMS).collect();
+        let chunks = batch.len().div_ceil(ITEMS);
         self.chunks.resize_with(BATCH, Mutex::default);
         let (buffers, ready, w) = (&self.chunks, &self.ready, &mut *self.w);
         let (written, ()) = monge_core::tasks::beside(
             || ready.iter().try_for_each(|bytes| w.write_all(bytes)),
             || {
-                monge_core::tasks::map(chunks.len(), |c| {
+                monge_core::tasks::map(chunks, |c| {
                     let mut bytes = buffers[c].lock().unwrap_or_else(PoisonError::into_inner);
                     // Formatted straight into the chunk's buffer; whatever a
                     // line passes on (none does) goes first.
@@ -165,9 +160,8 @@ impl<W: Write + ?Sized> Out<'_, W> {
                         w: &mut passed,
                     };
                     o.buf.clear();
-                    for (k, item) in chunks[c].iter().enumerate() {
-                        line(&mut o, first + c * ITEMS + k, item);
-                    }
+                    let first = batch.start + c * ITEMS;
+                    lines(&mut o, first..batch.end.min(first + ITEMS));
                     let formatted = std::mem::take(&mut o.buf);
                     *bytes = if passed.is_empty() {
                         formatted
@@ -180,7 +174,7 @@ impl<W: Write + ?Sized> Out<'_, W> {
         );
         written?;
         // The written buffers go back to be formatted into next time.
-        self.ready.resize_with(chunks.len(), Vec::new);
+        self.ready.resize_with(chunks, Vec::new);
         for (ready, chunk) in self.ready.iter_mut().zip(&mut self.chunks) {
             std::mem::swap(
                 ready,
@@ -215,8 +209,8 @@ mod tests {
 
     #[test]
     fn items_formatted_side_by_side_come_out_in_order() {
-        // Several batches of BATCH chunks of ITEMS items, the last ones partial, from
-        // a slice and from an iterator.
+        // Several batches of BATCH chunks of ITEMS items, the last ones partial,
+        // item by item and range by range.
         let items: Vec<f64> = (0..300_003).map(|k| k as f64 * 0.37 - 1e3).collect();
         let line = |o: &mut Out<'_, Vec<u8>>, k: usize, x: &f64| {
             o.int(k);
@@ -235,7 +229,12 @@ mod tests {
         emit(&mut side_by_side, |o| {
             o.str("head\n");
             o.each(&items, ending)?;
-            o.each_of(items.iter().copied(), line)?;
+            o.each_range(items.len(), |o, range| {
+                assert!(range.len() <= ITEMS && range.start % ITEMS == 0);
+                for k in range {
+                    line(o, k, &items[k]);
+                }
+            })?;
             o.end()
         })
         .unwrap();
