@@ -131,12 +131,12 @@ fn put_triangle<W: Write + ?Sized>(o: &mut Out<'_, W>, t: [u32; 3]) {
 }
 
 /// Three `u32` as 12 little-endian bytes, appended at once.
-fn le_bytes(words: [u32; 3]) -> [u8; 12] {
-    let mut bytes = [0; 12];
-    for (b, w) in bytes.chunks_exact_mut(4).zip(words) {
-        b.copy_from_slice(&w.to_le_bytes());
-    }
-    bytes
+#[inline]
+fn le_bytes([a, b, c]: [u32; 3]) -> [u8; 12] {
+    let [a, b, c] = [a.to_le_bytes(), b.to_le_bytes(), c.to_le_bytes()];
+    [
+        a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], c[0], c[1], c[2], c[3],
+    ]
 }
 
 /// A buffer view of `len` bytes at `offset` of the binary chunk.

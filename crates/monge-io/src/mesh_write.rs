@@ -347,34 +347,29 @@ impl<F: Faces> Quads<'_, F> {
             w,
         )?;
         emit(w, |out| {
-            // One fixed-size record per vertex and per face (copied whole).
-            let size = if f32 { 4 } else { 8 };
-            let len = if self.normals.is_empty() { 3 } else { 6 } * size;
-            let normals = self.normals;
-            out.each(self.vertices, |o, k, p| {
-                let mut record = [0u8; 48];
-                let normal = normals.get(k).copied().unwrap_or_default();
-                for (x, bytes) in p
-                    .to_array()
-                    .into_iter()
-                    .chain(normal.to_array())
-                    .zip(record.chunks_exact_mut(size))
-                {
+            // One fixed-size record per vertex and per face, a number at a time.
+            let put = |o: &mut Out<'_, Vec<u8>>, p: DVec3| {
+                for x in p.to_array() {
                     if f32 {
-                        bytes.copy_from_slice(&(x as f32).to_le_bytes());
+                        o.bytes(&(x as f32).to_le_bytes());
                     } else {
-                        bytes.copy_from_slice(&x.to_le_bytes());
+                        o.bytes(&x.to_le_bytes());
                     }
                 }
-                o.bytes(&record[..len]);
+            };
+            let normals = self.normals;
+            out.each(self.vertices, |o, k, p| {
+                put(o, *p);
+                if let Some(n) = normals.get(k) {
+                    put(o, *n);
+                }
             })?;
             self.each_face(out, |o, corners| {
-                let mut record = [4u8; 17];
-                for (c, bytes) in corners.into_iter().zip(record[1..].chunks_exact_mut(4)) {
+                o.push(4);
+                for c in corners {
                     // In range: checked above.
-                    bytes.copy_from_slice(&(c as i32).to_le_bytes());
+                    o.bytes(&(c as i32).to_le_bytes());
                 }
-                o.bytes(&record);
             })
         })
     }
