@@ -205,7 +205,7 @@ pub fn distance_panel(
     title: &str,
     scale: Option<f64>,
 ) -> (Panel, f64, Deviation) {
-    let distances = target.distances(&scene.mesh);
+    let (distances, d) = target.distances_and_deviation(&scene.mesh);
     let how = if scale.is_none() {
         " (95th percentile)"
     } else {
@@ -217,7 +217,6 @@ pub fn distance_panel(
         sorted[(sorted.len() - 1) * 95 / 100].max(1e-6 * target.size())
     });
     scene.vertex_colors = Some(distances.iter().map(|d| heat(d / scale)).collect());
-    let d = target.deviation(&scene.mesh);
     let size = target.size();
     // In the caption font's characters (capitals, digits, some punctuation).
     let caption = format!(

@@ -418,7 +418,12 @@ impl TargetCloud {
     /// Distances both ways between `grid` and the target, relative to the target's size;
     /// target points are taken every `stride`-th.
     fn deviation_strided(&self, grid: &QuadGrid, stride: usize) -> Deviation {
-        let (m_max, m_rms) = max_rms(grid.vertices.iter().map(|v| self.distance_from(*v)));
+        self.deviation_given(grid, &self.distances(grid), stride)
+    }
+
+    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`] given.
+    fn deviation_given(&self, grid: &QuadGrid, distances: &[f64], stride: usize) -> Deviation {
+        let (m_max, m_rms) = max_rms(distances.iter().copied());
         let faces = MeshFaces::new(grid);
         let nearest: Vec<(f64, f64)> = self
             .points
@@ -467,6 +472,29 @@ impl TargetCloud {
     /// Distances both ways between `grid` and the target, relative to the target's size.
     pub fn deviation(&self, grid: &QuadGrid) -> Deviation {
         self.deviation_strided(grid, 1)
+    }
+
+    /// [`TargetCloud::distances`] and [`TargetCloud::deviation`] together, the
+    /// vertices' distances computed once (for a picture coloured by them and its caption).
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::TargetCloud;
+    /// use monge_core::QuadGrid;
+    /// let plane: Vec<DVec3> =
+    ///     (0..100).map(|k| DVec3::new((k % 10) as f64, (k / 10) as f64, 0.0)).collect();
+    /// let target = TargetCloud::new(&plane).unwrap();
+    /// let square = [DVec3::new(3.0, 3.0, 0.5), DVec3::new(3.0, 4.0, 0.2),
+    ///               DVec3::new(4.0, 3.0, 0.5), DVec3::new(4.0, 4.0, 0.1)];
+    /// let grid = QuadGrid::new(2, 2, square.to_vec(), vec![DVec3::Z; 4]);
+    /// let (distances, deviation) = target.distances_and_deviation(&grid);
+    /// assert_eq!(distances, target.distances(&grid));
+    /// assert_eq!(deviation, target.deviation(&grid));
+    /// ```
+    pub fn distances_and_deviation(&self, grid: &QuadGrid) -> (Vec<f64>, Deviation) {
+        let distances = self.distances(grid);
+        let deviation = self.deviation_given(grid, &distances, 1);
+        (distances, deviation)
     }
 }
 
