@@ -219,11 +219,7 @@ impl QuadGrid {
         );
         (i0..self.rows.saturating_sub(1))
             .flat_map(move |i| (if i == i0 { j0 } else { 0 }..w).map(move |j| (i, j)))
-            .take(
-                range
-                    .len()
-                    .min(self.face_count().saturating_sub(range.start)),
-            )
+            .take(range.len())
             .map(move |(i, j)| {
                 let [a, b, c, d] = self.face_ids(i, j);
                 if reversed {
@@ -511,12 +507,9 @@ struct Bounds {
     far: f64,
 }
 
-/// Points per task of [`bounds`].
-const BOUNDS_BLOCK: usize = 1 << 16;
-
 /// The [`Bounds`] of `points` (`None` for none), blocks of them side by side.
 fn bounds(points: &[DVec3]) -> Option<Bounds> {
-    let blocks = crate::tasks::ranges(points.len(), BOUNDS_BLOCK, |r| {
+    let blocks = crate::tasks::ranges(points.len(), crate::tasks::BLOCK, |r| {
         let (mut lo, mut hi, mut far) = (points[r.start], points[r.start], 0.0f64);
         for p in &points[r] {
             (lo, hi, far) = (lo.min(*p), hi.max(*p), far.max(p.abs().max_element()));

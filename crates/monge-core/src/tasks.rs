@@ -23,6 +23,10 @@ pub fn map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
     }
 }
 
+/// Elements per range of a plain pass over many ([`ranges`]): enough to
+/// outweigh handing a task to the pool.
+pub const BLOCK: usize = 1 << 16;
+
 /// `f` of the consecutive ranges of `0..len`, `block` long but the last,
 /// side by side with [`map`], in order: for one pass over many elements.
 ///

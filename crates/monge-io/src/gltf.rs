@@ -14,6 +14,7 @@ use json::validation::{Checked::Valid, USize64};
 use monge_core::fabrication::{Beam, Fabrication};
 use monge_core::QuadGrid;
 
+use crate::mesh_write::{Faces, GridFaces};
 use crate::text::{emit, Out};
 
 /// Calls its argument with every item of a part, in order.
@@ -31,8 +32,8 @@ struct Part<'a> {
 /// The vertices and triangles of a [`Part`].
 enum Shape<'a> {
     /// The vertices of a quad grid, and its faces, two triangles each, wound
-    /// as [`QuadGrid::oriented_faces`] if `reversed` is [`QuadGrid::faces_reversed`].
-    Grid { grid: &'a QuadGrid, reversed: bool },
+    /// as [`QuadGrid::oriented_faces`].
+    Grid(GridFaces<'a>),
     /// Vertices and triangles from producers.
     Produced {
         /// Calls its argument with every vertex, in order.
@@ -57,16 +58,17 @@ impl Shape<'_> {
         };
         let mut bounds = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
         match self {
-            Shape::Grid { grid, .. } => {
-                let vertices = &grid.vertices;
+            Shape::Grid(faces) => {
+                let vertices = &faces.grid.vertices;
                 // Blocks of vertices side by side (min and max in any order).
-                let blocks = monge_core::tasks::ranges(vertices.len(), 1 << 16, |r| {
-                    let mut block = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
-                    vertices[r].iter().for_each(|p| bound(&mut block, *p));
-                    block
-                });
+                let blocks =
+                    monge_core::tasks::ranges(vertices.len(), monge_core::tasks::BLOCK, |r| {
+                        let mut block = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
+                        vertices[r].iter().for_each(|p| bound(&mut block, *p));
+                        block
+                    });
                 blocks.into_iter().for_each(|b| widen(&mut bounds, b));
-                (vertices.len(), bounds, 6 * grid.face_count())
+                (vertices.len(), bounds, 6 * faces.count())
             }
             Shape::Produced {
                 positions,
@@ -87,14 +89,12 @@ impl Shape<'_> {
     /// Appends the positions (`f32`), then the indices (`u32`).
     fn write<W: Write + ?Sized>(&self, o: &mut Out<'_, W>) -> io::Result<()> {
         match self {
-            Shape::Grid { grid, reversed } => {
-                o.each(&grid.vertices, |o, _, p| put_position(o, *p))?;
-                o.each_range(grid.face_count(), |o, range| {
-                    for [a, b, c, d] in grid.faces_wound(*reversed, range) {
-                        let [a, b, c, d] = [a, b, c, d].map(|v| v as u32);
-                        put_triangle(o, [a, b, c]);
-                        put_triangle(o, [a, c, d]);
-                    }
+            Shape::Grid(faces) => {
+                o.each(&faces.grid.vertices, |o, _, p| put_position(o, *p))?;
+                faces.each(o, |o, corners| {
+                    let [a, b, c, d] = corners.map(|v| v as u32);
+                    put_triangle(o, [a, b, c]);
+                    put_triangle(o, [a, c, d]);
                 })
             }
             Shape::Produced {
@@ -402,10 +402,7 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
 
 /// The faces of a quad grid, two triangles each, wound about its node axes.
 fn grid_part(name: String, material: u32, g: &QuadGrid) -> Part<'_> {
-    let shape = Shape::Grid {
-        grid: g,
-        reversed: g.faces_reversed(),
-    };
+    let shape = Shape::Grid(GridFaces::of(g));
     Part {
         name,
         material,

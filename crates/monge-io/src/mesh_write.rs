@@ -224,6 +224,17 @@ pub(crate) trait Faces: Sync {
     fn count(&self) -> usize;
     /// The faces numbered `range` (within `0..count`), in order.
     fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]>;
+
+    /// Appends `face(corners)` for every face, in order, side by side.
+    fn each<W: Write + ?Sized>(
+        &self,
+        out: &mut Out<'_, W>,
+        face: impl Fn(&mut Out<'_, Vec<u8>>, [usize; 4]) + Sync,
+    ) -> io::Result<()> {
+        out.each_range(self.count(), |o, range| {
+            self.range(range).for_each(|corners| face(o, corners));
+        })
+    }
 }
 
 /// Quads listed one by one.
@@ -238,9 +249,19 @@ impl Faces for &[[usize; 4]] {
 }
 
 /// A grid's faces, wound as [`QuadGrid::oriented_faces`].
-struct GridFaces<'a> {
-    grid: &'a QuadGrid,
+pub(crate) struct GridFaces<'a> {
+    pub(crate) grid: &'a QuadGrid,
     reversed: bool,
+}
+
+impl<'a> GridFaces<'a> {
+    /// The faces of `grid`, their winding decided now ([`QuadGrid::faces_reversed`]).
+    pub(crate) fn of(grid: &'a QuadGrid) -> Self {
+        GridFaces {
+            grid,
+            reversed: grid.faces_reversed(),
+        }
+    }
 }
 
 impl Faces for GridFaces<'_> {
@@ -259,26 +280,12 @@ fn grid_quads<'a>(grid: &'a QuadGrid, comment: &'a str) -> Quads<'a, GridFaces<'
     Quads {
         vertices: &grid.vertices,
         normals: &grid.normals,
-        faces: GridFaces {
-            grid,
-            reversed: grid.faces_reversed(),
-        },
+        faces: GridFaces::of(grid),
         comment,
     }
 }
 
 impl<F: Faces> Quads<'_, F> {
-    /// Appends `face(corners)` for every face, in order, side by side.
-    fn each_face<W: Write + ?Sized>(
-        &self,
-        out: &mut Out<'_, W>,
-        face: impl Fn(&mut Out<'_, Vec<u8>>, [usize; 4]) + Sync,
-    ) -> io::Result<()> {
-        out.each_range(self.faces.count(), |o, range| {
-            self.faces.range(range).for_each(|corners| face(o, corners));
-        })
-    }
-
     /// OBJ: `# comment`, `v`, `vn`, then `f a//a …` (`f a …` without normals), 1-based.
     pub(crate) fn obj<W: Write + ?Sized>(self, w: &mut W) -> io::Result<()> {
         writeln!(w, "# {}", self.comment)?;
@@ -291,7 +298,7 @@ impl<F: Faces> Quads<'_, F> {
                     o.push(b'\n');
                 })?;
             }
-            self.each_face(out, |o, corners| {
+            self.faces.each(out, |o, corners| {
                 o.push(b'f');
                 for c in corners {
                     o.push(b' ');
@@ -319,7 +326,7 @@ impl<F: Faces> Quads<'_, F> {
                 }
                 o.push(b'\n');
             })?;
-            self.each_face(out, |o, corners| {
+            self.faces.each(out, |o, corners| {
                 o.push(b'4');
                 for c in corners {
                     o.push(b' ');
@@ -364,7 +371,7 @@ impl<F: Faces> Quads<'_, F> {
                     put(o, *n);
                 }
             })?;
-            self.each_face(out, |o, corners| {
+            self.faces.each(out, |o, corners| {
                 o.push(4);
                 for c in corners {
                     // In range: checked above.
@@ -487,7 +494,7 @@ fn check_grid(grid: &QuadGrid) -> io::Result<()> {
     }
     for (what, points) in [("vertex", &grid.vertices), ("normal", &grid.normals)] {
         // The first non-finite point, blocks of points searched side by side.
-        let firsts = monge_core::tasks::ranges(points.len(), 1 << 16, |r| {
+        let firsts = monge_core::tasks::ranges(points.len(), monge_core::tasks::BLOCK, |r| {
             r.clone().find(|&k| !points[k].is_finite())
         });
         if let Some(k) = firsts.into_iter().flatten().next() {
