@@ -758,11 +758,13 @@ impl<'a> Sections<'a> {
         let de_line = self.directory[de - 1].number;
         let first = usize::try_from(entry.parameter_pointer).unwrap_or(0);
         let count = usize::try_from(entry.parameter_lines).unwrap_or(0);
-        let last = first
-            .checked_add(count)
-            .map(|l| l - 1)
-            .unwrap_or(usize::MAX);
-        if first == 0 || count == 0 || last > self.parameters.len() {
+        // The last line's number, when the pointer and the count are positive
+        // and the lines end inside the section.
+        let last = (first > 0 && count > 0)
+            .then(|| first.checked_add(count - 1))
+            .flatten()
+            .filter(|&l| l <= self.parameters.len());
+        let Some(last) = last else {
             return Err(syntax(
                 de_line,
                 format!(
@@ -772,7 +774,7 @@ impl<'a> Sections<'a> {
                     self.parameters.len()
                 ),
             ));
-        }
+        };
         let mut parameters = Vec::new();
         let mut text = String::new();
         let mut start = 0;

@@ -331,6 +331,16 @@ fn error_parameter_pointer_out_of_range() {
         3,
         "pointer 0",
     );
+    // Both zero: the last line would be line −1 (found by the fuzzer).
+    syntax_error(
+        &edit_line(4, |l| l.replacen("       5", "       0", 1)).replacen(
+            "     128       1",
+            "     128       0",
+            1,
+        ),
+        3,
+        "pointer 0 with 0 lines",
+    );
 }
 
 #[test]
