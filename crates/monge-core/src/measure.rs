@@ -372,19 +372,35 @@ pub fn face_planarity(quad: &[DVec3; 4]) -> f64 {
 pub fn circularity(quad: &[DVec3; 4]) -> f64 {
     let k = best_triple(quad);
     let [a, b, c] = triple(quad, k);
-    let (u, v) = (a - c, b - c);
+    // Relative to corner c, so that no coordinate far from the origin rounds, and
+    // in units of a power of two near the triple's size (exact), so that the
+    // fifth powers of lengths below neither overflow nor underflow.
+    let unit = power_of_two_below((a - c).abs().max((b - c).abs()).max_element());
+    if unit == 0.0 {
+        return 0.0; // the triple is one point: the four corners are collinear
+    }
+    let (u, v) = ((a - c) / unit, (b - c) / unit);
     let w = u.cross(v);
     let w2 = w.length_squared();
     if w2 == 0.0 {
         return 0.0; // all four corners collinear (the best triple is)
     }
-    // Relative to corner c, so that no coordinate far from the origin rounds.
     let centre = (u.length_squared() * v - v.length_squared() * u).cross(w) / (2.0 * w2);
     let radius = ((u - centre).length() + (v - centre).length() + centre.length()) / 3.0;
     let normal = w / w2.sqrt();
-    let p = (quad[k] - c) - centre;
+    let p = (quad[k] - c) / unit - centre;
     let h = p.dot(normal);
-    h.hypot((p - h * normal).length() - radius)
+    h.hypot((p - h * normal).length() - radius) * unit
+}
+
+/// The largest power of two `≤ x` for a positive normal `x` (its exponent
+/// bits alone); 0 for 0, and `x` itself when it is subnormal or not finite.
+fn power_of_two_below(x: f64) -> f64 {
+    if x.is_normal() {
+        f64::from_bits(x.to_bits() & 0x7ff0_0000_0000_0000)
+    } else {
+        x
+    }
 }
 
 /// The three corners of `quad` other than corner `k`, in cyclic order.
@@ -606,6 +622,25 @@ mod tests {
         assert_eq!(m.scale, 13f64.sqrt());
         assert!((m.circularity.value - 0.5 / 13f64.sqrt()).abs() < 1e-16);
         assert!(m.face_planarity.value <= 1e-16);
+    }
+
+    #[test]
+    fn circularity_scales_with_the_quad_at_every_accepted_size() {
+        // The kite (circularity 1/2) at the extremes of the accepted design sizes
+        // and beyond: lengths to the fifth power would overflow or underflow.
+        let kite = [
+            v(-1.0, 0.0, 0.0),
+            v(0.0, -1.0, 0.0),
+            v(2.0, 0.0, 0.0),
+            v(0.0, 1.0, 0.0),
+        ];
+        for s in [1e-150, 1e-100, 1e-60, 1.0, 1e60, 1e100, 1e150] {
+            let c = circularity(&kite.map(|p| p * s));
+            assert!((c / s - 0.5).abs() < 1e-15, "size {s:e}: {c:e}");
+        }
+        // At a power of two the value is the same to the last bit.
+        let c = circularity(&kite.map(|p| p * 2f64.powi(200)));
+        assert_eq!(c, 0.5 * 2f64.powi(200));
     }
 
     #[test]
