@@ -326,7 +326,7 @@ fn short_reason(e: &GenerateError) -> &'static str {
     match e {
         GenerateError::ThetaSingular { .. } => "singular",
         GenerateError::ThetaInadmissible { .. } => "not admissible",
-        GenerateError::Degenerate { .. } => "degenerate",
+        GenerateError::Degenerate { .. } | GenerateError::NormalStill { .. } => "degenerate",
         GenerateError::ThetaNotFinite(_) => "not finite",
         _ => "invalid design",
     }

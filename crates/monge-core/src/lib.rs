@@ -43,6 +43,6 @@ pub mod tasks;
 pub use design::{Design, GuideSpec, MeshKind, Tolerances};
 pub use generate::{
     generate, inspect, DesignInfo, GenerateError, GenerateOptions, Generated, Mode,
-    SINGULAR_WINDOW_DEG,
+    MIN_NORMAL_TURN, SINGULAR_WINDOW_DEG,
 };
 pub use grid::QuadGrid;

@@ -386,7 +386,9 @@ fn evaluate(design: &Design, value: f64, options: &GenerateOptions) -> ScanRow {
                 GenerateError::ThetaInadmissible { .. } | GenerateError::ThetaSingular { .. } => {
                     Status::Inadmissible
                 }
-                GenerateError::Degenerate { .. } => Status::Degenerate,
+                GenerateError::Degenerate { .. } | GenerateError::NormalStill { .. } => {
+                    Status::Degenerate
+                }
                 _ => Status::Invalid,
             };
             empty(status, e.to_string())

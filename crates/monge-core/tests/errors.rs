@@ -8,10 +8,11 @@ use std::time::Instant;
 
 use glam::{DQuat, DVec3};
 use monge_core::design::{ArcSpec, BSplineSpec, ParabolaSpec};
-use monge_core::guide::GuideError;
+use monge_core::guide::{GuideError, GuideName};
 use monge_core::measure::measure;
 use monge_core::{
     generate, inspect, Design, GenerateError, GenerateOptions, GuideSpec, Tolerances,
+    MIN_NORMAL_TURN,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -367,6 +368,62 @@ fn degenerate_on_the_top_circle_of_a_torus() {
     let mut ok = d.clone();
     ok.guide_v = arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 150.0, 30);
     assert!(generate(&ok, &opts()).is_ok());
+}
+
+#[test]
+fn a_normal_that_barely_turns_along_a_guide_is_refused() {
+    // guide_v's start tangent (0, 3e-6/10, 1) leaves guide_u's plane y = 0 by
+    // `tilt`: that plane is within `tilt` of the tangent plane at the start, and
+    // the normal turns along guide_u by about 1.7·tilt (a 120° arc). Measured
+    // independently, the mesh's error grows as the tilt shrinks; below the
+    // bound it is refused before anything is built.
+    let design = |tilt: f64| Design {
+        mesh: Default::default(),
+        theta_deg: 66.0,
+        guide_u: arc([0.0, 0.0, -10.0], [0.0, 1.0, 0.0], 120.0, 41),
+        guide_v: arc([0.0, 10.0, -10.0 * tilt], [-1.0, 0.0, 0.0], 80.0, 33),
+        tolerance: None,
+    };
+    let error = |tilt: f64| measure(&generate(&design(tilt), &opts()).unwrap().grid).max_error();
+    let (steep, shallow) = (error(1e-2), error(1e-5));
+    eprintln!("tilt 1e-2: error {steep:.1e}; tilt 1e-5: error {shallow:.1e}");
+    assert!(steep <= 1e-12 && shallow <= 1e-9 && shallow > 10.0 * steep);
+    let e = refused(&design(3e-7), &opts());
+    match &e {
+        GenerateError::NormalStill {
+            guide: GuideName::U,
+            turn,
+            plane_deg,
+            min,
+        } => {
+            assert!((turn / 5.2e-7 - 1.0).abs() < 0.01, "{turn:e}");
+            assert!(
+                (plane_deg.to_radians() / 3e-7 - 1.0).abs() < 1e-3,
+                "{plane_deg:e}"
+            );
+            assert_eq!(*min, MIN_NORMAL_TURN);
+        }
+        e => panic!("{e}"),
+    }
+    assert_mentions(
+        &e.to_string(),
+        &[
+            "turns by only 5.2e-7 rad along guide_u",
+            "1.72e-5° from the tangent plane",
+            "Tilt guide_u's plane",
+        ],
+    );
+    // The same along guide_v: the design with the guides' roles exchanged.
+    let mut swapped = design(3e-7);
+    std::mem::swap(&mut swapped.guide_u, &mut swapped.guide_v);
+    swapped.theta_deg = 120.0;
+    match refused(&swapped, &opts()) {
+        GenerateError::NormalStill {
+            guide: GuideName::V,
+            ..
+        } => {}
+        e => panic!("{e}"),
+    }
 }
 
 /// A guide with an exactly straight run (a quadratic B-spline with three

@@ -35,7 +35,7 @@ create_exception!(
     monge,
     DegenerateError,
     MongeError,
-    "The Gauss map degenerates: the mesh pinches or a curvature line is straight there (§5.2)."
+    "The Gauss map degenerates: the mesh pinches, a curvature line is straight there, or the normal barely turns along a guide (§5.2)."
 );
 create_exception!(
     monge,
@@ -125,7 +125,9 @@ pub fn generate_error(context: Option<&str>, e: &GenerateError) -> PyErr {
         GenerateError::ThetaNotFinite(_)
         | GenerateError::ThetaInadmissible { .. }
         | GenerateError::ThetaSingular { .. } => ThetaError::new_err(message),
-        GenerateError::Degenerate { .. } => DegenerateError::new_err(message),
+        GenerateError::Degenerate { .. } | GenerateError::NormalStill { .. } => {
+            DegenerateError::new_err(message)
+        }
         GenerateError::Guide(_)
         | GenerateError::GridTooLarge { .. }
         | GenerateError::ScaleOutOfRange { .. }

@@ -84,10 +84,21 @@ def arbitrary(theta_deg):
     return d
 
 
+def normal_still():
+    # guide_v leaves guide_u's plane (y = 0) by 3e-7 rad: that plane is nearly the
+    # tangent plane, and the normal barely turns along guide_u.
+    def arc(center, normal, angle_deg, samples):
+        return {"arc": {"center": center, "start": [0, 0, 0], "normal": normal,
+                        "angle_deg": angle_deg, "samples": samples}}
+    return {"theta_deg": 66, "guide_u": arc([0, 0, -10], [0, 1, 0], 120, 41),
+            "guide_v": arc([0, 10, -3e-6], [-1, 0, 0], 80, 33)}
+
+
 @pytest.mark.parametrize(
     "design, error, fragment",
     [
         (dupin(theta_deg=90), monge.ThetaError, "is singular"),
+        (normal_still(), monge.DegenerateError, "turns by only 5.2e-7 rad along guide_u"),
         # fig10 is in the arbitrary mode (§3.2): θ = 1° is below its admissible range
         (arbitrary(1), monge.ThetaError, "is not admissible"),
         (dupin(theta_deg=180), monge.DegenerateError, "cannot be built past face"),

@@ -25,7 +25,7 @@ class ThetaError(DesignError):
     """θ is not finite, outside the admissible range of the guides (§3.2) or singular (θ = +90°)."""
 
 class DegenerateError(MongeError):
-    """The Gauss map degenerates: the mesh pinches or a curvature line is straight there (§5.2)."""
+    """The Gauss map degenerates: the mesh pinches, a curvature line is straight there, or the normal barely turns along a guide (§5.2)."""
 
 class MeshError(MongeError):
     """A mesh (file or arrays) is not a regular row-major quad grid of finite points."""
