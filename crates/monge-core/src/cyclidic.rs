@@ -845,16 +845,20 @@ fn basis(knots: &[f64], t: f64) -> (usize, [f64; 3]) {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct CyclidicNet {
-    /// One patch per face, face `(i, j)` at `i * (cols − 1) + j`.
-    patches: Vec<Patch>,
     /// Mesh vertices along `u`.
     rows: usize,
     /// Mesh vertices along `v`.
     cols: usize,
+    /// The mesh's vertices, row-major: the patches' corners.
+    vertices: Vec<DVec3>,
     /// The frames at the vertices, row-major.
     frames: Vec<Frame>,
-    /// `|W(i, j)|²`, the squared norms of the vertex quaternion weights, row-major.
-    vertex_weights: Vec<f64>,
+    /// `W(i, j)`, the vertex quaternion weights, row-major: with the corners they
+    /// give every patch, which is computed when asked for (a patch takes ten
+    /// times the memory of a vertex).
+    weights: Vec<Quat>,
+    /// The folded faces and why, in row-major face order.
+    folded: Vec<((usize, usize), FoldReason)>,
     /// Grouping tolerance of [`CyclidicNet::curvature_lines`].
     circle_tolerance: f64,
     /// Size of the mesh (bounding-box diagonal).
@@ -965,7 +969,7 @@ impl CyclidicNet {
             let e = unit_from(grid.vertex(0, j - 1), grid.vertex(0, j));
             w[j] = -(p(e) * p(frames[j - 1].t2)) * w[j - 1];
         }
-        let mut patches = Vec::with_capacity(grid.face_count());
+        let mut folded = Vec::new();
         for i in 0..rows - 1 {
             for j in 0..cols - 1 {
                 let corners = grid.face(i, j);
@@ -976,39 +980,31 @@ impl CyclidicNet {
                     options.circularity_tolerance,
                 )?;
                 let local = quad.qb_weights();
-                let inv = w[i * cols + j].inv();
+                let k = i * cols + j;
+                let inv = w[k].inv();
                 // λ, μ: the real factors of W(i+1, j)·W(i, j)⁻¹ and W(i, j+1)·W(i, j)⁻¹.
-                let lambda = (w[(i + 1) * cols + j] * inv).dot(local[1]);
-                let mu = (w[i * cols + j + 1] * inv).dot(local[3]);
-                w[(i + 1) * cols + j + 1] = local[2] * (lambda * mu) * w[i * cols + j];
-                let qb = [
-                    Quat::ONE,
-                    w[(i + 1) * cols + j] * inv,
-                    w[(i + 1) * cols + j + 1] * inv,
-                    w[i * cols + j + 1] * inv,
-                ];
-                let bezier = bezier_of(corners, qb);
-                let fold = quad.fold(&bezier);
-                if let (Some(reason), false) = (fold, options.allow_folded) {
-                    return Err(CyclidicError::Folded {
-                        face: (i, j),
-                        reason,
-                    });
+                let lambda = (w[k + cols] * inv).dot(local[1]);
+                let mu = (w[k + 1] * inv).dot(local[3]);
+                w[k + cols + 1] = local[2] * (lambda * mu) * w[k];
+                let qb = face_weights(&w, k, cols);
+                if let Some(reason) = quad.fold(&bezier_of(corners, qb)) {
+                    if !options.allow_folded {
+                        return Err(CyclidicError::Folded {
+                            face: (i, j),
+                            reason,
+                        });
+                    }
+                    folded.push(((i, j), reason));
                 }
-                patches.push(Patch {
-                    corners,
-                    qb,
-                    bezier,
-                    fold,
-                });
             }
         }
         Ok(CyclidicNet {
-            patches,
             rows,
             cols,
+            vertices: grid.vertices.clone(),
             frames,
-            vertex_weights: w.iter().map(|q| q.norm2()).collect(),
+            weights: w,
+            folded,
             circle_tolerance: options.circle_tolerance,
             size: bbox_diagonal(&grid.vertices),
         })
@@ -1026,12 +1022,25 @@ impl CyclidicNet {
 
     /// The patch on face `(i, j)` (§4.4). Its parameters are those of the whole
     /// net, so neighbouring patches agree point for point on shared edges.
+    /// Computed from the corners and the vertex weights each time it is asked for.
     ///
     /// # Panics
     /// If `i ≥ rows − 1` or `j ≥ cols − 1`.
-    pub fn patch(&self, i: usize, j: usize) -> &Patch {
+    pub fn patch(&self, i: usize, j: usize) -> Patch {
         assert!(i + 1 < self.rows && j + 1 < self.cols, "no face ({i}, {j})");
-        &self.patches[i * (self.cols - 1) + j]
+        let (c, k) = (self.cols, i * self.cols + j);
+        let corners = [k, k + c, k + c + 1, k + 1].map(|v| self.vertices[v]);
+        let qb = face_weights(&self.weights, k, c);
+        Patch {
+            corners,
+            qb,
+            bezier: bezier_of(corners, qb),
+            fold: self
+                .folded
+                .binary_search_by_key(&(i, j), |f| f.0)
+                .ok()
+                .map(|n| self.folded[n].1),
+        }
     }
 
     /// The frame at vertex `(i, j)` (§4.4).
@@ -1041,12 +1050,7 @@ impl CyclidicNet {
 
     /// Faces that are folded (only with [`CyclidicOptions::allow_folded`]), with the reason (§4.4).
     pub fn folded(&self) -> Vec<((usize, usize), FoldReason)> {
-        let c = self.cols - 1;
-        self.patches
-            .iter()
-            .enumerate()
-            .filter_map(|(k, p)| p.fold.map(|r| ((k / c, k % c), r)))
-            .collect()
+        self.folded.clone()
     }
 
     /// The points of patch `(i, j)` on a `k × k` uniform grid of its `(u, v)`,
@@ -1058,7 +1062,7 @@ impl CyclidicNet {
     /// If `k < 2` or the face does not exist.
     pub fn sample_patch(&self, i: usize, j: usize, k: usize) -> Vec<DVec3> {
         assert!(k >= 2, "sample_patch needs k ≥ 2, got {k}");
-        let b = self.patch(i, j).bezier();
+        let b = *self.patch(i, j).bezier();
         let t = |a: usize| a as f64 / (k - 1) as f64;
         (0..k * k).map(|n| b.point(t(n / k), t(n % k))).collect()
     }
@@ -1074,14 +1078,20 @@ impl CyclidicNet {
         let (dr, dc) = ((self.rows - 1) * (k - 1) + 1, (self.cols - 1) * (k - 1) + 1);
         let mut vertices = vec![DVec3::ZERO; dr * dc];
         let mut normals = vec![DVec3::ZERO; dr * dc];
-        for r in 0..dr {
-            for c in 0..dc {
-                let (i, a) = split(r, k, self.rows);
-                let (j, b) = split(c, k, self.cols);
-                let bez = self.patch(i, j).bezier();
-                let (u, v) = (a as f64 / (k - 1) as f64, b as f64 / (k - 1) as f64);
-                vertices[r * dc + c] = bez.point(u, v);
-                normals[r * dc + c] = bez.normal(u, v);
+        // Each patch fills its samples but the last row and column, which are the
+        // next patch's first, except on the last patch of a row or column.
+        let own = |face: usize, n: usize| if face + 2 == n { k } else { k - 1 };
+        let t = |a: usize| a as f64 / (k - 1) as f64;
+        for i in 0..self.rows - 1 {
+            for j in 0..self.cols - 1 {
+                let bez = *self.patch(i, j).bezier();
+                for a in 0..own(i, self.rows) {
+                    for b in 0..own(j, self.cols) {
+                        let at = (i * (k - 1) + a) * dc + j * (k - 1) + b;
+                        vertices[at] = bez.point(t(a), t(b));
+                        normals[at] = bez.normal(t(a), t(b));
+                    }
+                }
             }
         }
         QuadGrid::new(dr, dc, vertices, normals)
@@ -1158,8 +1168,8 @@ impl CyclidicNet {
         let mut weights = vec![0.0; nr * nc];
         for i in 0..self.rows - 1 {
             for j in 0..self.cols - 1 {
-                let bez = self.patch(i, j).bezier();
-                let scale = self.vertex_weights[i * self.cols + j];
+                let bez = *self.patch(i, j).bezier();
+                let scale = self.weights[i * self.cols + j].norm2();
                 for a in 0..3 {
                     for b in 0..3 {
                         let idx = (2 * i + a) * nc + 2 * j + b;
@@ -1180,6 +1190,18 @@ impl CyclidicNet {
     }
 }
 
+/// The QB weights of the face whose corner A is vertex `k` of a net with `cols`
+/// vertices a row (§4.4): the vertex weights of A, B, C, D times `W(A)⁻¹`.
+fn face_weights(w: &[Quat], k: usize, cols: usize) -> [Quat; 4] {
+    let inv = w[k].inv();
+    [
+        Quat::ONE,
+        w[k + cols] * inv,
+        w[k + cols + 1] * inv,
+        w[k + 1] * inv,
+    ]
+}
+
 /// `[0, 0, 0, 1, 1, …, m − 1, m − 1, m, m, m]`.
 fn knots(m: usize) -> Vec<f64> {
     let mut k = vec![0.0; 3];
@@ -1188,12 +1210,6 @@ fn knots(m: usize) -> Vec<f64> {
     }
     k.extend([m as f64; 3]);
     k
-}
-
-/// Dense index `r` → (face index, sample index within the face), with `n` mesh vertices.
-fn split(r: usize, k: usize, n: usize) -> (usize, usize) {
-    let face = (r / (k - 1)).min(n - 2);
-    (face, r - face * (k - 1))
 }
 
 /// At least one face.

@@ -506,15 +506,15 @@ fn tangent_planes_agree_across_patch_edges() {
         let mut worst = 0f64;
         let angle = |a: DVec3, b: DVec3| a.cross(b).length().atan2(a.dot(b));
         for (i, j) in faces(&net) {
-            let here = net.patch(i, j).bezier();
+            let here = *net.patch(i, j).bezier();
             if i + 2 < net.rows() {
-                let there = net.patch(i + 1, j).bezier();
+                let there = *net.patch(i + 1, j).bezier();
                 for &t in &ts {
                     worst = worst.max(angle(here.normal(1.0, t), there.normal(0.0, t)));
                 }
             }
             if j + 2 < net.cols() {
-                let there = net.patch(i, j + 1).bezier();
+                let there = *net.patch(i, j + 1).bezier();
                 for &t in &ts {
                     worst = worst.max(angle(here.normal(t, 1.0), there.normal(t, 0.0)));
                 }
@@ -939,6 +939,25 @@ fn errors() {
     };
     let net = CyclidicNet::from_frame(&bow, frame, &allow).unwrap();
     assert_eq!(net.folded(), vec![((0, 0), FoldReason::Crossed)]);
+    // A unit square and beside it a square with two corners swapped: only the
+    // second is named, with the fold its patch (computed on demand) carries.
+    let pair = QuadGrid::new(
+        2,
+        3,
+        vec![
+            DVec3::ZERO,
+            DVec3::Y,
+            DVec3::X + 2.0 * DVec3::Y,
+            DVec3::X,
+            DVec3::X + DVec3::Y,
+            2.0 * DVec3::Y,
+        ],
+        vec![],
+    );
+    let net = CyclidicNet::from_frame(&pair, frame, &allow).unwrap();
+    assert_eq!(net.patch(0, 0).fold(), None);
+    let fold = net.patch(0, 1).fold().expect("the second face is folded");
+    assert_eq!(net.folded(), vec![((0, 1), fold)]);
     // A centre weight that is not positive: the first random circular quad and
     // frame that give one (found deterministically).
     let (quad, frame) = random_patches(11)
