@@ -384,16 +384,58 @@ pub struct FamilySummary {
 /// Everything a fabricator needs (§6).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fabrication {
-    /// The layers, in the order of [`FabricationOptions::layers`].
+    /// The layers, in the order of [`FabricationOptions::layers`]; their faces
+    /// are the panels ([`Fabrication::panels`]).
     pub layers: Vec<LayerMesh>,
-    /// Every face of every layer, layer by layer, row-major.
-    pub panels: Vec<Panel>,
     /// Every row, then every column, of every layer, layer by layer.
     pub beams: Vec<Beam>,
     /// One node per vertex, row-major.
     pub nodes: Vec<Node>,
     /// Counts and worst values.
     pub summary: Summary,
+}
+
+impl Fabrication {
+    /// Every face of every layer as a flat panel (§2.2, §6), layer by layer,
+    /// row-major: computed from the layers as they are asked for (a panel takes
+    /// 288 bytes, twelve times its vertex).
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions};
+    /// use monge_core::QuadGrid;
+    /// let v = (0..3).flat_map(|i| (0..2).map(move |j| DVec3::new(i as f64, j as f64, 0.0))).collect();
+    /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
+    /// let options = FabricationOptions { layers: vec![0.0, 0.5], ..Default::default() };
+    /// let f = fabricate(BaseMesh::Circular(&grid), &options).unwrap();
+    /// let panels: Vec<_> = f.panels().collect();
+    /// assert_eq!(panels.len(), f.summary.panels);
+    /// assert_eq!((panels[3].layer, panels[3].i, panels[3].j), (1, 1, 0));
+    /// assert_eq!(panels[3], f.panel(1, 1, 0));
+    /// ```
+    pub fn panels(&self) -> impl ExactSizeIterator<Item = Panel> + Clone + '_ {
+        let sizes: Vec<(usize, usize)> = self
+            .layers
+            .iter()
+            .map(|l| (l.grid.rows - 1, l.grid.cols - 1))
+            .collect();
+        let per_layer = sizes.first().map_or(0, |&(r, c)| r * c);
+        (0..per_layer * self.layers.len()).map(move |n| {
+            let (k, f) = (n / per_layer, n % per_layer);
+            let cols = sizes[k].1;
+            self.panel(k, f / cols, f % cols)
+        })
+    }
+
+    /// Face `(i, j)` of layer `k` as a flat panel (§2.2, §6).
+    ///
+    /// # Panics
+    /// If there is no such layer or face.
+    pub fn panel(&self, k: usize, i: usize, j: usize) -> Panel {
+        let g = &self.layers[k].grid;
+        assert!(i + 1 < g.rows && j + 1 < g.cols, "no face ({i}, {j})");
+        panel(k, g.face(i, j), i, j)
+    }
 }
 
 /// Builds layers, panels, beams and nodes of a gridshell on `base` (§6).
@@ -407,8 +449,8 @@ pub struct Fabrication {
 /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
 /// let options = FabricationOptions { layers: vec![0.0, 0.5], ..Default::default() };
 /// let f = fabricate(BaseMesh::Circular(&grid), &options).unwrap();
-/// assert_eq!((f.panels.len(), f.beams.len(), f.nodes.len()), (4, 10, 6));
-/// assert!((f.panels[0].area - 1.0).abs() < 1e-15);
+/// assert_eq!((f.panels().len(), f.beams.len(), f.nodes.len()), (4, 10, 6));
+/// assert!((f.panel(0, 0, 0).area - 1.0).abs() < 1e-15);
 /// assert_eq!(f.summary.node_height, (0.5, 0.5));
 /// ```
 pub fn fabricate(
@@ -425,9 +467,9 @@ pub fn fabricate(
     for (k, layer) in layers.iter().enumerate() {
         check_edges(k, layer, options.tol * size)?;
     }
-    let mut panels = Vec::new();
+    let mut panels = PanelSummary::default();
     for (k, layer) in layers.iter().enumerate() {
-        panels.extend(layer_panels(k, layer)?);
+        panels.add(layer_panels(k, layer)?);
     }
     let tol = options.tol * size;
     let beams: Vec<Beam> = layers
@@ -436,10 +478,9 @@ pub fn fabricate(
         .flat_map(|(k, layer)| layer_beams(k, &layer.grid, tol))
         .collect();
     let nodes = build_nodes(&layers, options.angle_tol);
-    let summary = summarise(base, &layers, &panels, &beams, &nodes, size, options);
+    let summary = summarise(base, &layers, panels, &beams, &nodes, size, options);
     Ok(Fabrication {
         layers,
-        panels,
         beams,
         nodes,
         summary,
@@ -527,22 +568,38 @@ fn check_edges(k: usize, layer: &LayerMesh, tol: f64) -> Result<(), FabricationE
     Ok(())
 }
 
-/// Every face of a layer as a flat panel.
-fn layer_panels(k: usize, layer: &LayerMesh) -> Result<Vec<Panel>, FabricationError> {
-    let g = &layer.grid;
-    // Rows side by side; the first degenerate face (row-major) is the error.
-    let rows = crate::tasks::map(g.rows - 1, |i| row_panels(k, layer, i));
-    let mut panels = Vec::with_capacity(g.face_count());
-    for row in rows {
-        panels.extend(row?);
-    }
-    Ok(panels)
+/// What the summary needs of the panels (§6): their count and worst residuals.
+#[derive(Clone, Copy, Debug, Default)]
+struct PanelSummary {
+    count: usize,
+    max_planarity: f64,
+    max_circularity: f64,
 }
 
-/// The panels of the faces of row `i` of layer `k` (§6).
-fn row_panels(k: usize, layer: &LayerMesh, i: usize) -> Result<Vec<Panel>, FabricationError> {
+impl PanelSummary {
+    /// Counts `other` in (maxima as `f64::max`, so in any order).
+    fn add(&mut self, other: PanelSummary) {
+        self.count += other.count;
+        self.max_planarity = self.max_planarity.max(other.max_planarity);
+        self.max_circularity = self.max_circularity.max(other.max_circularity);
+    }
+}
+
+/// Checks every face of a layer and summarises its panels (§6), rows side by
+/// side; the first degenerate face (row-major) is the error.
+fn layer_panels(k: usize, layer: &LayerMesh) -> Result<PanelSummary, FabricationError> {
+    let rows = crate::tasks::map(layer.grid.rows - 1, |i| row_panels(k, layer, i));
+    let mut sum = PanelSummary::default();
+    for row in rows {
+        sum.add(row?);
+    }
+    Ok(sum)
+}
+
+/// Checks the faces of row `i` of layer `k` and summarises their panels (§6).
+fn row_panels(k: usize, layer: &LayerMesh, i: usize) -> Result<PanelSummary, FabricationError> {
     let g = &layer.grid;
-    let mut panels = Vec::with_capacity(g.cols - 1);
+    let mut sum = PanelSummary::default();
     for j in 0..g.cols - 1 {
         let quad = g.face(i, j);
         let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
@@ -556,28 +613,38 @@ fn row_panels(k: usize, layer: &LayerMesh, i: usize) -> Result<Vec<Panel>, Fabri
                 face: (i, j),
             });
         }
-        let frame = PlaneFrame::new(quad[0], normal, edge);
-        let outline = quad.map(|p| frame.to_plane(p));
-        let edge_lengths = [0, 1, 2, 3].map(|c| (quad[(c + 1) % 4] - quad[c]).length());
-        let angles = [0, 1, 2, 3].map(|c| {
-            let (prev, next) = (quad[(c + 3) % 4] - quad[c], quad[(c + 1) % 4] - quad[c]);
-            angle_between(prev, next)
-        });
-        panels.push(Panel {
-            layer: k,
-            i,
-            j,
-            frame,
-            outline,
-            edge_lengths,
-            angles,
-            area: quad_area(&quad),
-            circumradius: circumradius(quad[0], quad[1], quad[2]),
-            planarity: face_planarity(&quad),
-            circularity: circularity(&quad),
+        let p = panel(k, quad, i, j);
+        sum.add(PanelSummary {
+            count: 1,
+            max_planarity: p.planarity,
+            max_circularity: p.circularity,
         });
     }
-    Ok(panels)
+    Ok(sum)
+}
+
+/// Face `(i, j)` of layer `k`, with corners `quad`, as a flat panel (§6).
+fn panel(k: usize, quad: [DVec3; 4], i: usize, j: usize) -> Panel {
+    let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
+    let frame = PlaneFrame::new(quad[0], normal, quad[1] - quad[0]);
+    let edge_lengths = [0, 1, 2, 3].map(|c| (quad[(c + 1) % 4] - quad[c]).length());
+    let angles = [0, 1, 2, 3].map(|c| {
+        let (prev, next) = (quad[(c + 3) % 4] - quad[c], quad[(c + 1) % 4] - quad[c]);
+        angle_between(prev, next)
+    });
+    Panel {
+        layer: k,
+        i,
+        j,
+        frame,
+        outline: quad.map(|p| frame.to_plane(p)),
+        edge_lengths,
+        angles,
+        area: quad_area(&quad),
+        circumradius: circumradius(quad[0], quad[1], quad[2]),
+        planarity: face_planarity(&quad),
+        circularity: circularity(&quad),
+    }
 }
 
 /// Angle between two non-zero vectors, radians, accurate near 0 and π.
@@ -1015,7 +1082,7 @@ fn radii(beam: &Beam) -> impl Iterator<Item = f64> + '_ {
 fn summarise(
     base: BaseMesh<'_>,
     layers: &[LayerMesh],
-    panels: &[Panel],
+    panels: PanelSummary,
     beams: &[Beam],
     nodes: &[Node],
     size: f64,
@@ -1051,7 +1118,7 @@ fn summarise(
     Summary {
         size,
         layers: layers.iter().map(|l| l.distance).collect(),
-        panels: panels.len(),
+        panels: panels.count,
         beams: beams.len(),
         nodes: nodes.len(),
         families,
@@ -1062,9 +1129,9 @@ fn summarise(
             heights.fold(0.0, f64::max),
         ),
         max_offset_deviation: offset_deviation(base, layers),
-        max_panel_planarity: max(&mut panels.iter().map(|p| p.planarity)),
+        max_panel_planarity: panels.max_planarity,
         max_panel_circularity: matches!(base, BaseMesh::Circular(_))
-            .then(|| max(&mut panels.iter().map(|p| p.circularity))),
+            .then_some(panels.max_circularity),
         max_beam_plane_residual: max(&mut beams.iter().map(|b| b.plane_residual)),
         max_arc_residual: max(&mut beams.iter().flat_map(|b| &b.segments).map(|s| s.residual)),
         max_torsion: max(&mut nodes.iter().map(|n| n.torsion)),

@@ -82,7 +82,7 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
         }
     }
     // Panels: the flat outline reproduces the 3D edges and diagonals.
-    for p in &f.panels {
+    for p in f.panels() {
         let quad = f.layers[p.layer].grid.face(p.i, p.j);
         for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2), (1, 3)] {
             let d3 = (quad[b] - quad[a]).length();
@@ -331,7 +331,7 @@ fn flat_grid_has_straight_beams() {
     }
     // Four corners, four kinds of boundary node, one interior node.
     assert_eq!(f.summary.node_types, 9);
-    assert_eq!(f.panels[0].outline[2], DVec2::new(1.0, 0.5));
+    assert_eq!(f.panel(0, 0, 0).outline[2], DVec2::new(1.0, 0.5));
 }
 
 fn square(normals: bool) -> QuadGrid {

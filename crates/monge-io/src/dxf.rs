@@ -142,8 +142,7 @@ pub fn write_panels_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
 fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Result<()> {
     begin(o)?;
     let cell = f
-        .panels
-        .iter()
+        .panels()
         .map(|p| {
             let (lo, hi) = bounds(&p.outline);
             (hi - lo).max_element()
@@ -151,9 +150,12 @@ fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Res
         .fold(0.0, f64::max)
         * 1.25;
     let mut y0 = 0.0;
-    for layer in 0..f.layers.len() {
+    // Layer by layer, as many panels in each.
+    let mut panels = f.panels();
+    let per_layer = panels.len().checked_div(f.layers.len()).unwrap_or(0);
+    for _ in &f.layers {
         let mut rows = 0;
-        for p in f.panels.iter().filter(|p| p.layer == layer) {
+        for p in panels.by_ref().take(per_layer) {
             rows = rows.max(p.i + 1);
             let (lo, _) = bounds(&p.outline);
             let at = DVec2::new(p.j as f64 * cell, y0 + p.i as f64 * cell) - lo;
@@ -162,7 +164,7 @@ fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Res
                 line(o, "PANEL", q[k], q[(k + 1) % 4])?;
             }
             let centroid = q.iter().copied().sum::<DVec2>() / 4.0;
-            text(o, centroid, cell * 0.06, |o| put_panel_label(o, p))?;
+            text(o, centroid, cell * 0.06, |o| put_panel_label(o, &p))?;
         }
         y0 += (rows + 1) as f64 * cell;
     }

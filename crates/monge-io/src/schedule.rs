@@ -92,8 +92,8 @@ pub fn write_panels_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
              x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z",
         );
         o.end()?;
-        for p in &f.panels {
-            put_panel_label(o, p);
+        for p in f.panels() {
+            put_panel_label(o, &p);
             for n in [p.layer, p.i, p.j] {
                 o.push(b',');
                 o.int(n);
@@ -270,29 +270,35 @@ pub fn write_schedule_json(
     w: &mut dyn Write,
 ) -> io::Result<()> {
     #[derive(Serialize)]
-    struct Labelled<'a, T> {
+    struct Labelled<T> {
         label: String,
         #[serde(flatten)]
-        item: &'a T,
+        item: T,
     }
-    /// A list serialized item by item, each with its label.
-    struct List<'a, T>(&'a [T], fn(&T) -> String);
-    impl<T: Serialize> Serialize for List<'_, T> {
+    /// A list serialized item by item (from a copy of the iterator), each with
+    /// its label.
+    struct List<I, F>(I, F);
+    impl<I, F> Serialize for List<I, F>
+    where
+        I: Iterator + Clone,
+        I::Item: Serialize,
+        F: Fn(&I::Item) -> String,
+    {
         fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            s.collect_seq(self.0.iter().map(|item| Labelled {
-                label: (self.1)(item),
+            s.collect_seq(self.0.clone().map(|item| Labelled {
+                label: (self.1)(&item),
                 item,
             }))
         }
     }
     #[derive(Serialize)]
-    struct Doc<'a> {
+    struct Doc<'a, P: Serialize, B: Serialize> {
         summary: &'a Summary,
         layers: Vec<f64>,
         #[serde(skip_serializing_if = "Option::is_none")]
-        panels: Option<List<'a, Panel>>,
+        panels: Option<P>,
         #[serde(skip_serializing_if = "Option::is_none")]
-        beams: Option<List<'a, Beam>>,
+        beams: Option<B>,
         #[serde(skip_serializing_if = "Option::is_none")]
         nodes: Option<&'a [monge_core::fabrication::Node]>,
     }
@@ -300,8 +306,8 @@ pub fn write_schedule_json(
     let doc = Doc {
         summary: &f.summary,
         layers: f.layers.iter().map(|l| l.distance).collect(),
-        panels: full.then(|| List(&f.panels, panel_label)),
-        beams: full.then(|| List(&f.beams, beam_label)),
+        panels: full.then(|| List(f.panels(), panel_label)),
+        beams: full.then(|| List(f.beams.iter(), |b: &&Beam| beam_label(b))),
         nodes: full.then_some(&f.nodes[..]),
     };
     serde_json::to_writer(&mut *w, &doc).map_err(io::Error::other)?;

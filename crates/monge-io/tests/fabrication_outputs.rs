@@ -65,10 +65,10 @@ fn csv_schedules_read_back_exactly() {
     let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
     let panels = read("panels.csv");
     let lines: Vec<&str> = panels.lines().collect();
-    assert_eq!(lines.len(), f.panels.len() + 1);
+    assert_eq!(lines.len(), f.panels().len() + 1);
     let header: Vec<&str> = lines[0].split(',').collect();
     let area = header.iter().position(|h| *h == "area").unwrap();
-    for (line, p) in lines[1..].iter().zip(&f.panels) {
+    for (line, p) in lines[1..].iter().zip(f.panels()) {
         let cells: Vec<&str> = line.split(',').collect();
         assert_eq!(cells.len(), header.len());
         assert_eq!(cells[area].parse::<f64>().unwrap(), p.area);
@@ -104,7 +104,7 @@ fn json_schedule_is_the_summary_by_default() {
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
     assert_eq!(keys, ["layers", "summary"]);
-    assert_eq!(v["summary"]["panels"], f.panels.len());
+    assert_eq!(v["summary"]["panels"], f.panels().len());
     assert_eq!(v["layers"], serde_json::json!([0.0, 0.1, 0.2]));
 }
 
@@ -114,20 +114,23 @@ fn full_json_schedule_has_everything() {
     let f = write_with(dir.path(), ScheduleJson::Full);
     let text = std::fs::read_to_string(dir.path().join("schedule.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    assert_eq!(v["summary"]["panels"], f.panels.len());
+    assert_eq!(v["summary"]["panels"], f.panels().len());
     assert_eq!(v["summary"]["node_types"], f.summary.node_types);
-    assert_eq!(v["panels"].as_array().unwrap().len(), f.panels.len());
+    assert_eq!(v["panels"].as_array().unwrap().len(), f.panels().len());
     assert_eq!(v["panels"][0]["label"], "L0-P0.0");
     assert_eq!(v["beams"][1]["label"], monge_io::beam_label(&f.beams[1]));
     assert_eq!(
         v["panels"].as_array().unwrap().last().unwrap()["label"],
         format!(
             "L2-P{}.{}",
-            f.panels.last().unwrap().i,
-            f.panels.last().unwrap().j
+            f.panels().last().unwrap().i,
+            f.panels().last().unwrap().j
         )
     );
-    assert_eq!(v["panels"][0]["area"].as_f64().unwrap(), f.panels[0].area);
+    assert_eq!(
+        v["panels"][0]["area"].as_f64().unwrap(),
+        f.panel(0, 0, 0).area
+    );
     assert_eq!(v["beams"][0]["segments"][0]["shape"]["kind"], "arc");
     assert_eq!(v["nodes"].as_array().unwrap().len(), f.nodes.len());
     assert_eq!(v["layers"], serde_json::json!([0.0, 0.1, 0.2]));
@@ -142,7 +145,7 @@ fn svg_overview_is_one_document() {
     assert_eq!(text.matches("<polyline").count(), f.beams.len());
     assert_eq!(
         text.matches("<polygon").count(),
-        f.panels.len() / f.layers.len()
+        f.panels().len() / f.layers.len()
     );
     assert_eq!(text.matches("<g").count(), text.matches("</g>").count());
 }
@@ -196,8 +199,8 @@ fn dxf_opens_in_ezdxf() {
     let panels = &v["panels.dxf"];
     assert_eq!(panels["version"], "AC1009");
     assert_eq!(panels["errors"], 0);
-    assert_eq!(panels["counts"]["LINE:PANEL"], 4 * f.panels.len());
-    assert_eq!(panels["counts"]["TEXT:LABEL"], f.panels.len());
+    assert_eq!(panels["counts"]["LINE:PANEL"], 4 * f.panels().len());
+    assert_eq!(panels["counts"]["TEXT:LABEL"], f.panels().len());
     let beams = &v["beams.dxf"];
     assert_eq!(beams["errors"], 0);
     let arcs = f
