@@ -21,6 +21,8 @@
 //! Everything is pure geometry; the schedules and drawings are written by
 //! `monge-io`.
 
+use std::ops::Range;
+
 use rustc_hash::FxHashMap;
 
 use glam::{DVec2, DVec3};
@@ -389,8 +391,9 @@ pub struct Fabrication {
     pub layers: Vec<LayerMesh>,
     /// Every row, then every column, of every layer, layer by layer.
     pub beams: Vec<Beam>,
-    /// One node per vertex, row-major.
-    pub nodes: Vec<Node>,
+    /// The type of every node, row-major; the nodes themselves are computed
+    /// when asked for ([`Fabrication::nodes`]).
+    node_types: Vec<usize>,
     /// Counts and worst values.
     pub summary: Summary,
 }
@@ -414,17 +417,91 @@ impl Fabrication {
     /// assert_eq!(panels[3], f.panel(1, 1, 0));
     /// ```
     pub fn panels(&self) -> impl ExactSizeIterator<Item = Panel> + Clone + '_ {
-        let sizes: Vec<(usize, usize)> = self
-            .layers
-            .iter()
-            .map(|l| (l.grid.rows - 1, l.grid.cols - 1))
-            .collect();
-        let per_layer = sizes.first().map_or(0, |&(r, c)| r * c);
-        (0..per_layer * self.layers.len()).map(move |n| {
-            let (k, f) = (n / per_layer, n % per_layer);
-            let cols = sizes[k].1;
-            self.panel(k, f / cols, f % cols)
+        self.panels_in(0..self.layers.len() * self.layers[0].grid.face_count())
+    }
+
+    /// The panels numbered `range` of [`Fabrication::panels`] (§6): for
+    /// computing them in pieces, side by side.
+    ///
+    /// # Panics
+    /// If `range` ends beyond the panels.
+    pub fn panels_in(
+        &self,
+        range: Range<usize>,
+    ) -> impl ExactSizeIterator<Item = Panel> + Clone + '_ {
+        // Every layer has the base mesh's faces.
+        let (faces, cols) = (
+            self.layers[0].grid.face_count(),
+            self.layers[0].grid.cols - 1,
+        );
+        assert!(
+            range.end <= faces * self.layers.len(),
+            "no panel {}",
+            range.end - 1
+        );
+        range.map(move |n| {
+            let (k, f) = (n / faces, n % faces);
+            panel(
+                k,
+                self.layers[k].grid.face(f / cols, f % cols),
+                f / cols,
+                f % cols,
+            )
         })
+    }
+
+    /// One node per vertex of the base mesh, row-major (§2.2, §6): computed from
+    /// the layers as they are asked for, with the types found by [`fabricate`].
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions};
+    /// use monge_core::QuadGrid;
+    /// let v = (0..3).flat_map(|i| (0..2).map(move |j| DVec3::new(i as f64, j as f64, 0.0))).collect();
+    /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
+    /// let f = fabricate(BaseMesh::Circular(&grid), &FabricationOptions::default()).unwrap();
+    /// let nodes: Vec<_> = f.nodes().collect();
+    /// assert_eq!(nodes.len(), 6);
+    /// assert_eq!(nodes[3], f.node(1, 1));
+    /// // On a 3 × 2 grid each node has other neighbours (directions): six types.
+    /// assert_eq!(nodes.iter().map(|n| n.node_type).collect::<Vec<_>>(), [0, 1, 2, 3, 4, 5]);
+    /// ```
+    pub fn nodes(&self) -> impl ExactSizeIterator<Item = Node> + Clone + '_ {
+        self.nodes_in(0..self.node_types.len())
+    }
+
+    /// The nodes numbered `range` of [`Fabrication::nodes`] (§6): for computing
+    /// them in pieces, side by side.
+    ///
+    /// # Panics
+    /// If `range` ends beyond the nodes.
+    pub fn nodes_in(
+        &self,
+        range: Range<usize>,
+    ) -> impl ExactSizeIterator<Item = Node> + Clone + '_ {
+        assert!(
+            range.end <= self.node_types.len(),
+            "no node {}",
+            range.end - 1
+        );
+        let (extremes, cols) = (extreme_layers(&self.layers), self.layers[0].grid.cols);
+        range.map(move |k| Node {
+            node_type: self.node_types[k],
+            ..node(&self.layers, extremes, k / cols, k % cols)
+        })
+    }
+
+    /// The node at vertex `(i, j)` of the base mesh (§2.2, §6).
+    ///
+    /// # Panics
+    /// If there is no such vertex.
+    pub fn node(&self, i: usize, j: usize) -> Node {
+        let g = &self.layers[0].grid;
+        assert!(i < g.rows && j < g.cols, "no vertex ({i}, {j})");
+        Node {
+            node_type: self.node_types[g.index(i, j)],
+            ..node(&self.layers, extreme_layers(&self.layers), i, j)
+        }
     }
 
     /// Face `(i, j)` of layer `k` as a flat panel (§2.2, §6).
@@ -449,7 +526,7 @@ impl Fabrication {
 /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
 /// let options = FabricationOptions { layers: vec![0.0, 0.5], ..Default::default() };
 /// let f = fabricate(BaseMesh::Circular(&grid), &options).unwrap();
-/// assert_eq!((f.panels().len(), f.beams.len(), f.nodes.len()), (4, 10, 6));
+/// assert_eq!((f.panels().len(), f.beams.len(), f.nodes().len()), (4, 10, 6));
 /// assert!((f.panel(0, 0, 0).area - 1.0).abs() < 1e-15);
 /// assert_eq!(f.summary.node_height, (0.5, 0.5));
 /// ```
@@ -477,12 +554,12 @@ pub fn fabricate(
         .enumerate()
         .flat_map(|(k, layer)| layer_beams(k, &layer.grid, tol))
         .collect();
-    let nodes = build_nodes(&layers, options.angle_tol);
-    let summary = summarise(base, &layers, panels, &beams, &nodes, size, options);
+    let (node_types, nodes) = build_nodes(&layers, options.angle_tol);
+    let summary = summarise(base, &layers, panels, &beams, nodes, size, options);
     Ok(Fabrication {
         layers,
         beams,
-        nodes,
+        node_types,
         summary,
     })
 }
@@ -916,63 +993,89 @@ const DIRECTIONS: [((isize, isize), &str); 4] = [
     ((0, -1), "-j"),
 ];
 
-/// One node per vertex, with its type.
-fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> Vec<Node> {
+/// The node at vertex `(i, j)` (§6), its type 0; `extremes` are the layers of
+/// the smallest and the largest distance ([`extreme_layers`]).
+fn node(layers: &[LayerMesh], (lo, hi): (usize, usize), i: usize, j: usize) -> Node {
     let base = &layers[0].grid;
-    let (lo, hi) = extreme_layers(layers);
-    // Row by row, side by side.
-    let rows = crate::tasks::map(base.rows, |i| {
-        let mut nodes = Vec::with_capacity(base.cols);
-        for j in 0..base.cols {
-            let x = base.vertex(i, j);
-            let axis = base.normals[base.index(i, j)];
-            let mut edges = Vec::new();
-            let mut directions = Vec::new();
-            let mut torsion: f64 = 0.0;
-            for ((di, dj), name) in DIRECTIONS {
-                let (ni, nj) = (i as isize + di, j as isize + dj);
-                if ni < 0 || nj < 0 || ni as usize >= base.rows || nj as usize >= base.cols {
-                    continue;
-                }
-                let (ni, nj) = (ni as usize, nj as usize);
-                let e = base.vertex(ni, nj) - x;
-                let other = base.normals[base.index(ni, nj)];
-                torsion = torsion.max(e.normalize().dot(axis.cross(other)).abs());
-                edges.push(e);
-                directions.push(name);
-            }
-            let beam_angles = if edges.len() < 2 {
-                Vec::new()
-            } else {
-                let pairs = if edges.len() == 2 { 1 } else { edges.len() };
-                (0..pairs)
-                    .map(|k| angle_between(edges[k], edges[(k + 1) % edges.len()]))
-                    .collect()
-            };
-            let axis_angles = edges.iter().map(|&e| angle_between(e, axis)).collect();
-            let k = base.index(i, j);
-            let height = (layers[hi].grid.vertices[k] - layers[lo].grid.vertices[k]).length();
-            nodes.push(Node {
-                i,
-                j,
-                position: x,
-                axis,
-                directions,
-                beam_angles,
-                axis_angles,
-                height,
-                torsion,
-                node_type: 0,
-            });
+    let x = base.vertex(i, j);
+    let axis = base.normals[base.index(i, j)];
+    let mut edges = Vec::new();
+    let mut directions = Vec::new();
+    let mut torsion: f64 = 0.0;
+    for ((di, dj), name) in DIRECTIONS {
+        let (ni, nj) = (i as isize + di, j as isize + dj);
+        if ni < 0 || nj < 0 || ni as usize >= base.rows || nj as usize >= base.cols {
+            continue;
         }
-        nodes
-    });
-    let mut nodes = Vec::with_capacity(base.vertices.len());
-    for row in rows {
-        nodes.extend(row);
+        let (ni, nj) = (ni as usize, nj as usize);
+        let e = base.vertex(ni, nj) - x;
+        let other = base.normals[base.index(ni, nj)];
+        torsion = torsion.max(e.normalize().dot(axis.cross(other)).abs());
+        edges.push(e);
+        directions.push(name);
     }
-    assign_types(&mut nodes, angle_tol);
-    nodes
+    let beam_angles = if edges.len() < 2 {
+        Vec::new()
+    } else {
+        let pairs = if edges.len() == 2 { 1 } else { edges.len() };
+        (0..pairs)
+            .map(|k| angle_between(edges[k], edges[(k + 1) % edges.len()]))
+            .collect()
+    };
+    let axis_angles = edges.iter().map(|&e| angle_between(e, axis)).collect();
+    let k = base.index(i, j);
+    let height = (layers[hi].grid.vertices[k] - layers[lo].grid.vertices[k]).length();
+    Node {
+        i,
+        j,
+        position: x,
+        axis,
+        directions,
+        beam_angles,
+        axis_angles,
+        height,
+        torsion,
+        node_type: 0,
+    }
+}
+
+/// What the summary needs of the nodes (§6).
+struct NodeSummary {
+    count: usize,
+    types: usize,
+    height: (f64, f64),
+    max_torsion: f64,
+}
+
+/// The type of every node, row-major, and their summary (§6): nodes computed
+/// a block of rows at a time (rows side by side), typed in order.
+fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> (Vec<usize>, NodeSummary) {
+    let base = &layers[0].grid;
+    let extremes = extreme_layers(layers);
+    let mut types = NodeTypes::new(angle_tol);
+    let mut node_types = Vec::with_capacity(base.vertices.len());
+    let mut sum = NodeSummary {
+        count: 0,
+        types: 0,
+        height: (f64::INFINITY, 0.0),
+        max_torsion: 0.0,
+    };
+    let block = (crate::tasks::BLOCK / base.cols).max(1);
+    for first in (0..base.rows).step_by(block) {
+        let rows = crate::tasks::map(block.min(base.rows - first), |r| {
+            (0..base.cols)
+                .map(|j| node(layers, extremes, first + r, j))
+                .collect::<Vec<_>>()
+        });
+        for n in rows.iter().flatten() {
+            node_types.push(types.of(n));
+            sum.count += 1;
+            sum.height = (sum.height.0.min(n.height), sum.height.1.max(n.height));
+            sum.max_torsion = sum.max_torsion.max(n.torsion);
+        }
+    }
+    sum.types = types.count;
+    (node_types, sum)
 }
 
 /// Indices of the layers with the smallest and the largest distance.
@@ -992,21 +1095,37 @@ fn extreme_layers(layers: &[LayerMesh]) -> (usize, usize) {
 /// around it, kept side by side with their angles: on a fine curvature-line
 /// mesh every angle is close to 90° and a cell holds many types, so comparing
 /// must not chase pointers.
-fn assign_types(nodes: &mut [Node], angle_tol: f64) {
-    /// A type: its index, its first node, and that node's angles (beam angles
-    /// then axis angles, the first `len` of `angles`).
-    struct Type {
-        index: usize,
-        node: usize,
-        len: usize,
-        angles: [f64; SIGNATURE],
+struct NodeTypes {
+    angle_tol: f64,
+    /// Types so far.
+    count: usize,
+    cells: FxHashMap<(i64, i64), Vec<Type>>,
+}
+
+/// A node type: its index, its first node's directions (a bit per entry of
+/// [`DIRECTIONS`]) and angles (beam angles then axis angles, the first `len`
+/// of `angles`).
+struct Type {
+    index: usize,
+    directions: u8,
+    len: usize,
+    angles: [f64; SIGNATURE],
+}
+
+impl NodeTypes {
+    fn new(angle_tol: f64) -> Self {
+        NodeTypes {
+            angle_tol,
+            count: 0,
+            cells: FxHashMap::default(),
+        }
     }
-    let cell_width = angle_tol.max(1e-15);
-    let cell = |a: f64| (a / cell_width).floor() as i64;
-    let mut types = 0;
-    let mut cells: FxHashMap<(i64, i64), Vec<Type>> = FxHashMap::default();
-    for n in 0..nodes.len() {
-        let node = &nodes[n];
+
+    /// The type of `node`: the first matching one, or a new one.
+    fn of(&mut self, node: &Node) -> usize {
+        let angle_tol = self.angle_tol;
+        let cell_width = angle_tol.max(1e-15);
+        let cell = |a: f64| (a / cell_width).floor() as i64;
         let mut angles = [0.0; SIGNATURE];
         let sig = node.beam_angles.iter().chain(&node.axis_angles);
         // At most one beam angle and one axis angle per direction.
@@ -1014,6 +1133,11 @@ fn assign_types(nodes: &mut [Node], angle_tol: f64) {
         for (slot, &a) in angles.iter_mut().zip(sig) {
             *slot = a;
         }
+        let directions = DIRECTIONS
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, name))| node.directions.contains(name))
+            .fold(0, |mask, (k, _)| mask | 1 << k);
         // The first beam angle and the first axis angle: on a curvature-line
         // mesh the beam angles are nearly equal (all near 90°), the axis
         // angles tell more apart (42 candidates per node at 1000 × 1000 faces
@@ -1030,27 +1154,26 @@ fn assign_types(nodes: &mut [Node], angle_tol: f64) {
                     .iter()
                     .zip(&angles[..len])
                     .all(|(a, b)| (a - b).abs() <= angle_tol)
-                && nodes[t.node].directions == node.directions
+                && t.directions == directions
         };
         let found = (key.0 - 1..=key.0 + 1)
             .flat_map(|a| (key.1 - 1..=key.1 + 1).map(move |b| (a, b)))
-            .filter_map(|c| cells.get(&c))
+            .filter_map(|c| self.cells.get(&c))
             .flatten()
             .filter(matches)
             .map(|t| t.index)
             .min();
-        nodes[n].node_type = found.unwrap_or_else(|| {
-            let index = types;
-            types += 1;
-            let t = Type {
+        found.unwrap_or_else(|| {
+            let index = self.count;
+            self.count += 1;
+            self.cells.entry(key).or_default().push(Type {
                 index,
-                node: n,
+                directions,
                 len,
                 angles,
-            };
-            cells.entry(key).or_default().push(t);
+            });
             index
-        });
+        })
     }
 }
 
@@ -1084,7 +1207,7 @@ fn summarise(
     layers: &[LayerMesh],
     panels: PanelSummary,
     beams: &[Beam],
-    nodes: &[Node],
+    nodes: NodeSummary,
     size: f64,
     options: &FabricationOptions,
 ) -> Summary {
@@ -1113,28 +1236,24 @@ fn summarise(
             }
         })
         .collect();
-    let heights = nodes.iter().map(|n| n.height);
     let max = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0, f64::max);
     Summary {
         size,
         layers: layers.iter().map(|l| l.distance).collect(),
         panels: panels.count,
         beams: beams.len(),
-        nodes: nodes.len(),
+        nodes: nodes.count,
         families,
         radii: distinct(beams.iter().flat_map(radii).collect(), rtol),
-        node_types: nodes.iter().map(|n| n.node_type + 1).max().unwrap_or(0),
-        node_height: (
-            heights.clone().fold(f64::INFINITY, f64::min),
-            heights.fold(0.0, f64::max),
-        ),
+        node_types: nodes.types,
+        node_height: nodes.height,
         max_offset_deviation: offset_deviation(base, layers),
         max_panel_planarity: panels.max_planarity,
         max_panel_circularity: matches!(base, BaseMesh::Circular(_))
             .then_some(panels.max_circularity),
         max_beam_plane_residual: max(&mut beams.iter().map(|b| b.plane_residual)),
         max_arc_residual: max(&mut beams.iter().flat_map(|b| &b.segments).map(|s| s.residual)),
-        max_torsion: max(&mut nodes.iter().map(|n| n.torsion)),
+        max_torsion: nodes.max_torsion,
     }
 }
 

@@ -210,7 +210,7 @@ fn dupin_cyclide_has_circular_beams_and_identical_node_heights() {
     // One radius per line: at most (rows + cols) radii per layer.
     assert!(s.radii.len() <= 4 * (13 + 11));
     // Identical node heights: the distance between the outer layers, 0.35, measured here.
-    for n in &f.nodes {
+    for n in f.nodes() {
         let k = base.index(n.i, n.j);
         let h = (f.layers[2].grid.vertices[k] - f.layers[3].grid.vertices[k]).length();
         assert!((h - 0.35).abs() < 1e-12 && (n.height - h).abs() < 1e-12);
@@ -285,8 +285,7 @@ fn torus_nodes_repeat_around_the_axis() {
     // Interior nodes of one column have the same beam angles (to 1e-12).
     for j in 0..base.cols {
         let column: Vec<_> = f
-            .nodes
-            .iter()
+            .nodes()
             .filter(|n| n.j == j && n.i > 0 && n.i + 1 < base.rows)
             .collect();
         for n in &column {
@@ -475,11 +474,12 @@ fn brute_force_types(f: &Fabrication, angle_tol: f64) -> Vec<usize> {
             .collect()
     };
     let mut firsts: Vec<usize> = Vec::new();
-    let mut types = Vec::with_capacity(f.nodes.len());
-    for (k, n) in f.nodes.iter().enumerate() {
+    let nodes: Vec<_> = f.nodes().collect();
+    let mut types = Vec::with_capacity(nodes.len());
+    for (k, n) in nodes.iter().enumerate() {
         let s = sig(n);
         let found = firsts.iter().position(|&r| {
-            let rep = &f.nodes[r];
+            let rep = &nodes[r];
             let t = sig(rep);
             rep.directions == n.directions
                 && t.len() == s.len()
@@ -525,7 +525,7 @@ fn node_types_agree_with_brute_force_grouping() {
             ..options(&[0.0])
         };
         let f = fabricate(BaseMesh::Circular(&base), &opts).unwrap();
-        let types: Vec<usize> = f.nodes.iter().map(|n| n.node_type).collect();
+        let types: Vec<usize> = f.nodes().map(|n| n.node_type).collect();
         assert_eq!(
             types,
             brute_force_types(&f, angle_tol),

@@ -8,7 +8,8 @@
 use std::io::{self, Write};
 
 use glam::DVec2;
-use monge_core::fabrication::{Fabrication, SegmentShape};
+use monge_core::fabrication::{Fabrication, Panel, SegmentShape};
+use monge_core::tasks;
 
 use crate::schedule::{put_beam_label, put_panel_label};
 use crate::text::{emit, Out};
@@ -141,18 +142,20 @@ pub fn write_panels_dxf(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
 
 fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Result<()> {
     begin(o)?;
-    let cell = f
-        .panels()
-        .map(|p| {
-            let (lo, hi) = bounds(&p.outline);
-            (hi - lo).max_element()
-        })
-        .fold(0.0, f64::max)
+    let size = |p: Panel| {
+        let (lo, hi) = bounds(&p.outline);
+        (hi - lo).max_element()
+    };
+    let cell = tasks::ranges(f.panels().len(), tasks::BLOCK, |r| {
+        f.panels_in(r).map(size).fold(0.0, f64::max)
+    })
+    .into_iter()
+    .fold(0.0, f64::max)
         * 1.25;
     let mut y0 = 0.0;
     // Layer by layer, as many panels in each.
-    let mut panels = f.panels();
-    let per_layer = panels.len().checked_div(f.layers.len()).unwrap_or(0);
+    let per_layer = f.panels().len().checked_div(f.layers.len()).unwrap_or(0);
+    let mut panels = panel_blocks(f).flatten();
     for _ in &f.layers {
         let mut rows = 0;
         for p in panels.by_ref().take(per_layer) {
@@ -169,6 +172,20 @@ fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Res
         y0 += (rows + 1) as f64 * cell;
     }
     end(o)
+}
+
+/// The panels of `f` in order, computed [`tasks::BLOCK`] at a time in pieces
+/// side by side.
+fn panel_blocks(f: &Fabrication) -> impl Iterator<Item = Vec<Panel>> + '_ {
+    let n = f.panels().len();
+    (0..n).step_by(tasks::BLOCK).map(move |first| {
+        let block = first..n.min(first + tasks::BLOCK);
+        tasks::ranges(block.len(), tasks::BLOCK / 16, |r| {
+            f.panels_in(first + r.start..first + r.end)
+                .collect::<Vec<_>>()
+        })
+        .concat()
+    })
 }
 
 /// Beams in their planes (§4.6, §6): for each beam, its edges as straight

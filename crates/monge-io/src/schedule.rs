@@ -92,20 +92,22 @@ pub fn write_panels_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
              x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z",
         );
         o.end()?;
-        for p in f.panels() {
-            put_panel_label(o, &p);
-            for n in [p.layer, p.i, p.j] {
-                o.push(b',');
-                o.int(n);
+        // Panels computed and formatted in chunks side by side.
+        o.each_range(f.panels().len(), |o, range| {
+            for p in f.panels_in(range) {
+                put_panel_label(o, &p);
+                for n in [p.layer, p.i, p.j] {
+                    o.push(b',');
+                    o.int(n);
+                }
+                cells(o, p.outline.iter().flat_map(|q| [q.x, q.y]));
+                cells(o, p.edge_lengths);
+                cells(o, p.angles.map(f64::to_degrees));
+                cells(o, [p.area, p.circumradius, p.planarity, p.circularity]);
+                frame_cells(o, &p.frame);
+                o.push(b'\n');
             }
-            cells(o, p.outline.iter().flat_map(|q| [q.x, q.y]));
-            cells(o, p.edge_lengths);
-            cells(o, p.angles.map(f64::to_degrees));
-            cells(o, [p.area, p.circumradius, p.planarity, p.circularity]);
-            frame_cells(o, &p.frame);
-            o.end()?;
-        }
-        Ok(())
+        })
     })
 }
 
@@ -222,29 +224,31 @@ pub fn write_nodes_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
              torsion,type",
         );
         o.end()?;
-        for n in &f.nodes {
-            o.int(n.i);
-            o.push(b',');
-            o.int(n.j);
-            cells(o, n.position.to_array());
-            cells(o, n.axis.to_array());
-            o.push(b',');
-            for (k, d) in n.directions.iter().enumerate() {
-                if k > 0 {
-                    o.push(b';');
-                }
-                o.str(d);
-            }
-            for angles in [&n.beam_angles, &n.axis_angles] {
+        // Nodes computed and formatted in chunks side by side.
+        o.each_range(f.nodes().len(), |o, range| {
+            for n in f.nodes_in(range) {
+                o.int(n.i);
                 o.push(b',');
-                list(o, angles.iter().map(|a| a.to_degrees()));
+                o.int(n.j);
+                cells(o, n.position.to_array());
+                cells(o, n.axis.to_array());
+                o.push(b',');
+                for (k, d) in n.directions.iter().enumerate() {
+                    if k > 0 {
+                        o.push(b';');
+                    }
+                    o.str(d);
+                }
+                for angles in [&n.beam_angles, &n.axis_angles] {
+                    o.push(b',');
+                    list(o, angles.iter().map(|a| a.to_degrees()));
+                }
+                cells(o, [n.height, n.torsion]);
+                o.push(b',');
+                o.int(n.node_type);
+                o.push(b'\n');
             }
-            cells(o, [n.height, n.torsion]);
-            o.push(b',');
-            o.int(n.node_type);
-            o.end()?;
-        }
-        Ok(())
+        })
     })
 }
 
@@ -275,24 +279,19 @@ pub fn write_schedule_json(
         #[serde(flatten)]
         item: T,
     }
-    /// A list serialized item by item (from a copy of the iterator), each with
-    /// its label.
-    struct List<I, F>(I, F);
-    impl<I, F> Serialize for List<I, F>
+    /// A list serialized item by item (from a copy of the iterator).
+    struct Seq<I>(I);
+    impl<I> Serialize for Seq<I>
     where
         I: Iterator + Clone,
         I::Item: Serialize,
-        F: Fn(&I::Item) -> String,
     {
         fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            s.collect_seq(self.0.clone().map(|item| Labelled {
-                label: (self.1)(&item),
-                item,
-            }))
+            s.collect_seq(self.0.clone())
         }
     }
     #[derive(Serialize)]
-    struct Doc<'a, P: Serialize, B: Serialize> {
+    struct Doc<'a, P: Serialize, B: Serialize, N: Serialize> {
         summary: &'a Summary,
         layers: Vec<f64>,
         #[serde(skip_serializing_if = "Option::is_none")]
@@ -300,15 +299,25 @@ pub fn write_schedule_json(
         #[serde(skip_serializing_if = "Option::is_none")]
         beams: Option<B>,
         #[serde(skip_serializing_if = "Option::is_none")]
-        nodes: Option<&'a [monge_core::fabrication::Node]>,
+        nodes: Option<N>,
     }
     let full = content == ScheduleJson::Full;
     let doc = Doc {
         summary: &f.summary,
         layers: f.layers.iter().map(|l| l.distance).collect(),
-        panels: full.then(|| List(f.panels(), panel_label)),
-        beams: full.then(|| List(f.beams.iter(), |b: &&Beam| beam_label(b))),
-        nodes: full.then_some(&f.nodes[..]),
+        panels: full.then(|| {
+            Seq(f.panels().map(|p| Labelled {
+                label: panel_label(&p),
+                item: p,
+            }))
+        }),
+        beams: full.then(|| {
+            Seq(f.beams.iter().map(|b| Labelled {
+                label: beam_label(b),
+                item: b,
+            }))
+        }),
+        nodes: full.then(|| Seq(f.nodes())),
     };
     serde_json::to_writer(&mut *w, &doc).map_err(io::Error::other)?;
     writeln!(w)

@@ -93,7 +93,7 @@ fn csv_schedules_read_back_exactly() {
     let n: usize = f.beams.iter().map(|b| b.segments.len()).sum();
     assert_eq!(segments.lines().count(), n + 1);
     let nodes = read("nodes.csv");
-    assert_eq!(nodes.lines().count(), f.nodes.len() + 1);
+    assert_eq!(nodes.lines().count(), f.nodes().len() + 1);
 }
 
 #[test]
@@ -132,7 +132,7 @@ fn full_json_schedule_has_everything() {
         f.panel(0, 0, 0).area
     );
     assert_eq!(v["beams"][0]["segments"][0]["shape"]["kind"], "arc");
-    assert_eq!(v["nodes"].as_array().unwrap().len(), f.nodes.len());
+    assert_eq!(v["nodes"].as_array().unwrap().len(), f.nodes().len());
     assert_eq!(v["layers"], serde_json::json!([0.0, 0.1, 0.2]));
 }
 
