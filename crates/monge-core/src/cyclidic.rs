@@ -854,8 +854,8 @@ pub struct CyclidicNet {
     /// The frames at the vertices, row-major.
     frames: Vec<Frame>,
     /// `W(i, j)`, the vertex quaternion weights, row-major: with the corners they
-    /// give every patch, which is computed when asked for (a patch takes ten
-    /// times the memory of a vertex).
+    /// give every patch, which is computed when asked for (a patch takes about
+    /// 550 bytes, the net about 130 a vertex).
     weights: Vec<Quat>,
     /// The folded faces and why, in row-major face order.
     folded: Vec<((usize, usize), FoldReason)>,

@@ -441,12 +441,8 @@ impl Fabrication {
         );
         range.map(move |n| {
             let (k, f) = (n / faces, n % faces);
-            panel(
-                k,
-                self.layers[k].grid.face(f / cols, f % cols),
-                f / cols,
-                f % cols,
-            )
+            let (i, j) = (f / cols, f % cols);
+            flat_panel(k, self.layers[k].grid.face(i, j), i, j)
         })
     }
 
@@ -487,7 +483,7 @@ impl Fabrication {
         let (extremes, cols) = (extreme_layers(&self.layers), self.layers[0].grid.cols);
         range.map(move |k| Node {
             node_type: self.node_types[k],
-            ..node(&self.layers, extremes, k / cols, k % cols)
+            ..node_at(&self.layers, extremes, k / cols, k % cols)
         })
     }
 
@@ -500,7 +496,7 @@ impl Fabrication {
         assert!(i < g.rows && j < g.cols, "no vertex ({i}, {j})");
         Node {
             node_type: self.node_types[g.index(i, j)],
-            ..node(&self.layers, extreme_layers(&self.layers), i, j)
+            ..node_at(&self.layers, extreme_layers(&self.layers), i, j)
         }
     }
 
@@ -511,7 +507,7 @@ impl Fabrication {
     pub fn panel(&self, k: usize, i: usize, j: usize) -> Panel {
         let g = &self.layers[k].grid;
         assert!(i + 1 < g.rows && j + 1 < g.cols, "no face ({i}, {j})");
-        panel(k, g.face(i, j), i, j)
+        flat_panel(k, g.face(i, j), i, j)
     }
 }
 
@@ -690,7 +686,7 @@ fn row_panels(k: usize, layer: &LayerMesh, i: usize) -> Result<PanelSummary, Fab
                 face: (i, j),
             });
         }
-        let p = panel(k, quad, i, j);
+        let p = flat_panel(k, quad, i, j);
         sum.add(PanelSummary {
             count: 1,
             max_planarity: p.planarity,
@@ -701,7 +697,7 @@ fn row_panels(k: usize, layer: &LayerMesh, i: usize) -> Result<PanelSummary, Fab
 }
 
 /// Face `(i, j)` of layer `k`, with corners `quad`, as a flat panel (§6).
-fn panel(k: usize, quad: [DVec3; 4], i: usize, j: usize) -> Panel {
+fn flat_panel(k: usize, quad: [DVec3; 4], i: usize, j: usize) -> Panel {
     let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
     let frame = PlaneFrame::new(quad[0], normal, quad[1] - quad[0]);
     let edge_lengths = [0, 1, 2, 3].map(|c| (quad[(c + 1) % 4] - quad[c]).length());
@@ -995,7 +991,7 @@ const DIRECTIONS: [((isize, isize), &str); 4] = [
 
 /// The node at vertex `(i, j)` (§6), its type 0; `extremes` are the layers of
 /// the smallest and the largest distance ([`extreme_layers`]).
-fn node(layers: &[LayerMesh], (lo, hi): (usize, usize), i: usize, j: usize) -> Node {
+fn node_at(layers: &[LayerMesh], (lo, hi): (usize, usize), i: usize, j: usize) -> Node {
     let base = &layers[0].grid;
     let x = base.vertex(i, j);
     let axis = base.normals[base.index(i, j)];
@@ -1064,7 +1060,7 @@ fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> (Vec<usize>, NodeSummary
     for first in (0..base.rows).step_by(block) {
         let rows = crate::tasks::map(block.min(base.rows - first), |r| {
             (0..base.cols)
-                .map(|j| node(layers, extremes, first + r, j))
+                .map(|j| node_at(layers, extremes, first + r, j))
                 .collect::<Vec<_>>()
         });
         for n in rows.iter().flatten() {
