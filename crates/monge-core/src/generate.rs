@@ -256,16 +256,11 @@ pub struct Generated {
 /// assert_eq!(info.grid_size(), (3, 3));
 /// ```
 pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo, GenerateError> {
-    let (rows, cols) = (design.guide_u.sample_count(), design.guide_v.sample_count());
-    let vertices = rows.saturating_mul(cols);
-    if vertices > options.max_vertices {
-        return Err(GenerateError::GridTooLarge {
-            rows,
-            cols,
-            vertices,
-            limit: options.max_vertices,
-        });
-    }
+    check_grid_size(
+        design.guide_u.sample_count(),
+        design.guide_v.sample_count(),
+        options,
+    )?;
     if !design.theta_deg.is_finite() {
         return Err(GenerateError::ThetaNotFinite(design.theta_deg));
     }
@@ -319,6 +314,25 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
         guide_u,
         guide_v,
     })
+}
+
+/// Refuses a grid of `rows × cols` vertices above [`GenerateOptions::max_vertices`],
+/// before any guide is sampled.
+pub(crate) fn check_grid_size(
+    rows: usize,
+    cols: usize,
+    options: &GenerateOptions,
+) -> Result<(), GenerateError> {
+    let vertices = rows.saturating_mul(cols);
+    if vertices > options.max_vertices {
+        return Err(GenerateError::GridTooLarge {
+            rows,
+            cols,
+            vertices,
+            limit: options.max_vertices,
+        });
+    }
+    Ok(())
 }
 
 /// How far the surface normal turns along a guide (§2.2): the largest distance

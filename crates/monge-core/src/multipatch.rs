@@ -46,7 +46,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::design::{Design, GuideSpec, MeshKind, Tolerances, Xyz};
 use crate::gauss_map::ThetaRange;
-use crate::generate::{generate, GenerateError, GenerateOptions, Generated, Mode};
+use crate::generate::{check_grid_size, generate, GenerateError, GenerateOptions, Generated, Mode};
 use crate::guide::{Guide, GuideError, GuideName};
 use crate::optimise::FitSpec;
 use crate::symmetry::SymmetrySpec;
@@ -700,6 +700,14 @@ fn attach_patch(
         GuideName::V
     };
     let cont_spec = spec.guide.as_ref().expect("checked");
+    // The patch's grid, refused before its guide is sampled if too large.
+    let (rows, cols) = if side.is_row() {
+        (cont_spec.sample_count(), line.len())
+    } else {
+        (line.len(), cont_spec.sample_count())
+    };
+    check_grid_size(rows, cols, options)
+        .map_err(|source| MultiPatchError::Generate { patch: k, source })?;
     let cont = Guide::from_spec(cont_spec, cont_name, tol)
         .map_err(|source| MultiPatchError::Guide { patch: k, source })?;
     let size = cont.size.max(boundary.size);

@@ -415,4 +415,22 @@ fn error_generate() {
         "{e}"
     );
     assert!(e.to_string().starts_with("patch 1: "), "{e}");
+    // An attached patch too large for the limit is refused before its guide is
+    // sampled (7.8e11 samples would take 19 TB; found by the fuzzer).
+    let e = err(&design(vec![
+        first(30.0),
+        attached(-40.0, 0, Side::LastRow, arc_u(20.0, 15.0, 777_777_777_779)),
+    ]));
+    match e {
+        MultiPatchError::Generate {
+            patch: 1,
+            source:
+                GenerateError::GridTooLarge {
+                    rows: 777_777_777_779,
+                    cols: 11,
+                    ..
+                },
+        } => {}
+        e => panic!("{e}"),
+    }
 }
