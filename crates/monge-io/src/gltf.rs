@@ -93,8 +93,7 @@ impl Shape<'_> {
                 o.each(&faces.grid.vertices, |o, _, p| put_position(o, *p))?;
                 faces.each(o, |o, corners| {
                     let [a, b, c, d] = corners.map(|v| v as u32);
-                    put_triangle(o, [a, b, c]);
-                    put_triangle(o, [a, c, d]);
+                    put_words(o, [a, b, c, a, c, d]);
                 })
             }
             Shape::Produced {
@@ -110,7 +109,7 @@ impl Shape<'_> {
                 });
                 triangles(&mut |t| {
                     if result.is_ok() {
-                        put_triangle(o, t);
+                        put_words(o, t);
                         result = o.maybe_flush();
                     }
                 });
@@ -122,21 +121,18 @@ impl Shape<'_> {
 
 /// Appends a position as three little-endian `f32`.
 fn put_position<W: Write + ?Sized>(o: &mut Out<'_, W>, p: DVec3) {
-    o.bytes(&le_bytes(p.as_vec3().to_array().map(f32::to_bits)));
+    put_words(o, p.as_vec3().to_array().map(f32::to_bits));
 }
 
-/// Appends a triangle as three little-endian `u32`.
-fn put_triangle<W: Write + ?Sized>(o: &mut Out<'_, W>, t: [u32; 3]) {
-    o.bytes(&le_bytes(t));
-}
-
-/// Three `u32` as 12 little-endian bytes, appended at once.
+/// Appends `words` (at most six: a position, a triangle or a quad's two) as
+/// little-endian `u32`, at once.
 #[inline]
-fn le_bytes([a, b, c]: [u32; 3]) -> [u8; 12] {
-    let [a, b, c] = [a.to_le_bytes(), b.to_le_bytes(), c.to_le_bytes()];
-    [
-        a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], c[0], c[1], c[2], c[3],
-    ]
+fn put_words<W: Write + ?Sized, const N: usize>(o: &mut Out<'_, W>, words: [u32; N]) {
+    let mut bytes = [0u8; 24];
+    for (b, w) in bytes.chunks_exact_mut(4).zip(words) {
+        b.copy_from_slice(&w.to_le_bytes());
+    }
+    o.bytes(&bytes[..4 * N]);
 }
 
 /// A buffer view of `len` bytes at `offset` of the binary chunk.
