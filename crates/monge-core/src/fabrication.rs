@@ -1050,12 +1050,7 @@ fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> (Vec<usize>, NodeSummary
     let extremes = extreme_layers(layers);
     let mut types = NodeTypes::new(angle_tol);
     let mut node_types = Vec::with_capacity(base.vertices.len());
-    let mut sum = NodeSummary {
-        count: 0,
-        types: 0,
-        height: (f64::INFINITY, 0.0),
-        max_torsion: 0.0,
-    };
+    let (mut height, mut max_torsion): ((f64, f64), f64) = ((f64::INFINITY, 0.0), 0.0);
     let block = (crate::tasks::BLOCK / base.cols).max(1);
     for first in (0..base.rows).step_by(block) {
         let rows = crate::tasks::map(block.min(base.rows - first), |r| {
@@ -1065,12 +1060,16 @@ fn build_nodes(layers: &[LayerMesh], angle_tol: f64) -> (Vec<usize>, NodeSummary
         });
         for n in rows.iter().flatten() {
             node_types.push(types.of(n));
-            sum.count += 1;
-            sum.height = (sum.height.0.min(n.height), sum.height.1.max(n.height));
-            sum.max_torsion = sum.max_torsion.max(n.torsion);
+            height = (height.0.min(n.height), height.1.max(n.height));
+            max_torsion = max_torsion.max(n.torsion);
         }
     }
-    sum.types = types.count;
+    let sum = NodeSummary {
+        count: node_types.len(),
+        types: types.count,
+        height,
+        max_torsion,
+    };
     (node_types, sum)
 }
 

@@ -1,7 +1,8 @@
 //! The whole generation method of §3: guides → Gauss map → Combescure transform.
 
-use glam::DVec3;
 use std::fmt;
+
+use glam::DVec3;
 
 use crate::combescure::{combescure, CombescureReport, ParallelLines};
 use crate::design::Design;
