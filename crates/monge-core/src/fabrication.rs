@@ -387,10 +387,12 @@ pub struct FamilySummary {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fabrication {
     /// The layers, in the order of [`FabricationOptions::layers`]; their faces
-    /// are the panels ([`Fabrication::panels`]).
+    /// are the panels ([`Fabrication::panels`]), their rows and columns the
+    /// beams ([`Fabrication::beams`]).
     pub layers: Vec<LayerMesh>,
-    /// Every row, then every column, of every layer, layer by layer.
-    pub beams: Vec<Beam>,
+    /// A node lies on a beam segment's circle within this distance:
+    /// [`FabricationOptions::tol`] times the model size.
+    arc_tol: f64,
     /// The type of every node, row-major; the nodes themselves are computed
     /// when asked for ([`Fabrication::nodes`]).
     node_types: Vec<usize>,
@@ -444,6 +446,73 @@ impl Fabrication {
             let (i, j) = (f / cols, f % cols);
             flat_panel(k, self.layers[k].grid.face(i, j), i, j)
         })
+    }
+
+    /// Every row, then every column, of every layer, layer by layer, as a
+    /// planar beam with its circular segments (§4.6, §6): computed from the
+    /// layers as they are asked for (a beam of `n` nodes takes about `40 n`
+    /// bytes and 100 more per segment, as much as its vertices and more).
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, LineFamily};
+    /// use monge_core::QuadGrid;
+    /// let v = (0..3).flat_map(|i| (0..2).map(move |j| DVec3::new(i as f64, j as f64, 0.0))).collect();
+    /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
+    /// let options = FabricationOptions { layers: vec![0.0, 0.5], ..Default::default() };
+    /// let f = fabricate(BaseMesh::Circular(&grid), &options).unwrap();
+    /// let beams: Vec<_> = f.beams().collect();
+    /// // Three rows and two columns a layer.
+    /// assert_eq!(beams.len(), f.summary.beams);
+    /// assert_eq!((beams[8].layer, beams[8].family, beams[8].index), (1, LineFamily::Column, 0));
+    /// assert_eq!(beams[8], f.beam(1, LineFamily::Column, 0));
+    /// ```
+    pub fn beams(&self) -> impl ExactSizeIterator<Item = Beam> + Clone + '_ {
+        self.beams_in(0..self.layers.len() * self.beams_per_layer())
+    }
+
+    /// The beams numbered `range` of [`Fabrication::beams`] (§4.6, §6): for
+    /// computing them in pieces.
+    ///
+    /// # Panics
+    /// If `range` ends beyond the beams.
+    pub fn beams_in(
+        &self,
+        range: Range<usize>,
+    ) -> impl ExactSizeIterator<Item = Beam> + Clone + '_ {
+        let count = self.layers.len() * self.beams_per_layer();
+        assert!(range.end <= count, "no beam {}", range.end - 1);
+        range.map(move |n| nth_beam(&self.layers, self.arc_tol, n))
+    }
+
+    /// The beams of layer `k`, rows then columns (§4.6, §6).
+    ///
+    /// # Panics
+    /// If there is no such layer.
+    pub fn layer_beams(&self, k: usize) -> impl ExactSizeIterator<Item = Beam> + Clone + '_ {
+        assert!(k < self.layers.len(), "no layer {k}");
+        let per_layer = self.beams_per_layer();
+        self.beams_in(k * per_layer..(k + 1) * per_layer)
+    }
+
+    /// Row or column `index` of layer `k` as a beam (§4.6, §6).
+    ///
+    /// # Panics
+    /// If there is no such layer, row or column.
+    pub fn beam(&self, k: usize, family: LineFamily, index: usize) -> Beam {
+        let g = &self.layers[k].grid;
+        let lines = match family {
+            LineFamily::Row => g.rows,
+            LineFamily::Column => g.cols,
+        };
+        assert!(index < lines, "no {family:?} {index}");
+        line_beam(k, g, family, index, self.arc_tol)
+    }
+
+    /// Rows and columns of one layer.
+    fn beams_per_layer(&self) -> usize {
+        let g = &self.layers[0].grid;
+        g.rows + g.cols
     }
 
     /// One node per vertex of the base mesh, row-major (§2.2, §6): computed from
@@ -522,7 +591,7 @@ impl Fabrication {
 /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
 /// let options = FabricationOptions { layers: vec![0.0, 0.5], ..Default::default() };
 /// let f = fabricate(BaseMesh::Circular(&grid), &options).unwrap();
-/// assert_eq!((f.panels().len(), f.beams.len(), f.nodes().len()), (4, 10, 6));
+/// assert_eq!((f.panels().len(), f.beams().len(), f.nodes().len()), (4, 10, 6));
 /// assert!((f.panel(0, 0, 0).area - 1.0).abs() < 1e-15);
 /// assert_eq!(f.summary.node_height, (0.5, 0.5));
 /// ```
@@ -544,17 +613,12 @@ pub fn fabricate(
     for (k, layer) in layers.iter().enumerate() {
         panels.add(layer_panels(k, layer)?);
     }
-    let tol = options.tol * size;
-    let beams: Vec<Beam> = layers
-        .iter()
-        .enumerate()
-        .flat_map(|(k, layer)| layer_beams(k, &layer.grid, tol))
-        .collect();
     let (node_types, nodes) = build_nodes(&layers, options.angle_tol);
-    let summary = summarise(base, &layers, panels, &beams, nodes, size, options);
+    let arc_tol = options.tol * size;
+    let summary = summarise(base, &layers, arc_tol, panels, nodes, size, options);
     Ok(Fabrication {
         layers,
-        beams,
+        arc_tol,
         node_types,
         summary,
     })
@@ -731,19 +795,25 @@ fn circumradius(a: DVec3, b: DVec3, c: DVec3) -> f64 {
     ab * bc * ca / (2.0 * (b - a).cross(c - a).length())
 }
 
-/// Every row and every column of a layer as a beam.
-fn layer_beams(k: usize, g: &QuadGrid, tol: f64) -> Vec<Beam> {
-    // Rows, then columns, side by side.
-    crate::tasks::map(g.rows + g.cols, |b| {
-        if b < g.rows {
-            let idx: Vec<usize> = (0..g.cols).map(|j| g.index(b, j)).collect();
-            beam(k, LineFamily::Row, b, g, &idx, tol)
-        } else {
-            let j = b - g.rows;
-            let idx: Vec<usize> = (0..g.rows).map(|i| g.index(i, j)).collect();
-            beam(k, LineFamily::Column, j, g, &idx, tol)
-        }
-    })
+/// Beam `n` of [`Fabrication::beams`]: every row, then every column, of
+/// every layer, layer by layer.
+fn nth_beam(layers: &[LayerMesh], tol: f64, n: usize) -> Beam {
+    let g = &layers[0].grid;
+    let (k, b) = (n / (g.rows + g.cols), n % (g.rows + g.cols));
+    if b < g.rows {
+        line_beam(k, &layers[k].grid, LineFamily::Row, b, tol)
+    } else {
+        line_beam(k, &layers[k].grid, LineFamily::Column, b - g.rows, tol)
+    }
+}
+
+/// Row or column `index` of `g`, layer `k`, as a beam.
+fn line_beam(k: usize, g: &QuadGrid, family: LineFamily, index: usize, tol: f64) -> Beam {
+    let idx: Vec<usize> = match family {
+        LineFamily::Row => (0..g.cols).map(|j| g.index(index, j)).collect(),
+        LineFamily::Column => (0..g.rows).map(|i| g.index(i, index)).collect(),
+    };
+    beam(k, family, index, g, &idx, tol)
 }
 
 /// One beam: the vertices `idx` of `g`.
@@ -1161,7 +1231,14 @@ impl NodeTypes {
         found.unwrap_or_else(|| {
             let index = self.count;
             self.count += 1;
-            self.cells.entry(key).or_default().push(Type {
+            let cell = self.cells.entry(key).or_default();
+            // Most cells hold one type or a few: grown by a quarter, not
+            // doubled (a doubled cell holds four types at least, 1000 × 1000
+            // faces 165 000 types in 99 MB instead of 15).
+            if cell.len() == cell.capacity() {
+                cell.reserve_exact(cell.len() / 4 + 1);
+            }
+            cell.push(Type {
                 index,
                 directions,
                 len,
@@ -1189,45 +1266,74 @@ fn distinct(mut values: Vec<f64>, tol: f64) -> Vec<f64> {
     out
 }
 
-/// Arc radii of a beam.
-fn radii(beam: &Beam) -> impl Iterator<Item = f64> + '_ {
-    beam.segments.iter().filter_map(|s| match s.shape {
-        SegmentShape::Arc { radius, .. } => Some(radius),
-        SegmentShape::Straight { .. } => None,
-    })
+/// What the summary needs of one beam (§4.6, §6).
+struct BeamFacts {
+    family: LineFamily,
+    segments: usize,
+    straight_segments: usize,
+    /// Radii of its arcs, in order.
+    radii: Vec<f64>,
+    /// Its distinct radii (within the radius tolerance).
+    distinct_radii: usize,
+    plane_residual: f64,
+    arc_residual: f64,
 }
 
+impl BeamFacts {
+    /// The facts of `beam`, radii within `rtol` counted as one.
+    fn of(beam: &Beam, rtol: f64) -> Self {
+        let radii: Vec<f64> = beam
+            .segments
+            .iter()
+            .filter_map(|s| match s.shape {
+                SegmentShape::Arc { radius, .. } => Some(radius),
+                SegmentShape::Straight { .. } => None,
+            })
+            .collect();
+        BeamFacts {
+            family: beam.family,
+            segments: beam.segments.len(),
+            straight_segments: beam.segments.len() - radii.len(),
+            distinct_radii: distinct(radii.clone(), rtol).len(),
+            radii,
+            plane_residual: beam.plane_residual,
+            arc_residual: beam.segments.iter().map(|s| s.residual).fold(0.0, f64::max),
+        }
+    }
+}
+
+/// The summary (§6); the beams are computed here side by side, one at a time
+/// each, and only their [`BeamFacts`] kept.
 fn summarise(
     base: BaseMesh<'_>,
     layers: &[LayerMesh],
+    arc_tol: f64,
     panels: PanelSummary,
-    beams: &[Beam],
     nodes: NodeSummary,
     size: f64,
     options: &FabricationOptions,
 ) -> Summary {
     let rtol = options.radius_tol * size;
+    let g = &layers[0].grid;
+    let beams = crate::tasks::map(layers.len() * (g.rows + g.cols), |n| {
+        BeamFacts::of(&nth_beam(layers, arc_tol, n), rtol)
+    });
+    let radii = |fam: &mut dyn Iterator<Item = &BeamFacts>| {
+        distinct(fam.flat_map(|b| b.radii.iter().copied()).collect(), rtol)
+    };
     let families = [LineFamily::Row, LineFamily::Column]
         .into_iter()
         .map(|family| {
-            let fam: Vec<&Beam> = beams.iter().filter(|b| b.family == family).collect();
-            let counts = fam.iter().map(|b| b.segments.len());
+            let fam: Vec<&BeamFacts> = beams.iter().filter(|b| b.family == family).collect();
+            let counts = fam.iter().map(|b| b.segments);
             FamilySummary {
                 family,
                 beams: fam.len(),
                 min_segments: counts.clone().min().unwrap_or(0),
                 max_segments: counts.max().unwrap_or(0),
-                max_radii_per_beam: fam
-                    .iter()
-                    .map(|b| distinct(radii(b).collect(), rtol).len())
-                    .max()
-                    .unwrap_or(0),
-                distinct_radii: distinct(fam.iter().flat_map(|b| radii(b)).collect(), rtol).len(),
-                straight_segments: fam
-                    .iter()
-                    .flat_map(|b| &b.segments)
-                    .filter(|s| matches!(s.shape, SegmentShape::Straight { .. }))
-                    .count(),
+                max_radii_per_beam: fam.iter().map(|b| b.distinct_radii).max().unwrap_or(0),
+                distinct_radii: radii(&mut fam.iter().copied()).len(),
+                straight_segments: fam.iter().map(|b| b.straight_segments).sum(),
             }
         })
         .collect();
@@ -1239,7 +1345,7 @@ fn summarise(
         beams: beams.len(),
         nodes: nodes.count,
         families,
-        radii: distinct(beams.iter().flat_map(radii).collect(), rtol),
+        radii: radii(&mut beams.iter()),
         node_types: nodes.types,
         node_height: nodes.height,
         max_offset_deviation: offset_deviation(base, layers),
@@ -1247,7 +1353,7 @@ fn summarise(
         max_panel_circularity: matches!(base, BaseMesh::Circular(_))
             .then_some(panels.max_circularity),
         max_beam_plane_residual: max(&mut beams.iter().map(|b| b.plane_residual)),
-        max_arc_residual: max(&mut beams.iter().flat_map(|b| &b.segments).map(|s| s.residual)),
+        max_arc_residual: max(&mut beams.iter().map(|b| b.arc_residual)),
         max_torsion: nodes.max_torsion,
     }
 }

@@ -104,7 +104,8 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
     }
     // Beams: nodes in the plane, plane coordinates that give the nodes back,
     // planar by an independent SVD fit, arcs through their nodes.
-    for b in &f.beams {
+    let mut worst_arc: f64 = 0.0;
+    for b in f.beams() {
         let g = &f.layers[b.layer].grid;
         let points: Vec<DVec3> = match b.family {
             LineFamily::Row => g.row(b.index).collect(),
@@ -121,6 +122,7 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
         }
         assert!(svd_planarity(&points) <= TOL * size);
         for s in &b.segments {
+            worst_arc = worst_arc.max(s.residual);
             match s.shape {
                 SegmentShape::Arc {
                     center_3d,
@@ -158,6 +160,9 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
             assert_eq!(w[0].end, w[1].start);
         }
     }
+    // The summary, made from the beams computed one at a time, is theirs.
+    assert_eq!(f.summary.max_arc_residual, worst_arc);
+    assert_eq!(f.summary.beams, f.beams().len());
     // Nodes: torsion-free edges, measured on every layer.
     for layer in &f.layers {
         let g = &layer.grid;
@@ -253,7 +258,7 @@ fn biarc_guide_gives_biarc_rows_and_circular_columns() {
         ),
         (2, 2, 2)
     );
-    for b in f.beams.iter().filter(|b| b.family == LineFamily::Row) {
+    for b in f.beams().filter(|b| b.family == LineFamily::Row) {
         assert_eq!(b.splits(), vec![BIARC_EDGES]);
         // Tangent continuity at the split: the centres and the join are collinear.
         let (SegmentShape::Arc { center_3d: c1, .. }, SegmentShape::Arc { center_3d: c2, .. }) =
@@ -323,7 +328,7 @@ fn flat_grid_has_straight_beams() {
     let f = fabricate(BaseMesh::Circular(&g), &options(&[0.0])).unwrap();
     check_all(&f, &g, true);
     assert!(f.summary.radii.is_empty());
-    for b in &f.beams {
+    for b in f.beams() {
         assert_eq!(b.segments.len(), 1);
         assert!(matches!(b.segments[0].shape, SegmentShape::Straight { .. }));
         assert!(b.turning_angles.iter().all(|a| *a == 0.0));
@@ -537,4 +542,15 @@ fn node_types_agree_with_brute_force_grouping() {
     assert_eq!(counts[0], base.vertices.len());
     assert!(counts.windows(2).all(|w| w[0] >= w[1]), "{counts:?}");
     assert!(counts[4] < base.vertices.len() / 10, "{counts:?}");
+}
+
+#[test]
+#[should_panic(expected = "no Column 2")]
+fn a_beam_that_is_not_there_is_refused() {
+    let v = (0..3)
+        .flat_map(|i| (0..2).map(move |j| DVec3::new(i as f64, j as f64, 0.0)))
+        .collect();
+    let g = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
+    let f = fabricate(BaseMesh::Circular(&g), &options(&[0.0])).unwrap();
+    f.beam(0, LineFamily::Column, 2);
 }

@@ -78,35 +78,28 @@ fn real<W: Write + ?Sized>(o: &mut Out<'_, W>, code: u8, x: f64) {
     o.push(b'\n');
 }
 
-fn line<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, a: DVec2, b: DVec2) -> io::Result<()> {
+// The entities are appended, not passed on: a caller writing to a file calls
+// `maybe_flush` after each.
+
+fn line<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, a: DVec2, b: DVec2) {
     entity(o, "LINE", layer);
     point(o, 0, a);
     point(o, 1, b);
-    o.maybe_flush()
 }
 
-fn circle<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, c: DVec2, r: f64) -> io::Result<()> {
+fn circle<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, c: DVec2, r: f64) {
     entity(o, "CIRCLE", layer);
     point(o, 0, c);
     real(o, 40, r);
-    o.maybe_flush()
 }
 
 /// A counter-clockwise arc from `start` to `end` degrees.
-fn arc<W: Write + ?Sized>(
-    o: &mut Out<'_, W>,
-    layer: &str,
-    c: DVec2,
-    r: f64,
-    start: f64,
-    end: f64,
-) -> io::Result<()> {
+fn arc<W: Write + ?Sized>(o: &mut Out<'_, W>, layer: &str, c: DVec2, r: f64, start: f64, end: f64) {
     entity(o, "ARC", layer);
     point(o, 0, c);
     real(o, 40, r);
     real(o, 50, start);
     real(o, 51, end);
-    o.maybe_flush()
 }
 
 /// A text on layer `LABEL` whose string `put` writes.
@@ -115,13 +108,13 @@ fn text<W: Write + ?Sized>(
     at: DVec2,
     height: f64,
     put: impl FnOnce(&mut Out<'_, W>),
-) -> io::Result<()> {
+) {
     entity(o, "TEXT", "LABEL");
     point(o, 0, at);
     real(o, 40, height);
     o.str("1\n");
     put(o);
-    o.end()
+    o.push(b'\n');
 }
 
 /// Bounding box of plane points: `(min, max)`.
@@ -152,40 +145,29 @@ fn panels_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Res
     .into_iter()
     .fold(0.0, f64::max)
         * 1.25;
-    let mut y0 = 0.0;
-    // Layer by layer, as many panels in each.
-    let per_layer = f.panels().len().checked_div(f.layers.len()).unwrap_or(0);
-    let mut panels = panel_blocks(f).flatten();
-    for _ in &f.layers {
-        let mut rows = 0;
-        for p in panels.by_ref().take(per_layer) {
-            rows = rows.max(p.i + 1);
+    // Layer by layer, each `rows + 1` cells above the one before.
+    let rows = f.layers[0].grid.rows - 1;
+    let y0: Vec<f64> = (f.layers.iter())
+        .scan(0.0, |y, _| {
+            let at = *y;
+            *y += (rows + 1) as f64 * cell;
+            Some(at)
+        })
+        .collect();
+    // Panels computed and formatted in chunks side by side.
+    o.each_range(f.panels().len(), |o, range| {
+        for p in f.panels_in(range) {
             let (lo, _) = bounds(&p.outline);
-            let at = DVec2::new(p.j as f64 * cell, y0 + p.i as f64 * cell) - lo;
+            let at = DVec2::new(p.j as f64 * cell, y0[p.layer] + p.i as f64 * cell) - lo;
             let q = p.outline.map(|c| c + at);
             for k in 0..4 {
-                line(o, "PANEL", q[k], q[(k + 1) % 4])?;
+                line(o, "PANEL", q[k], q[(k + 1) % 4]);
             }
             let centroid = q.iter().copied().sum::<DVec2>() / 4.0;
-            text(o, centroid, cell * 0.06, |o| put_panel_label(o, &p))?;
+            text(o, centroid, cell * 0.06, |o| put_panel_label(o, &p));
         }
-        y0 += (rows + 1) as f64 * cell;
-    }
+    })?;
     end(o)
-}
-
-/// The panels of `f` in order, computed [`tasks::BLOCK`] at a time in pieces
-/// side by side.
-fn panel_blocks(f: &Fabrication) -> impl Iterator<Item = Vec<Panel>> + '_ {
-    let n = f.panels().len();
-    (0..n).step_by(tasks::BLOCK).map(move |first| {
-        let block = first..n.min(first + tasks::BLOCK);
-        tasks::ranges(block.len(), tasks::BLOCK / 16, |r| {
-            f.panels_in(first + r.start..first + r.end)
-                .collect::<Vec<_>>()
-        })
-        .concat()
-    })
 }
 
 /// Beams in their planes (§4.6, §6): for each beam, its edges as straight
@@ -202,12 +184,13 @@ fn beams_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Resu
     let size = f.summary.size;
     let (mark, gap) = (size * 0.002, size * 0.05);
     let mut y0 = 0.0;
-    for b in &f.beams {
+    for b in f.beams() {
         let (lo, hi) = bounds(&b.nodes);
         let at = DVec2::new(0.0, y0) - lo;
         let q: Vec<DVec2> = b.nodes.iter().map(|p| *p + at).collect();
         for e in q.windows(2) {
-            line(o, "EDGE", e[0], e[1])?;
+            line(o, "EDGE", e[0], e[1]);
+            o.maybe_flush()?;
         }
         let mut split = vec![false; q.len()];
         for s in b.segments.iter().skip(1) {
@@ -215,10 +198,11 @@ fn beams_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Resu
         }
         for (p, split) in q.iter().zip(split) {
             if split {
-                circle(o, "SPLIT", *p, 2.0 * mark)?;
+                circle(o, "SPLIT", *p, 2.0 * mark);
             } else {
-                circle(o, "NODE", *p, mark)?;
+                circle(o, "NODE", *p, mark);
             }
+            o.maybe_flush()?;
         }
         let mut radii = Vec::new();
         for s in &b.segments {
@@ -233,17 +217,19 @@ fn beams_dxf<W: Write + ?Sized>(f: &Fabrication, o: &mut Out<'_, W>) -> io::Resu
                 let angle = |p: DVec2| (p - c).to_angle().to_degrees().rem_euclid(360.0);
                 let (from, to) = (angle(q[s.start]), angle(q[s.end]));
                 let (start, end) = if sweep >= 0.0 { (from, to) } else { (to, from) };
-                arc(o, "ARC", c, radius, start, end)?;
+                arc(o, "ARC", c, radius, start, end);
+                o.maybe_flush()?;
                 radii.push(format!("R{radius:.6}"));
             }
         }
         text(o, DVec2::new(-gap * 4.0, y0), gap * 0.4, |o| {
-            put_beam_label(o, b);
+            put_beam_label(o, &b);
             for r in &radii {
                 o.push(b' ');
                 o.str(r);
             }
-        })?;
+        });
+        o.maybe_flush()?;
         y0 += (hi - lo).y + gap;
     }
     end(o)

@@ -366,18 +366,23 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
     let mut parts = Vec::new();
     for (k, layer) in f.layers.iter().enumerate() {
         parts.push(grid_part(format!("layer {k} panels"), 0, &layer.grid));
-        let beams = move || f.beams.iter().filter(move |beam| beam.layer == k);
         let positions = Box::new(move |emit: &mut dyn FnMut(DVec3)| {
-            for beam in beams() {
-                sweep_positions(beam, width, depth, emit);
+            for beam in f.layer_beams(k) {
+                sweep_positions(&beam, width, depth, emit);
             }
         });
+        // The beams' nodes: rows, then columns, as [`Fabrication::layer_beams`].
+        let g = &layer.grid;
+        let nodes = move || {
+            (0..g.rows)
+                .map(|_| g.cols)
+                .chain((0..g.cols).map(|_| g.rows))
+        };
         let triangles = Box::new(move |emit: &mut dyn FnMut([u32; 3])| {
             let mut base = 0;
-            for beam in beams() {
-                let n = beam.nodes.len() as u32;
-                sweep_triangles(base, n, emit);
-                base += 4 * n;
+            for n in nodes() {
+                sweep_triangles(base, n as u32, emit);
+                base += 4 * n as u32;
             }
         });
         parts.push(Part {

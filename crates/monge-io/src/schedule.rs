@@ -121,8 +121,8 @@ pub fn write_beams_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
              origin_x,origin_y,origin_z,x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z",
         );
         o.end()?;
-        for b in &f.beams {
-            put_beam_label(o, b);
+        for b in f.beams() {
+            put_beam_label(o, &b);
             o.push(b',');
             o.int(b.layer);
             o.push(b',');
@@ -181,9 +181,9 @@ pub fn write_segments_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> 
              center_x,center_y,center_z,residual",
         );
         o.end()?;
-        for b in &f.beams {
+        for b in f.beams() {
             for (k, s) in b.segments.iter().enumerate() {
-                put_beam_label(o, b);
+                put_beam_label(o, &b);
                 for n in [k, s.start, s.end] {
                     o.push(b',');
                     o.int(n);
@@ -312,8 +312,8 @@ pub fn write_schedule_json(
             }))
         }),
         beams: full.then(|| {
-            Seq(f.beams.iter().map(|b| Labelled {
-                label: beam_label(b),
+            Seq(f.beams().map(|b| Labelled {
+                label: beam_label(&b),
                 item: b,
             }))
         }),

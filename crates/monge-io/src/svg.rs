@@ -61,7 +61,7 @@ pub fn write_overview_svg(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> 
                 layer.distance
             ));
             o.end()?;
-            for b in f.beams.iter().filter(|b| b.layer == k) {
+            for b in f.layer_beams(k) {
                 o.str(match b.family {
                     LineFamily::Row => r##"<polyline stroke="#c0392b" points=""##,
                     LineFamily::Column => r##"<polyline stroke="#2c3e90" points=""##,

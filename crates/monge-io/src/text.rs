@@ -43,10 +43,21 @@ pub(crate) struct Out<'w, W: Write + ?Sized> {
     w: &'w mut W,
 }
 
-/// Items per chunk of [`Out::each`]: 50–300 kB (a small part of the memory the mesh
-/// takes: fresh pages cost more than formatting; 1000² OBJ peak 125 → 104 MB
-/// against 16 384 items, at the same speed).
+/// Most items per chunk of [`Out::each_range`]: 50–300 kB of a mesh's
+/// vertices or faces (a small part of the memory the mesh takes: fresh pages
+/// cost more than formatting; 1000² OBJ peak 125 → 104 MB against 16 384
+/// items, at the same speed).
 const ITEMS: usize = 1 << 12;
+
+/// Items per chunk of the first batch of [`Out::each_range`], before the
+/// size of an item is known.
+const FIRST_ITEMS: usize = 1 << 8;
+
+/// Bytes a chunk of [`Out::each_range`] aims at once the first batch tells
+/// the size of an item: long lines (a panel's 570 bytes) come in fewer per
+/// chunk, so that the chunks of two schedules written side by side take 4 MB,
+/// not 75.
+const CHUNK_BYTES: usize = 1 << 18;
 
 /// Chunks formatted side by side before they are passed on: a few per core.
 const BATCH: usize = 8;
@@ -116,31 +127,38 @@ impl<W: Write + ?Sized> Out<'_, W> {
         })
     }
 
-    /// Appends `lines(range)` for consecutive ranges of at most [`ITEMS`]
-    /// that cover `0..n`, in order, formatted side by side (one thread per
-    /// core; one thread where there are no threads, as in WebAssembly), each
-    /// batch of them written while the next is formatted: the bytes are the
-    /// same whatever the number of threads.
+    /// Appends `lines(range)` for consecutive ranges that cover `0..n`, in
+    /// order, formatted side by side (one thread per core; one thread where
+    /// there are no threads, as in WebAssembly), each batch of them written
+    /// while the next is formatted: the bytes are the same whatever the number
+    /// of threads. A range holds [`FIRST_ITEMS`] at first, then as many as
+    /// make [`CHUNK_BYTES`] at the size of the items so far, at most [`ITEMS`].
     pub(crate) fn each_range(
         &mut self,
         n: usize,
         lines: impl Fn(&mut Out<'_, Vec<u8>>, Range<usize>) + Sync,
     ) -> io::Result<()> {
         self.flush()?;
-        for first in (0..n).step_by(ITEMS * BATCH) {
-            self.batch(first..n.min(first + ITEMS * BATCH), &lines)?;
+        let (mut first, mut items) = (0, FIRST_ITEMS);
+        while first < n {
+            let batch = first..n.min(first + items * BATCH);
+            let bytes = self.batch(batch.clone(), items, &lines)?;
+            items = (CHUNK_BYTES * batch.len() / bytes.max(1)).clamp(1, ITEMS);
+            first = batch.end;
         }
         self.write_ready()
     }
 
-    /// Formats `lines` of the chunks of `batch`, side by side, while the batch
-    /// before is written; the new batch is then the one ready to be written.
+    /// Formats `lines` of the chunks of `items` of `batch`, side by side,
+    /// while the batch before is written; the new batch is then the one ready
+    /// to be written. Returns its size in bytes.
     fn batch(
         &mut self,
         batch: Range<usize>,
+        items: usize,
         lines: &(impl Fn(&mut Out<'_, Vec<u8>>, Range<usize>) + Sync),
-    ) -> io::Result<()> {
-        let chunks = batch.len().div_ceil(ITEMS);
+    ) -> io::Result<usize> {
+        let chunks = batch.len().div_ceil(items);
         self.chunks.resize_with(BATCH, Mutex::default);
         let (buffers, ready, w) = (&self.chunks, &self.ready, &mut *self.w);
         let (written, ()) = monge_core::tasks::beside(
@@ -160,8 +178,8 @@ impl<W: Write + ?Sized> Out<'_, W> {
                         w: &mut passed,
                     };
                     o.buf.clear();
-                    let first = batch.start + c * ITEMS;
-                    lines(&mut o, first..batch.end.min(first + ITEMS));
+                    let first = batch.start + c * items;
+                    lines(&mut o, first..batch.end.min(first + items));
                     let formatted = std::mem::take(&mut o.buf);
                     *bytes = if passed.is_empty() {
                         formatted
@@ -181,7 +199,7 @@ impl<W: Write + ?Sized> Out<'_, W> {
                 chunk.get_mut().unwrap_or_else(PoisonError::into_inner),
             );
         }
-        Ok(())
+        Ok(self.ready.iter().map(Vec::len).sum())
     }
 
     /// Writes the batch formatted last (its buffers kept, emptied).
@@ -230,7 +248,7 @@ mod tests {
             o.str("head\n");
             o.each(&items, ending)?;
             o.each_range(items.len(), |o, range| {
-                assert!(range.len() <= ITEMS && range.start % ITEMS == 0);
+                assert!(!range.is_empty() && range.len() <= ITEMS);
                 for k in range {
                     line(o, k, &items[k]);
                 }
@@ -249,6 +267,29 @@ mod tests {
             String::from_utf8(side_by_side).unwrap(),
             String::from_utf8(alone).unwrap()
         );
+    }
+
+    #[test]
+    fn long_lines_come_fewer_to_a_chunk() {
+        // Lines of 10 kB: the first batch as FIRST_ITEMS a chunk, then about
+        // CHUNK_BYTES of them.
+        let sizes = Mutex::new(Vec::new());
+        let mut v = Vec::new();
+        emit(&mut v, |o| {
+            o.each_range(10 * FIRST_ITEMS * BATCH, |o, range| {
+                sizes.lock().unwrap().push((range.start, range.len()));
+                for _ in range {
+                    o.bytes(&[b'x'; 10_000]);
+                }
+            })
+        })
+        .unwrap();
+        assert_eq!(v.len(), 10 * FIRST_ITEMS * BATCH * 10_000);
+        let mut sizes = sizes.into_inner().unwrap();
+        sizes.sort();
+        assert!(sizes[..BATCH].iter().all(|s| s.1 == FIRST_ITEMS));
+        assert!(sizes[BATCH..].iter().all(|s| s.1 <= CHUNK_BYTES / 10_000));
+        assert!(sizes.windows(2).all(|w| w[0].0 + w[0].1 == w[1].0));
     }
 
     #[test]

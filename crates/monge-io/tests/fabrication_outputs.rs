@@ -80,9 +80,9 @@ fn csv_schedules_read_back_exactly() {
         .skip(1)
         .map(|l| l.split(',').collect())
         .collect();
-    assert_eq!(rows.len(), f.beams.len());
+    assert_eq!(rows.len(), f.beams().len());
     // Rows are bi-arcs split at node 4; columns one arc.
-    for (cells, b) in rows.iter().zip(&f.beams) {
+    for (cells, b) in rows.iter().zip(f.beams()) {
         assert_eq!(cells[6].parse::<usize>().unwrap(), b.segments.len());
         if cells[2] == "row" {
             assert_eq!(cells[7], "4");
@@ -90,7 +90,7 @@ fn csv_schedules_read_back_exactly() {
         }
     }
     let segments = read("segments.csv");
-    let n: usize = f.beams.iter().map(|b| b.segments.len()).sum();
+    let n: usize = f.beams().map(|b| b.segments.len()).sum();
     assert_eq!(segments.lines().count(), n + 1);
     let nodes = read("nodes.csv");
     assert_eq!(nodes.lines().count(), f.nodes().len() + 1);
@@ -118,7 +118,10 @@ fn full_json_schedule_has_everything() {
     assert_eq!(v["summary"]["node_types"], f.summary.node_types);
     assert_eq!(v["panels"].as_array().unwrap().len(), f.panels().len());
     assert_eq!(v["panels"][0]["label"], "L0-P0.0");
-    assert_eq!(v["beams"][1]["label"], monge_io::beam_label(&f.beams[1]));
+    assert_eq!(
+        v["beams"][1]["label"],
+        monge_io::beam_label(&f.beams().nth(1).unwrap())
+    );
     assert_eq!(
         v["panels"].as_array().unwrap().last().unwrap()["label"],
         format!(
@@ -142,7 +145,7 @@ fn svg_overview_is_one_document() {
     let f = write(dir.path());
     let text = std::fs::read_to_string(dir.path().join("overview.svg")).unwrap();
     assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
-    assert_eq!(text.matches("<polyline").count(), f.beams.len());
+    assert_eq!(text.matches("<polyline").count(), f.beams().len());
     assert_eq!(
         text.matches("<polygon").count(),
         f.panels().len() / f.layers.len()
@@ -204,18 +207,17 @@ fn dxf_opens_in_ezdxf() {
     let beams = &v["beams.dxf"];
     assert_eq!(beams["errors"], 0);
     let arcs = f
-        .beams
-        .iter()
-        .flat_map(|b| &b.segments)
+        .beams()
+        .flat_map(|b| b.segments)
         .filter(|s| matches!(s.shape, SegmentShape::Arc { .. }))
         .count();
-    let nodes: usize = f.beams.iter().map(|b| b.nodes.len()).sum();
-    let splits: usize = f.beams.iter().map(|b| b.segments.len() - 1).sum();
+    let nodes: usize = f.beams().map(|b| b.nodes.len()).sum();
+    let splits: usize = f.beams().map(|b| b.segments.len() - 1).sum();
     assert_eq!(beams["counts"]["ARC:ARC"], arcs);
     assert_eq!(beams["counts"]["CIRCLE:NODE"], nodes - splits);
     assert_eq!(beams["counts"]["CIRCLE:SPLIT"], splits);
-    assert_eq!(beams["counts"]["LINE:EDGE"], nodes - f.beams.len());
-    assert_eq!(beams["counts"]["TEXT:LABEL"], f.beams.len());
+    assert_eq!(beams["counts"]["LINE:EDGE"], nodes - f.beams().len());
+    assert_eq!(beams["counts"]["TEXT:LABEL"], f.beams().len());
     // Arcs start and end on nodes (to the precision of the text numbers).
     assert!(v["arc_end_to_node"].as_f64().unwrap() < 1e-9 * f.summary.size);
 }
@@ -275,18 +277,13 @@ fn gltf_reads_back_with_counts_and_bounds() {
         let beams = mesh("beams");
         let prim = beams.primitives().next().unwrap();
         let reader = prim.reader(|_| Some(blob));
-        let n: usize = f
-            .beams
-            .iter()
-            .filter(|b| b.layer == k)
-            .map(|b| b.nodes.len())
-            .sum();
-        let edges = n - f.beams.iter().filter(|b| b.layer == k).count();
+        let n: usize = f.layer_beams(k).map(|b| b.nodes.len()).sum();
+        let edges = n - f.layer_beams(k).len();
         assert_eq!(reader.read_positions().unwrap().count(), 4 * n);
         let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
         assert_eq!(
             indices.len(),
-            3 * (8 * edges + 4 * f.beams.len() / f.layers.len())
+            3 * (8 * edges + 4 * f.beams().len() / f.layers.len())
         );
         assert!(indices.iter().all(|&i| (i as usize) < 4 * n));
     }
