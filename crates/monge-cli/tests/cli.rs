@@ -250,6 +250,33 @@ fn dash_writes_json_to_stdout_by_default_and_other_formats_on_request() {
 }
 
 #[test]
+fn info_refuses_a_design_that_generate_refuses_for_its_guides() {
+    // guide_v's plane 1.7e-5° from the tangent plane at the start: the normal
+    // barely turns along guide_u, whatever θ. `info` says so, as `generate`.
+    let dir = TempDir::new().unwrap();
+    let design = write(
+        &dir,
+        "still.json",
+        r#"{"theta_deg": 66,
+            "guide_u": {"arc": {"center": [0, 0, -10], "start": [0, 0, 0], "normal": [0, 1, 0],
+                                "angle_deg": 120, "samples": 41}},
+            "guide_v": {"arc": {"center": [0, 10, -3e-6], "start": [0, 0, 0], "normal": [-1, 0, 0],
+                                "angle_deg": 80, "samples": 33}}}"#,
+    );
+    for command in ["info", "generate"] {
+        let mut cmd = monge();
+        cmd.arg(command).arg(&design);
+        if command == "generate" {
+            cmd.arg("-o").arg(dir.path().join("m.obj"));
+        }
+        cmd.assert().code(2).stderr(predicate::str::contains(
+            "the surface normal turns by only 5.2e-7 rad along guide_u",
+        ));
+    }
+    assert!(!dir.path().join("m.obj").exists());
+}
+
+#[test]
 fn info_prints_the_admissible_range_and_reports_an_inadmissible_theta() {
     monge()
         .arg("info")

@@ -217,6 +217,11 @@ pub struct DesignInfo {
     pub theta_deg: f64,
     /// The admissible θ.
     pub theta_range: ThetaRange,
+    /// The surface normal at each sample of guide_u: rotation-minimising
+    /// from the start frame's normal (§3.2), whatever θ.
+    pub normals_u: Vec<DVec3>,
+    /// The surface normal at each sample of guide_v (§3.2).
+    pub normals_v: Vec<DVec3>,
 }
 
 impl DesignInfo {
@@ -303,6 +308,23 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
         guide_u.plane_normal,
         guide_v.plane_normal,
     );
+    let n_p = frame.n_p;
+    let normals_u = guide_normals(&guide_u.points, n_p);
+    let normals_v = guide_normals(&guide_v.points, n_p);
+    for (guide, normals, plane) in [
+        (GuideName::U, &normals_u, guide_u.plane_normal),
+        (GuideName::V, &normals_v, guide_v.plane_normal),
+    ] {
+        let turn = normal_turn(normals);
+        if turn.is_nan() || turn < MIN_NORMAL_TURN {
+            return Err(GenerateError::NormalStill {
+                guide,
+                turn,
+                plane_deg: libm::asin(plane.cross(n_p).length().min(1.0)).to_degrees(),
+                min: MIN_NORMAL_TURN,
+            });
+        }
+    }
     Ok(DesignInfo {
         mode: if frame.is_characteristic() {
             Mode::Characteristic
@@ -314,6 +336,8 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
         frame,
         guide_u,
         guide_v,
+        normals_u,
+        normals_v,
     })
 }
 
@@ -384,24 +408,8 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
             min_deg: e.range.min_deg,
             max_deg: e.range.max_deg,
         })?;
-    let n_p = info.frame.n_p;
-    let along_u = guide_normals(&info.guide_u.points, n_p);
-    let along_v = guide_normals(&info.guide_v.points, n_p);
-    for (guide, normals, plane) in [
-        (GuideName::U, &along_u, info.guide_u.plane_normal),
-        (GuideName::V, &along_v, info.guide_v.plane_normal),
-    ] {
-        let turn = normal_turn(normals);
-        if turn.is_nan() || turn < MIN_NORMAL_TURN {
-            return Err(GenerateError::NormalStill {
-                guide,
-                turn,
-                plane_deg: libm::asin(plane.cross(n_p).length().min(1.0)).to_degrees(),
-                min: MIN_NORMAL_TURN,
-            });
-        }
-    }
-    let gauss = GaussRows::new(&axes, &along_u, &along_v);
+    let (along_u, along_v) = (&info.normals_u, &info.normals_v);
+    let gauss = GaussRows::new(&axes, along_u, along_v);
     let transform = combescure(&gauss, &info.guide_u.points, &info.guide_v.points).map_err(
         |ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
             face,

@@ -389,6 +389,8 @@ fn a_normal_that_barely_turns_along_a_guide_is_refused() {
     eprintln!("tilt 1e-2: error {steep:.1e}; tilt 1e-5: error {shallow:.1e}");
     assert!(steep <= 1e-12 && shallow <= 1e-9 && shallow > 10.0 * steep);
     let e = refused(&design(3e-7), &opts());
+    // A property of the guides, whatever θ: `inspect` refuses it too.
+    assert_eq!(inspect(&design(3e-7), &opts()).unwrap_err(), e);
     match &e {
         GenerateError::NormalStill {
             guide: GuideName::U,

@@ -112,6 +112,15 @@ def test_generation_errors_have_the_commands_message(design, error, fragment, tm
     assert fragment in str(e.value)
 
 
+def test_info_refuses_guides_along_which_the_normal_barely_turns(tmp_path, cli_error):
+    # A property of the guides, not of θ: `info` refuses it as `generate` does.
+    path = write(tmp_path, "design.json", normal_still())
+    with pytest.raises(monge.DegenerateError) as e:
+        monge.info(monge.Design.from_file(path))
+    assert str(e.value) == cli_error("info", path)
+    assert "turns by only 5.2e-7 rad along guide_u" in str(e.value)
+
+
 def test_bad_arrays_and_mesh_files_are_mesh_errors(tmp_path, cli_error):
     with pytest.raises(monge.MeshError, match=r"shape \(rows, cols, 3\), got \(3, 3, 2\)"):
         monge.check(np.zeros((3, 3, 2)))
