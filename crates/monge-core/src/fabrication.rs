@@ -451,7 +451,8 @@ impl Fabrication {
     /// Every row, then every column, of every layer, layer by layer, as a
     /// planar beam with its circular segments (§4.6, §6): computed from the
     /// layers as they are asked for (a beam of `n` nodes takes about `40 n`
-    /// bytes and 100 more per segment, as much as its vertices and more).
+    /// bytes and about 100 more per segment: held, the beams took more than
+    /// the layers' vertices).
     ///
     /// ```
     /// use glam::DVec3;
@@ -1233,8 +1234,8 @@ impl NodeTypes {
             self.count += 1;
             let cell = self.cells.entry(key).or_default();
             // Most cells hold one type or a few: grown by a quarter, not
-            // doubled (a doubled cell holds four types at least, 1000 × 1000
-            // faces 165 000 types in 99 MB instead of 15).
+            // doubled (a doubled cell has room for four types at least; the
+            // 684 000 types of 1000 × 1000 faces took 99 MB so, about 60 now).
             if cell.len() == cell.capacity() {
                 cell.reserve_exact(cell.len() / 4 + 1);
             }
@@ -1302,8 +1303,8 @@ impl BeamFacts {
     }
 }
 
-/// The summary (§6); the beams are computed here side by side, one at a time
-/// each, and only their [`BeamFacts`] kept.
+/// The summary (§6); the beams are computed here on every core, each one
+/// dropped once its [`BeamFacts`] are taken.
 fn summarise(
     base: BaseMesh<'_>,
     layers: &[LayerMesh],

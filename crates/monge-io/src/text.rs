@@ -55,7 +55,7 @@ const FIRST_ITEMS: usize = 1 << 8;
 
 /// Bytes a chunk of [`Out::each_range`] aims at once the first batch tells
 /// the size of an item: long lines (a panel's 570 bytes) come in fewer per
-/// chunk, so that the chunks of two schedules written side by side take 4 MB,
+/// chunk, so that the chunks of two schedules written side by side take 8 MB,
 /// not 75.
 const CHUNK_BYTES: usize = 1 << 18;
 
@@ -132,7 +132,8 @@ impl<W: Write + ?Sized> Out<'_, W> {
     /// there are no threads, as in WebAssembly), each batch of them written
     /// while the next is formatted: the bytes are the same whatever the number
     /// of threads. A range holds [`FIRST_ITEMS`] at first, then as many as
-    /// make [`CHUNK_BYTES`] at the size of the items so far, at most [`ITEMS`].
+    /// make [`CHUNK_BYTES`] at the size of the items of the batch before, at
+    /// most [`ITEMS`].
     pub(crate) fn each_range(
         &mut self,
         n: usize,
