@@ -75,10 +75,8 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
     let elapsed = start.elapsed().as_secs_f64();
     match output {
         SmoothOutput::Json => write_output(out, |w| write_net_json(&net, k, w))?,
-        SmoothOutput::Iges => {
-            let surface = net.nurbs();
-            write_output(out, |w| write_iges(&surface, w))?;
-        }
+        // The NURBS surface computed as it is written.
+        SmoothOutput::Iges => write_output(out, |w| write_iges(&net, w))?,
         SmoothOutput::Mesh(f) => {
             let dense = net.dense(k);
             write_output(out, |w| write_mesh_to(&dense, f, w))?;
@@ -177,7 +175,7 @@ mod tests {
             let mut bytes = Vec::new();
             match &output {
                 SmoothOutput::Json => write_net_json(&net, k, &mut bytes).unwrap(),
-                SmoothOutput::Iges => write_iges(&net.nurbs(), &mut bytes).unwrap(),
+                SmoothOutput::Iges => write_iges(&net, &mut bytes).unwrap(),
                 SmoothOutput::Mesh(f) => write_mesh_to(&net.dense(k), *f, &mut bytes).unwrap(),
             }
             let (what, estimate) = estimate(&output, grid.rows, grid.cols, k);

@@ -1161,32 +1161,78 @@ impl CyclidicNet {
     /// The whole net as one degree-(2, 2) NURBS surface with double interior
     /// knots (§4.4, §5.3): the patches' Bézier forms, each scaled by the squared
     /// norm of its first corner's quaternion weight, so that neighbours share their
-    /// edge control points and weights.
+    /// edge control points and weights (made from [`CyclidicNet::nurbs_columns`]).
     pub fn nurbs(&self) -> NurbsSurface {
         let (nr, nc) = (2 * self.rows - 1, 2 * self.cols - 1);
         let mut control_points = vec![DVec3::ZERO; nr * nc];
         let mut weights = vec![0.0; nr * nc];
-        for i in 0..self.rows - 1 {
-            for j in 0..self.cols - 1 {
-                let bez = *self.patch(i, j).bezier();
-                let scale = self.weights[i * self.cols + j].norm2();
-                for a in 0..3 {
-                    for b in 0..3 {
-                        let idx = (2 * i + a) * nc + 2 * j + b;
-                        control_points[idx] = bez.points[a][b];
-                        weights[idx] = bez.weights[a][b] * scale;
-                    }
-                }
+        for (c, (points, w)) in self.nurbs_columns().enumerate() {
+            for r in 0..nr {
+                control_points[r * nc + c] = points[r];
+                weights[r * nc + c] = w[r];
             }
         }
+        let (knots_u, knots_v) = self.nurbs_knots();
         NurbsSurface {
             rows: nr,
             cols: nc,
             control_points,
             weights,
-            knots_u: knots(self.rows - 1),
-            knots_v: knots(self.cols - 1),
+            knots_u,
+            knots_v,
         }
+    }
+
+    /// The control points and weights of [`CyclidicNet::nurbs`] a column
+    /// (index along `v`) at a time, each along `u`, computed as they are asked
+    /// for (§4.4, §5.3): the surface without holding it. A column of patches
+    /// is computed on every core for two columns of control points (it takes
+    /// about 300 bytes a patch; the whole surface 32 bytes a control point,
+    /// four a face). Where neighbouring patches share a control point, the
+    /// later one in row-major order gives it.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Frame};
+    /// use monge_core::QuadGrid;
+    /// let v = (0..3).flat_map(|i| (0..3).map(move |j| DVec3::new(i as f64, j as f64, 0.0))).collect();
+    /// let g = QuadGrid::new(3, 3, v, vec![]);
+    /// let net = CyclidicNet::from_frame(&g, Frame::new(DVec3::X, DVec3::Y), &CyclidicOptions::default()).unwrap();
+    /// let nurbs = net.nurbs();
+    /// for (c, (points, weights)) in net.nurbs_columns().enumerate() {
+    ///     assert_eq!(points.len(), nurbs.rows);
+    ///     assert_eq!(points[2], nurbs.control_points[2 * nurbs.cols + c]);
+    ///     assert_eq!(weights[2], nurbs.weights[2 * nurbs.cols + c]);
+    /// }
+    /// ```
+    pub fn nurbs_columns(&self) -> impl Iterator<Item = (Vec<DVec3>, Vec<f64>)> + '_ {
+        let (nr, nc) = (2 * self.rows - 1, 2 * self.cols - 1);
+        // The patch column last computed, with each patch's weight scale.
+        let mut strip: (usize, Vec<(RationalBezier, f64)>) = (usize::MAX, Vec::new());
+        (0..nc).map(move |c| {
+            let j = (c / 2).min(self.cols - 2);
+            if strip.0 != j {
+                let patches = crate::tasks::map(self.rows - 1, |i| {
+                    let scale = self.weights[i * self.cols + j].norm2();
+                    (self.patch(i, j).bezier, scale)
+                });
+                strip = (j, patches);
+            }
+            let b = c - 2 * j;
+            (0..nr)
+                .map(|r| {
+                    let i = (r / 2).min(self.rows - 2);
+                    let (bezier, scale) = &strip.1[i];
+                    let a = r - 2 * i;
+                    (bezier.points[a][b], bezier.weights[a][b] * scale)
+                })
+                .unzip()
+        })
+    }
+
+    /// The knots of [`CyclidicNet::nurbs`] along `u` and along `v` (§5.3).
+    pub fn nurbs_knots(&self) -> (Vec<f64>, Vec<f64>) {
+        (knots(self.rows - 1), knots(self.cols - 1))
     }
 }
 

@@ -11,10 +11,11 @@
 //! returns every entity 128 in it, with its transformation matrix (entity 124)
 //! applied to the control points.
 
+use std::cell::{Cell, RefCell};
 use std::io::{self, Write};
 
 use glam::DVec3;
-use monge_core::cyclidic::{NurbsSurface, NURBS_DEGREE};
+use monge_core::cyclidic::{CyclidicNet, NurbsSurface, NURBS_DEGREE};
 
 use crate::error::IoError;
 use crate::text::{emit, Out};
@@ -38,7 +39,9 @@ const PARAMETER_COLUMNS: usize = 64;
 const MAX_TRANSFORM_CHAIN: usize = 64;
 
 /// Writes `surface` as an IGES 5.3 file holding one rational B-spline surface
-/// (entity 128).
+/// (entity 128): a [`NurbsSurface`], or a [`CyclidicNet`], whose surface
+/// ([`CyclidicNet::nurbs`]) is then computed a column at a time as it is
+/// written, never held ([`NurbsColumns`]).
 ///
 /// IGES numbers the control points `W(i, j)` with `i` along the first
 /// parameter; they are written with `i` running fastest. `u` of `surface` is
@@ -66,7 +69,8 @@ const MAX_TRANSFORM_CHAIN: usize = 64;
 ///
 /// [`io::ErrorKind::InvalidInput`] when `surface` is not a valid degree-2 NURBS
 /// surface (array lengths, non-finite numbers, weights not positive, knots
-/// decreasing or with an empty domain); otherwise the errors of `w`.
+/// decreasing or with an empty domain) or needs more than 9 999 999 lines,
+/// before anything is written; otherwise the errors of `w`.
 ///
 /// ```
 /// use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Frame};
@@ -75,34 +79,50 @@ const MAX_TRANSFORM_CHAIN: usize = 64;
 /// let g = QuadGrid::new(2, 2, vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::X + DVec3::Y], vec![]);
 /// let net = CyclidicNet::from_frame(&g, Frame::new(DVec3::X, DVec3::Y), &CyclidicOptions::default()).unwrap();
 /// let mut out = Vec::new();
-/// monge_io::write_iges(&net.nurbs(), &mut out).unwrap();
+/// monge_io::write_iges(&net, &mut out).unwrap();
+/// // The same file as from the surface held whole.
+/// let mut whole = Vec::new();
+/// monge_io::write_iges(&net.nurbs(), &mut whole).unwrap();
+/// assert_eq!(out, whole);
 /// let text = String::from_utf8(out).unwrap();
 /// assert!(text.lines().all(|l| l.len() == 80));
 /// let surfaces = monge_io::read_iges_surfaces(&text).unwrap();
 /// assert!((surfaces[0].point(0.5, 0.5) - DVec3::new(0.5, 0.5, 0.0)).length() < 1e-15);
 /// ```
-pub fn write_iges<W: Write + ?Sized>(surface: &NurbsSurface, w: &mut W) -> io::Result<()> {
-    check_surface(surface).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    let max_coordinate = surface
-        .control_points
-        .iter()
-        .map(|p| p.abs().max_element())
-        .fold(0.0, f64::max);
-    let resolution = if max_coordinate > 0.0 {
-        RELATIVE_RESOLUTION * max_coordinate
-    } else {
-        RELATIVE_RESOLUTION
-    };
-
+pub fn write_iges<W: Write + ?Sized>(
+    surface: &(impl NurbsColumns + ?Sized),
+    w: &mut W,
+) -> io::Result<()> {
+    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
+    check_shape(surface).map_err(invalid)?;
     // The Directory Entry gives the number of Parameter Data lines, which
-    // come after it: a first pass counts them, the second writes them.
+    // come after it: a first pass counts them (the flags, one digit each,
+    // unknown yet) and checks the control points, the second writes them.
     let mut parameter_lines = 0;
     let mut counter = Packer::new(PARAMETER_COLUMNS, |_: &[u8]| {
         parameter_lines += 1;
         Ok(())
     });
-    surface_parameters(surface, resolution, &mut |f| counter.field(f))?;
+    let checking = Checking {
+        surface,
+        check: RefCell::new(ColumnCheck::new(surface.size())),
+        sweeps: Cell::new(0),
+    };
+    surface_parameters(&checking, [false; 3], &mut |f| counter.field(f))?;
     counter.finish()?;
+    let checked = checking.check.into_inner().finish().map_err(invalid)?;
+    check_lines(parameter_lines, surface.size()).map_err(invalid)?;
+    let max_coordinate = checked.max_coordinate;
+    let resolution = if max_coordinate > 0.0 {
+        RELATIVE_RESOLUTION * max_coordinate
+    } else {
+        RELATIVE_RESOLUTION
+    };
+    let flags = [
+        checked.closing_u <= resolution,
+        checked.closing_v <= resolution,
+        checked.polynomial,
+    ];
 
     let global = global_parameters(max_coordinate, resolution);
     emit(w, |o| {
@@ -130,17 +150,15 @@ pub fn write_iges<W: Write + ?Sized>(surface: &NurbsSurface, w: &mut W) -> io::R
         put_line(o, entry1.as_bytes(), 'D', de)?;
         put_line(o, entry2.as_bytes(), 'D', de + 1)?;
         let mut sequence = 0;
-        let mut data = Vec::with_capacity(DATA_COLUMNS);
         let back_pointer = format!(" {de:>7}");
         let mut packer = Packer::new(PARAMETER_COLUMNS, |line: &[u8]| {
             sequence += 1;
-            data.clear();
-            data.extend_from_slice(line);
-            data.resize(PARAMETER_COLUMNS, b' ');
-            data.extend_from_slice(back_pointer.as_bytes());
+            let mut data = [b' '; DATA_COLUMNS];
+            data[..line.len()].copy_from_slice(line);
+            data[PARAMETER_COLUMNS..].copy_from_slice(back_pointer.as_bytes());
             put_line(o, &data, 'P', sequence)
         });
-        surface_parameters(surface, resolution, &mut |f| packer.field(f))?;
+        surface_parameters(surface, flags, &mut |f| packer.field(f))?;
         packer.finish()?;
         debug_assert_eq!(sequence, parameter_lines);
 
@@ -152,34 +170,106 @@ pub fn write_iges<W: Write + ?Sized>(surface: &NurbsSurface, w: &mut W) -> io::R
     })
 }
 
-/// Why `surface` cannot be written, if it cannot.
-fn check_surface(s: &NurbsSurface) -> Result<(), String> {
+/// What [`NurbsColumns::columns`] calls with each column: its control points
+/// and weights.
+pub type NurbsColumn<'a> = dyn FnMut(&[DVec3], &[f64]) -> io::Result<()> + 'a;
+
+/// A degree-2 NURBS surface as [`write_iges`] writes it (§5.3): its control
+/// points and weights a column (index along `v`) at a time, so that a surface
+/// computed as it is written ([`CyclidicNet::nurbs_columns`]) is never held.
+pub trait NurbsColumns {
+    /// The number of control points along `u` and along `v`.
+    fn size(&self) -> (usize, usize);
+
+    /// The knots along `u` and along `v`.
+    fn knots(&self) -> (Vec<f64>, Vec<f64>);
+
+    /// Calls `column` with the control points and weights of every column,
+    /// in order, each along `u`; stops at its first error.
+    fn columns(&self, column: &mut NurbsColumn<'_>) -> io::Result<()>;
+}
+
+/// The surface as it is held.
+impl NurbsColumns for NurbsSurface {
+    fn size(&self) -> (usize, usize) {
+        (self.rows, self.cols)
+    }
+
+    fn knots(&self) -> (Vec<f64>, Vec<f64>) {
+        (self.knots_u.clone(), self.knots_v.clone())
+    }
+
+    fn columns(&self, column: &mut NurbsColumn<'_>) -> io::Result<()> {
+        let n = self.rows * self.cols;
+        if self.control_points.len() != n || self.weights.len() != n {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "{} × {} control points need {n} points and weights, got {} and {}",
+                    self.rows,
+                    self.cols,
+                    self.control_points.len(),
+                    self.weights.len()
+                ),
+            ));
+        }
+        let (mut points, mut weights) = (Vec::new(), Vec::new());
+        for b in 0..self.cols {
+            let at = (0..self.rows).map(|a| a * self.cols + b);
+            points.clear();
+            weights.clear();
+            points.extend(at.clone().map(|k| self.control_points[k]));
+            weights.extend(at.map(|k| self.weights[k]));
+            column(&points, &weights)?;
+        }
+        Ok(())
+    }
+}
+
+/// The net's surface ([`CyclidicNet::nurbs`]), computed as it is written.
+impl NurbsColumns for CyclidicNet {
+    fn size(&self) -> (usize, usize) {
+        (2 * self.rows() - 1, 2 * self.cols() - 1)
+    }
+
+    fn knots(&self) -> (Vec<f64>, Vec<f64>) {
+        self.nurbs_knots()
+    }
+
+    fn columns(&self, column: &mut NurbsColumn<'_>) -> io::Result<()> {
+        self.nurbs_columns()
+            .try_for_each(|(points, weights)| column(&points, &weights))
+    }
+}
+
+/// The largest sequence number of a line: seven columns.
+const MAX_SEQUENCE: usize = 9_999_999;
+
+/// Why `lines` Parameter Data lines of a surface of `rows × cols` control
+/// points cannot be written, if they cannot.
+fn check_lines(lines: usize, (rows, cols): (usize, usize)) -> Result<(), String> {
+    if lines > MAX_SEQUENCE {
+        return Err(format!(
+            "the surface of {rows} × {cols} control points takes {lines} lines of parameter \
+             data, more than the {MAX_SEQUENCE} that an IGES section can number: write fewer \
+             patches (fewer guide samples), or another format"
+        ));
+    }
+    Ok(())
+}
+
+/// Why `s` cannot be written, if its size or knots say so.
+fn check_shape(s: &(impl NurbsColumns + ?Sized)) -> Result<(), String> {
     let p = NURBS_DEGREE;
-    if s.rows <= p || s.cols <= p {
+    let (rows, cols) = s.size();
+    if rows <= p || cols <= p {
         return Err(format!(
-            "a degree-{p} surface needs at least {} control points in each direction, got {} × {}",
+            "a degree-{p} surface needs at least {} control points in each direction, got {rows} × {cols}",
             p + 1,
-            s.rows,
-            s.cols
         ));
     }
-    let n = s.rows * s.cols;
-    if s.control_points.len() != n || s.weights.len() != n {
-        return Err(format!(
-            "{} × {} control points need {n} points and weights, got {} and {}",
-            s.rows,
-            s.cols,
-            s.control_points.len(),
-            s.weights.len()
-        ));
-    }
-    if !s.control_points.iter().all(|q| q.is_finite()) {
-        return Err("a control point is not finite".into());
-    }
-    if !s.weights.iter().all(|&w| w.is_finite() && w > 0.0) {
-        return Err("a weight is not a positive finite number".into());
-    }
-    for (name, knots, count) in [("u", &s.knots_u, s.rows), ("v", &s.knots_v, s.cols)] {
+    let (knots_u, knots_v) = s.knots();
+    for (name, knots, count) in [("u", &knots_u, rows), ("v", &knots_v, cols)] {
         if knots.len() != count + p + 1 {
             return Err(format!(
                 "{count} control points of degree {p} need {} knots along {name}, got {}",
@@ -197,6 +287,130 @@ fn check_surface(s: &NurbsSurface) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// A surface whose columns are checked ([`ColumnCheck`]) the first time
+/// they are gone through, each before it is passed on.
+struct Checking<'s, S: ?Sized> {
+    surface: &'s S,
+    check: RefCell<ColumnCheck>,
+    /// Times the columns have been gone through.
+    sweeps: Cell<usize>,
+}
+
+impl<S: NurbsColumns + ?Sized> NurbsColumns for Checking<'_, S> {
+    fn size(&self) -> (usize, usize) {
+        self.surface.size()
+    }
+
+    fn knots(&self) -> (Vec<f64>, Vec<f64>) {
+        self.surface.knots()
+    }
+
+    fn columns(&self, column: &mut NurbsColumn<'_>) -> io::Result<()> {
+        let first = self.sweeps.replace(self.sweeps.get() + 1) == 0;
+        self.surface.columns(&mut |points, weights| {
+            if first {
+                let mut check = self.check.borrow_mut();
+                check
+                    .column(points, weights)
+                    .map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
+            }
+            column(points, weights)
+        })
+    }
+}
+
+/// What the writer needs of the control points, found a column at a time.
+struct ColumnCheck {
+    rows: usize,
+    cols: usize,
+    /// Columns seen.
+    columns: usize,
+    /// The first column, to compare with the last.
+    first: Vec<DVec3>,
+    /// The first weight, to compare with every other.
+    first_weight: Option<f64>,
+    checked: Checked,
+}
+
+/// What [`ColumnCheck`] finds of a surface that can be written.
+struct Checked {
+    /// The largest absolute control point coordinate.
+    max_coordinate: f64,
+    /// The largest coordinate difference between the first and the last row
+    /// of control points (closed along `u` within the resolution).
+    closing_u: f64,
+    /// The same between the first and the last column.
+    closing_v: f64,
+    /// All weights equal.
+    polynomial: bool,
+}
+
+impl ColumnCheck {
+    fn new((rows, cols): (usize, usize)) -> Self {
+        ColumnCheck {
+            rows,
+            cols,
+            columns: 0,
+            first: Vec::new(),
+            first_weight: None,
+            checked: Checked {
+                max_coordinate: 0.0,
+                closing_u: 0.0,
+                closing_v: 0.0,
+                polynomial: true,
+            },
+        }
+    }
+
+    /// Takes the next column in, or says why the surface cannot be written.
+    fn column(&mut self, points: &[DVec3], weights: &[f64]) -> Result<(), String> {
+        let (rows, cols, k) = (self.rows, self.cols, self.columns);
+        if points.len() != rows || weights.len() != rows {
+            return Err(format!(
+                "{rows} × {cols} control points need {rows} points and weights a column, \
+                 got {} and {} in column {k}",
+                points.len(),
+                weights.len()
+            ));
+        }
+        if !points.iter().all(|q| q.is_finite()) {
+            return Err("a control point is not finite".into());
+        }
+        if !weights.iter().all(|&w| w.is_finite() && w > 0.0) {
+            return Err("a weight is not a positive finite number".into());
+        }
+        let difference = |x: DVec3, y: DVec3| (x - y).abs().max_element();
+        let c = &mut self.checked;
+        for q in points {
+            c.max_coordinate = c.max_coordinate.max(q.abs().max_element());
+        }
+        c.closing_u = c.closing_u.max(difference(points[0], points[rows - 1]));
+        let w0 = *self.first_weight.get_or_insert(weights[0]);
+        c.polynomial &= weights.iter().all(|&w| w == w0);
+        if k == 0 {
+            self.first = points.to_vec();
+        }
+        if k + 1 == cols {
+            c.closing_v = (self.first.iter().zip(points))
+                .map(|(x, y)| difference(*x, *y))
+                .fold(0.0, f64::max);
+        }
+        self.columns += 1;
+        Ok(())
+    }
+
+    /// What was found, once every column is in.
+    fn finish(self) -> Result<Checked, String> {
+        if self.columns != self.cols {
+            return Err(format!(
+                "{} × {} control points need {} columns, got {}",
+                self.rows, self.cols, self.cols, self.columns
+            ));
+        }
+        Ok(self.checked)
+    }
 }
 
 /// The Global section's parameters (without delimiters).
@@ -233,18 +447,13 @@ fn global_parameters(max_coordinate: f64, resolution: f64) -> [String; 25] {
 
 /// Entity 128's parameters (without delimiters), each passed to `field` in order.
 fn surface_parameters(
-    s: &NurbsSurface,
-    resolution: f64,
+    s: &(impl NurbsColumns + ?Sized),
+    [closed_u, closed_v, polynomial]: [bool; 3],
     field: &mut dyn FnMut(&[u8]) -> io::Result<()>,
 ) -> io::Result<()> {
     let p = NURBS_DEGREE;
-    let (rows, cols) = (s.rows, s.cols);
-    let at = |a: usize, b: usize| s.control_points[a * cols + b];
-    let near = |x: DVec3, y: DVec3| (x - y).abs().max_element() <= resolution;
-    let closed_u = (0..cols).all(|b| near(at(0, b), at(rows - 1, b)));
-    let closed_v = (0..rows).all(|a| near(at(a, 0), at(a, cols - 1)));
-    let polynomial = s.weights.iter().all(|&w| w == s.weights[0]);
-
+    let (rows, cols) = s.size();
+    let (knots_u, knots_v) = s.knots();
     let mut int = itoa::Buffer::new();
     for n in [128, rows - 1, cols - 1, p, p] {
         field(int.format(n).as_bytes())?;
@@ -253,21 +462,41 @@ fn surface_parameters(
         field(int.format(u8::from(flag)).as_bytes())?;
     }
     let mut real = Real::default();
-    for &k in s.knots_u.iter().chain(&s.knots_v) {
+    for &k in knots_u.iter().chain(&knots_v) {
         field(real.format(k))?;
     }
-    // IGES order: first index (along u) fastest.
-    let order = || (0..cols).flat_map(move |b| (0..rows).map(move |a| a * cols + b));
-    for k in order() {
-        field(real.format(s.weights[k]))?;
-    }
-    for k in order() {
-        for c in s.control_points[k].to_array() {
-            field(real.format(c))?;
-        }
-    }
-    for x in [s.knots_u[p], s.knots_u[rows], s.knots_v[p], s.knots_v[cols]] {
+    // IGES order: first index (along u) fastest, so column by column.
+    s.columns(&mut |_, weights| reals(weights, field))?;
+    let mut coordinates = Vec::new();
+    s.columns(&mut |points, _| {
+        coordinates.clear();
+        coordinates.extend(points.iter().flat_map(|q| q.to_array()));
+        reals(&coordinates, field)
+    })?;
+    for x in [knots_u[p], knots_u[rows], knots_v[p], knots_v[cols]] {
         field(real.format(x))?;
+    }
+    Ok(())
+}
+
+/// Passes `values` to `field` in order as IGES reals, formatted in pieces on
+/// every core (formatting is most of the writer's work).
+fn reals(values: &[f64], field: &mut dyn FnMut(&[u8]) -> io::Result<()>) -> io::Result<()> {
+    let pieces = monge_core::tasks::ranges(values.len(), 1 << 10, |r| {
+        let mut real = Real::default();
+        let (mut text, mut ends) = (Vec::new(), Vec::with_capacity(r.len()));
+        for &x in &values[r] {
+            text.extend_from_slice(real.format(x));
+            ends.push(text.len());
+        }
+        (text, ends)
+    });
+    for (text, ends) in pieces {
+        let mut start = 0;
+        for end in ends {
+            field(&text[start..end])?;
+            start = end;
+        }
     }
     Ok(())
 }
@@ -354,9 +583,8 @@ impl Real {
 /// each field is followed by `,`, the last by `;`; `line` is called with each line.
 struct Packer<L: FnMut(&[u8]) -> io::Result<()>> {
     width: usize,
+    /// The line being filled: fields, each with a `,` after it.
     line: Vec<u8>,
-    /// The last field given, written once it is known whether another follows.
-    pending: Option<Vec<u8>>,
     sink: L,
 }
 
@@ -365,41 +593,27 @@ impl<L: FnMut(&[u8]) -> io::Result<()>> Packer<L> {
         Packer {
             width,
             line: Vec::with_capacity(width),
-            pending: None,
             sink,
         }
     }
 
-    /// The next field.
+    /// The next field, and its delimiter (`,` now; the last one's becomes `;`).
     fn field(&mut self, field: &[u8]) -> io::Result<()> {
-        if let Some(mut previous) = self.pending.take() {
-            previous.push(b',');
-            self.put(&previous)?;
-            previous.clear();
-            previous.extend_from_slice(field);
-            self.pending = Some(previous);
-        } else {
-            self.pending = Some(field.to_vec());
-        }
-        Ok(())
-    }
-
-    /// Writes the last field and line.
-    fn finish(mut self) -> io::Result<()> {
-        if let Some(mut last) = self.pending.take() {
-            last.push(b';');
-            self.put(&last)?;
-        }
-        (self.sink)(&self.line)
-    }
-
-    fn put(&mut self, field: &[u8]) -> io::Result<()> {
-        if !self.line.is_empty() && self.line.len() + field.len() > self.width {
+        if !self.line.is_empty() && self.line.len() + field.len() + 1 > self.width {
             (self.sink)(&self.line)?;
             self.line.clear();
         }
         self.line.extend_from_slice(field);
+        self.line.push(b',');
         Ok(())
+    }
+
+    /// Ends the last field with `;` and writes the last line.
+    fn finish(mut self) -> io::Result<()> {
+        if let Some(delimiter) = self.line.last_mut() {
+            *delimiter = b';';
+        }
+        (self.sink)(&self.line)
     }
 }
 
@@ -411,17 +625,14 @@ fn put_line<W: Write + ?Sized>(
     sequence: usize,
 ) -> io::Result<()> {
     debug_assert!(data.len() <= DATA_COLUMNS);
-    o.bytes(data);
-    for _ in data.len()..DATA_COLUMNS {
-        o.push(b' ');
-    }
-    o.push(section as u8);
+    let mut line = [b' '; 80];
+    line[..data.len()].copy_from_slice(data);
+    line[DATA_COLUMNS] = section as u8;
     let mut digits = itoa::Buffer::new();
-    let digits = digits.format(sequence);
-    for _ in digits.len()..7 {
-        o.push(b' ');
-    }
-    o.str(digits);
+    let digits = digits.format(sequence).as_bytes();
+    debug_assert!(sequence <= MAX_SEQUENCE);
+    line[80 - digits.len()..].copy_from_slice(digits);
+    o.bytes(&line);
     o.end()
 }
 
@@ -1125,6 +1336,20 @@ fn parse_real(text: &str) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn more_lines_than_a_section_can_number_are_refused() {
+        // 1415 × 1415 faces of cyclidic patches: 2831 × 2831 control points,
+        // about 10.7 million lines (what the first pass counts).
+        assert!(check_lines(MAX_SEQUENCE, (2831, 2831)).is_ok());
+        let e = check_lines(10_700_000, (2831, 2831)).unwrap_err();
+        assert!(
+            e.contains("2831 × 2831 control points takes 10700000 lines")
+                && e.contains("more than the 9999999")
+                && e.contains("fewer guide samples"),
+            "{e}"
+        );
+    }
 
     /// `{:E}` (the standard library's shortest digits) with `.0` added to a lone digit.
     fn std_real(x: f64) -> String {

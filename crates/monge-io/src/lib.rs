@@ -56,7 +56,7 @@ pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
 pub use fabrication::{write_fabrication, FABRICATION_FILES};
 pub use gltf::{write_glb, write_grid_glb, write_quads_glb};
-pub use iges::{read_iges_surfaces, write_iges, IgesSurface};
+pub use iges::{read_iges_surfaces, write_iges, IgesSurface, NurbsColumn, NurbsColumns};
 pub use kind::FileKind;
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{

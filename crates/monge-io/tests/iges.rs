@@ -8,7 +8,9 @@ use std::path::Path;
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, NurbsSurface};
 use monge_core::{generate, GenerateOptions};
-use monge_io::{read_design, read_iges_surfaces, write_iges, IgesSurface, IoError};
+use monge_io::{
+    read_design, read_iges_surfaces, write_iges, IgesSurface, IoError, NurbsColumn, NurbsColumns,
+};
 
 // ---------------------------------------------------------------------------
 // Hand-written files
@@ -668,6 +670,64 @@ fn writer_refuses_invalid_surfaces() {
         assert!(out.is_empty());
     }
     assert!(!written(&good).is_empty());
+}
+
+#[test]
+fn writer_refuses_a_surface_whose_columns_do_not_fit_its_size() {
+    // A surface given column by column: `columns` columns of `rows` points.
+    struct Columns {
+        rows: usize,
+        columns: usize,
+    }
+    impl NurbsColumns for Columns {
+        fn size(&self) -> (usize, usize) {
+            (3, 3)
+        }
+        fn knots(&self) -> (Vec<f64>, Vec<f64>) {
+            let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+            (k.clone(), k)
+        }
+        fn columns(&self, column: &mut NurbsColumn<'_>) -> io::Result<()> {
+            for b in 0..self.columns {
+                let points: Vec<DVec3> = (0..self.rows)
+                    .map(|a| DVec3::new(a as f64, b as f64, 0.0))
+                    .collect();
+                column(&points, &vec![1.0; self.rows])?;
+            }
+            Ok(())
+        }
+    }
+    for (surface, needle) in [
+        (
+            Columns {
+                rows: 2,
+                columns: 3,
+            },
+            "need 3 points and weights a column, got 2 and 2 in column 0",
+        ),
+        (
+            Columns {
+                rows: 3,
+                columns: 2,
+            },
+            "need 3 columns, got 2",
+        ),
+    ] {
+        let mut out = Vec::new();
+        let err = write_iges(&surface, &mut out).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
+        assert!(err.to_string().contains(needle), "{err} lacks {needle}");
+        assert!(out.is_empty());
+    }
+    // The same surface with its columns right is written as when held.
+    let right = Columns {
+        rows: 3,
+        columns: 3,
+    };
+    let held = surface(3, 3, |a, b| DVec3::new(a as f64, b as f64, 0.0), |_, _| 1.0);
+    let mut out = Vec::new();
+    write_iges(&right, &mut out).unwrap();
+    assert_eq!(String::from_utf8(out).unwrap(), written(&held));
 }
 
 // ---------------------------------------------------------------------------
