@@ -200,8 +200,9 @@ impl NurbsColumns for NurbsSurface {
     }
 
     fn columns(&self, column: &mut NurbsColumn<'_>) -> io::Result<()> {
-        let n = self.rows * self.cols;
-        if self.control_points.len() != n || self.weights.len() != n {
+        let n = self.rows.checked_mul(self.cols);
+        if n != Some(self.control_points.len()) || n != Some(self.weights.len()) {
+            let n = n.map_or("more than usize::MAX".into(), |n| n.to_string());
             return Err(io::Error::new(
                 io::ErrorKind::InvalidInput,
                 format!(
