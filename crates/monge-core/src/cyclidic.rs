@@ -1209,8 +1209,11 @@ impl CyclidicNet {
         let (nr, nc) = (2 * self.rows - 1, 2 * self.cols - 1);
         // The patch column last computed, with each patch's weight scale.
         let mut strip: (usize, Vec<(RationalBezier, f64)>) = (usize::MAX, Vec::new());
+        // The row (column) of patches that gives control-point row (column)
+        // `r`, with `n` vertices that way: the later of two that share it.
+        let patch_of = |r: usize, n: usize| (r / 2).min(n - 2);
         (0..nc).map(move |c| {
-            let j = (c / 2).min(self.cols - 2);
+            let j = patch_of(c, self.cols);
             if strip.0 != j {
                 let patches = crate::tasks::map(self.rows - 1, |i| {
                     let scale = self.weights[i * self.cols + j].norm2();
@@ -1221,7 +1224,7 @@ impl CyclidicNet {
             let b = c - 2 * j;
             (0..nr)
                 .map(|r| {
-                    let i = (r / 2).min(self.rows - 2);
+                    let i = patch_of(r, self.rows);
                     let (bezier, scale) = &strip.1[i];
                     let a = r - 2 * i;
                     (bezier.points[a][b], bezier.weights[a][b] * scale)

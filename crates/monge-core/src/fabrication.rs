@@ -469,7 +469,7 @@ impl Fabrication {
     /// assert_eq!(beams[8], f.beam(1, LineFamily::Column, 0));
     /// ```
     pub fn beams(&self) -> impl ExactSizeIterator<Item = Beam> + Clone + '_ {
-        self.beams_in(0..self.layers.len() * self.beams_per_layer())
+        self.beams_in(0..self.layers.len() * beams_per_layer(&self.layers))
     }
 
     /// The beams numbered `range` of [`Fabrication::beams`] (§4.6, §6): for
@@ -481,7 +481,7 @@ impl Fabrication {
         &self,
         range: Range<usize>,
     ) -> impl ExactSizeIterator<Item = Beam> + Clone + '_ {
-        let count = self.layers.len() * self.beams_per_layer();
+        let count = self.layers.len() * beams_per_layer(&self.layers);
         assert!(range.end <= count, "no beam {}", range.end - 1);
         range.map(move |n| nth_beam(&self.layers, self.arc_tol, n))
     }
@@ -492,7 +492,7 @@ impl Fabrication {
     /// If there is no such layer.
     pub fn layer_beams(&self, k: usize) -> impl ExactSizeIterator<Item = Beam> + Clone + '_ {
         assert!(k < self.layers.len(), "no layer {k}");
-        let per_layer = self.beams_per_layer();
+        let per_layer = beams_per_layer(&self.layers);
         self.beams_in(k * per_layer..(k + 1) * per_layer)
     }
 
@@ -508,12 +508,6 @@ impl Fabrication {
         };
         assert!(index < lines, "no {family:?} {index}");
         line_beam(k, g, family, index, self.arc_tol)
-    }
-
-    /// Rows and columns of one layer.
-    fn beams_per_layer(&self) -> usize {
-        let g = &self.layers[0].grid;
-        g.rows + g.cols
     }
 
     /// One node per vertex of the base mesh, row-major (§2.2, §6): computed from
@@ -800,12 +794,18 @@ fn circumradius(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 /// every layer, layer by layer.
 fn nth_beam(layers: &[LayerMesh], tol: f64, n: usize) -> Beam {
     let g = &layers[0].grid;
-    let (k, b) = (n / (g.rows + g.cols), n % (g.rows + g.cols));
+    let (k, b) = (n / beams_per_layer(layers), n % beams_per_layer(layers));
     if b < g.rows {
         line_beam(k, &layers[k].grid, LineFamily::Row, b, tol)
     } else {
         line_beam(k, &layers[k].grid, LineFamily::Column, b - g.rows, tol)
     }
+}
+
+/// Rows and columns of one layer (every layer has the base mesh's).
+fn beams_per_layer(layers: &[LayerMesh]) -> usize {
+    let g = &layers[0].grid;
+    g.rows + g.cols
 }
 
 /// Row or column `index` of `g`, layer `k`, as a beam.
@@ -1315,8 +1315,7 @@ fn summarise(
     options: &FabricationOptions,
 ) -> Summary {
     let rtol = options.radius_tol * size;
-    let g = &layers[0].grid;
-    let beams = crate::tasks::map(layers.len() * (g.rows + g.cols), |n| {
+    let beams = crate::tasks::map(layers.len() * beams_per_layer(layers), |n| {
         BeamFacts::of(&nth_beam(layers, arc_tol, n), rtol)
     });
     let radii = |fam: &mut dyn Iterator<Item = &BeamFacts>| {
