@@ -18,7 +18,7 @@ use std::ops::{Add, Mul, Neg, Sub};
 
 use glam::DVec3;
 
-use crate::grid::{bbox_diagonal, QuadGrid};
+use crate::grid::{bbox_diagonal, face_corners, QuadGrid};
 
 /// An orthonormal frame at a mesh vertex (§4.4): `t1` along the u-arc, `t2`
 /// along the v-arc, `n = t1 × t2`.
@@ -980,13 +980,14 @@ impl CyclidicNet {
                     options.circularity_tolerance,
                 )?;
                 let local = quad.qb_weights();
-                let k = i * cols + j;
-                let inv = w[k].inv();
+                let ids = face_corners(cols, i, j);
+                let [a, b, c, d] = ids;
+                let inv = w[a].inv();
                 // λ, μ: the real factors of W(i+1, j)·W(i, j)⁻¹ and W(i, j+1)·W(i, j)⁻¹.
-                let lambda = (w[k + cols] * inv).dot(local[1]);
-                let mu = (w[k + 1] * inv).dot(local[3]);
-                w[k + cols + 1] = local[2] * (lambda * mu) * w[k];
-                let qb = face_weights(&w, k, cols);
+                let lambda = (w[b] * inv).dot(local[1]);
+                let mu = (w[d] * inv).dot(local[3]);
+                w[c] = local[2] * (lambda * mu) * w[a];
+                let qb = face_weights(&w, ids);
                 if let Some(reason) = quad.fold(&bezier_of(corners, qb)) {
                     if !options.allow_folded {
                         return Err(CyclidicError::Folded {
@@ -1028,9 +1029,9 @@ impl CyclidicNet {
     /// If `i ≥ rows − 1` or `j ≥ cols − 1`.
     pub fn patch(&self, i: usize, j: usize) -> Patch {
         assert!(i + 1 < self.rows && j + 1 < self.cols, "no face ({i}, {j})");
-        let (c, k) = (self.cols, i * self.cols + j);
-        let corners = [k, k + c, k + c + 1, k + 1].map(|v| self.vertices[v]);
-        let qb = face_weights(&self.weights, k, c);
+        let ids = face_corners(self.cols, i, j);
+        let corners = ids.map(|v| self.vertices[v]);
+        let qb = face_weights(&self.weights, ids);
         Patch {
             corners,
             qb,
@@ -1239,16 +1240,11 @@ impl CyclidicNet {
     }
 }
 
-/// The QB weights of the face whose corner A is vertex `k` of a net with `cols`
-/// vertices a row (§4.4): the vertex weights of A, B, C, D times `W(A)⁻¹`.
-fn face_weights(w: &[Quat], k: usize, cols: usize) -> [Quat; 4] {
-    let inv = w[k].inv();
-    [
-        Quat::ONE,
-        w[k + cols] * inv,
-        w[k + cols + 1] * inv,
-        w[k + 1] * inv,
-    ]
+/// The QB weights of the face of corners `ids` (A, B, C, D, as
+/// [`face_corners`]) (§4.4): the vertex weights of A, B, C, D times `W(A)⁻¹`.
+fn face_weights(w: &[Quat], [a, b, c, d]: [usize; 4]) -> [Quat; 4] {
+    let inv = w[a].inv();
+    [Quat::ONE, w[b] * inv, w[c] * inv, w[d] * inv]
 }
 
 /// `[0, 0, 0, 1, 1, …, m − 1, m − 1, m, m, m]`.

@@ -496,6 +496,32 @@ impl Fabrication {
         self.beams_in(k * per_layer..(k + 1) * per_layer)
     }
 
+    /// The number of nodes of each beam of layer `k`, in the order of
+    /// [`Fabrication::layer_beams`] (§6), without computing the beams: what a
+    /// drawing of the beams needs to know before their points.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions};
+    /// use monge_core::QuadGrid;
+    /// let v = (0..3).flat_map(|i| (0..2).map(move |j| DVec3::new(i as f64, j as f64, 0.0))).collect();
+    /// let grid = QuadGrid::new(3, 2, v, vec![DVec3::Z; 6]);
+    /// let f = fabricate(BaseMesh::Circular(&grid), &FabricationOptions::default()).unwrap();
+    /// // Three rows of two nodes, then two columns of three.
+    /// assert_eq!(f.layer_beam_nodes(0).collect::<Vec<_>>(), [2, 2, 2, 3, 3]);
+    /// assert!(f.layer_beams(0).map(|b| b.nodes.len()).eq(f.layer_beam_nodes(0)));
+    /// ```
+    ///
+    /// # Panics
+    /// If there is no such layer.
+    pub fn layer_beam_nodes(&self, k: usize) -> impl ExactSizeIterator<Item = usize> + Clone + '_ {
+        let g = &self.layers[k].grid;
+        (0..beams_per_layer(&self.layers)).map(move |b| match layer_line(g, b).0 {
+            LineFamily::Row => g.cols,
+            LineFamily::Column => g.rows,
+        })
+    }
+
     /// Row or column `index` of layer `k` as a beam (§4.6, §6).
     ///
     /// # Panics
@@ -795,10 +821,16 @@ fn circumradius(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 fn nth_beam(layers: &[LayerMesh], tol: f64, n: usize) -> Beam {
     let g = &layers[0].grid;
     let (k, b) = (n / beams_per_layer(layers), n % beams_per_layer(layers));
+    let (family, index) = layer_line(g, b);
+    line_beam(k, &layers[k].grid, family, index, tol)
+}
+
+/// The line of beam `b` of a layer of grid `g`: its rows, then its columns.
+fn layer_line(g: &QuadGrid, b: usize) -> (LineFamily, usize) {
     if b < g.rows {
-        line_beam(k, &layers[k].grid, LineFamily::Row, b, tol)
+        (LineFamily::Row, b)
     } else {
-        line_beam(k, &layers[k].grid, LineFamily::Column, b - g.rows, tol)
+        (LineFamily::Column, b - g.rows)
     }
 }
 

@@ -230,10 +230,9 @@ impl QuadGrid {
             })
     }
 
-    /// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of face `(i, j)`.
+    /// The vertex indices of face `(i, j)` ([`face_corners`]).
     fn face_ids(&self, i: usize, j: usize) -> [usize; 4] {
-        let (c, k) = (self.cols, i * self.cols + j);
-        [k, k + c, k + c + 1, k + 1]
+        face_corners(self.cols, i, j)
     }
 
     /// Number of faces, `(rows − 1) · (cols − 1)`.
@@ -498,6 +497,14 @@ impl Folds {
 /// Diagonal of the axis-aligned bounding box of `points` (0 for none).
 pub fn bbox_diagonal(points: &[DVec3]) -> f64 {
     bounds(points).map_or(0.0, |b| (b.hi - b.lo).length())
+}
+
+/// The vertex indices `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` of face
+/// `(i, j)` of a row-major grid of `cols` vertices a row: corners A, B, C, D
+/// (§2.2), for the quad grid and the cyclidic net alike.
+pub(crate) fn face_corners(cols: usize, i: usize, j: usize) -> [usize; 4] {
+    let k = i * cols + j;
+    [k, k + cols, k + cols + 1, k + 1]
 }
 
 /// The corners of the bounding box of some points, and their largest |coordinate|.

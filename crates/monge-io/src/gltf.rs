@@ -371,16 +371,9 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
                 sweep_positions(&beam, width, depth, emit);
             }
         });
-        // The beams' nodes: rows, then columns, as [`Fabrication::layer_beams`].
-        let g = &layer.grid;
-        let nodes = move || {
-            (0..g.rows)
-                .map(|_| g.cols)
-                .chain((0..g.cols).map(|_| g.rows))
-        };
         let triangles = Box::new(move |emit: &mut dyn FnMut([u32; 3])| {
             let mut base = 0;
-            for n in nodes() {
+            for n in f.layer_beam_nodes(k) {
                 sweep_triangles(base, n as u32, emit);
                 base += 4 * n as u32;
             }
