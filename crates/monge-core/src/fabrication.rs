@@ -819,10 +819,10 @@ fn circumradius(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 /// Beam `n` of [`Fabrication::beams`]: every row, then every column, of
 /// every layer, layer by layer.
 fn nth_beam(layers: &[LayerMesh], tol: f64, n: usize) -> Beam {
-    let g = &layers[0].grid;
     let (k, b) = (n / beams_per_layer(layers), n % beams_per_layer(layers));
+    let g = &layers[k].grid;
     let (family, index) = layer_line(g, b);
-    line_beam(k, &layers[k].grid, family, index, tol)
+    line_beam(k, g, family, index, tol)
 }
 
 /// The line of beam `b` of a layer of grid `g`: its rows, then its columns.
