@@ -2,12 +2,13 @@
 //! point cloud (monge's extension of the method; related to the fitting of §4.7, §4.8).
 
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
-    approximate, approximate_patches, ApproxOptions, Approximation, Deviation, TargetCloud,
+    approximate, approximate_patches, deadline_after, ApproxOptions, Approximation, Deviation,
+    TargetCloud,
 };
 use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
@@ -146,12 +147,10 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         }
         None => None,
     };
-    if let Some(t) = args.time_limit {
-        anyhow::ensure!(
-            t.is_finite() && t > 0.0,
-            "--time-limit {t}: give a positive number of seconds"
-        );
-    }
+    let deadline = match args.time_limit {
+        Some(t) => deadline_after(t).context("--time-limit")?,
+        None => None,
+    };
     let points = read_points(&args.target)?;
     let kind = match args.kind {
         KindArg::Circular => MeshKind::Circular,
@@ -162,9 +161,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         kind,
         starts: args.starts,
         max_evaluations: args.max_evaluations,
-        deadline: args
-            .time_limit
-            .map(|t| Instant::now() + Duration::from_secs_f64(t)),
+        deadline,
         keep_boundary: args.keep_boundary,
     };
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).

@@ -124,6 +124,20 @@ fn approximate_refuses_a_malformed_grid_and_time_limit() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("positive number of seconds"));
+    // Beyond what the clock holds (it once panicked: "overflow when adding duration
+    // to instant", "cannot convert float seconds to Duration"): no limit.
+    let dir = TempDir::new().unwrap();
+    for limit in ["1e19", "1e20", "inf"] {
+        monge()
+            .args(["approximate"])
+            .arg(&target)
+            .arg("-o")
+            .arg(dir.path().join("x.json"))
+            .args(["--grid", "8x8", "--starts", "1", "--max-evaluations", "10"])
+            .arg(format!("--time-limit={limit}"))
+            .assert()
+            .success();
+    }
 }
 
 #[test]

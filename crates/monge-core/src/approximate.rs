@@ -105,6 +105,26 @@ impl Default for ApproxOptions {
     }
 }
 
+/// The deadline [`ApproxOptions::deadline`] `seconds` from now (§4.7's search, time-limited).
+///
+/// A limit beyond what the clock can represent (about 10¹⁰ years and more) is no limit:
+/// `None`. A limit that is not a positive number of seconds is an error.
+///
+/// ```
+/// use monge_core::approximate::{deadline_after, ApproxError};
+/// assert!(deadline_after(2.5).unwrap().is_some());
+/// assert_eq!(deadline_after(1e300), Ok(None));
+/// assert_eq!(deadline_after(0.0), Err(ApproxError::BadTimeLimit(0.0)));
+/// ```
+pub fn deadline_after(seconds: f64) -> Result<Option<Instant>, ApproxError> {
+    if !(seconds > 0.0) {
+        return Err(ApproxError::BadTimeLimit(seconds));
+    }
+    Ok(std::time::Duration::try_from_secs_f64(seconds)
+        .ok()
+        .and_then(|d| Instant::now().checked_add(d)))
+}
+
 /// Why a target cannot be approximated.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum ApproxError {
@@ -179,6 +199,9 @@ pub enum ApproxError {
          give more time (--time-limit) or a coarser grid"
     )]
     TimeLimit,
+    /// A time limit that is not a positive number of seconds.
+    #[error("a time limit of {0} s: give a positive number of seconds")]
+    BadTimeLimit(f64),
     /// `keep_boundary` was asked, but no boundary curves could be traced.
     #[error(
         "the target's boundary could not be traced from any of its corners (too few points \

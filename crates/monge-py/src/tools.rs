@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
-use monge_core::approximate::{approximate as core_approximate, ApproxOptions};
+use monge_core::approximate::{approximate as core_approximate, deadline_after, ApproxOptions};
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
@@ -499,18 +499,18 @@ pub fn approximate<'py>(
         .into_iter()
         .map(|r| DVec3::new(r[0], r[1], r[2]))
         .collect();
-    if let Some(t) = time_limit.filter(|t| !(t.is_finite() && *t > 0.0)) {
-        return Err(OptimiseError::new_err(format!(
-            "time_limit {t}: give a positive number of seconds"
-        )));
-    }
+    let deadline = match time_limit {
+        Some(t) => {
+            deadline_after(t).map_err(|e| OptimiseError::new_err(format!("time_limit: {e}")))?
+        }
+        None => None,
+    };
     let options = ApproxOptions {
         faces: grid,
         kind: parse_kind(Some(kind), MeshKind::Circular)?,
         starts,
         max_evaluations,
-        deadline: time_limit
-            .map(|t| std::time::Instant::now() + std::time::Duration::from_secs_f64(t)),
+        deadline,
         keep_boundary,
     };
     let r = py

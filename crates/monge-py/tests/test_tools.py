@@ -249,3 +249,5 @@ def test_approximate_equals_the_command_and_its_mesh_is_exact(cli, tmp_path):
         monge.approximate(points[:5])
     with pytest.raises(monge.OptimiseError, match="positive number of seconds"):
         monge.approximate(points, time_limit=0.0)
+    # Beyond what the clock holds: no limit (it once raised a PanicException).
+    assert monge.approximate(points, grid=(8, 8), starts=1, max_evaluations=10, time_limit=1e20)
