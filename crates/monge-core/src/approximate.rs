@@ -117,7 +117,7 @@ impl Default for ApproxOptions {
 /// assert_eq!(deadline_after(0.0), Err(ApproxError::BadTimeLimit(0.0)));
 /// ```
 pub fn deadline_after(seconds: f64) -> Result<Option<Instant>, ApproxError> {
-    if !(seconds > 0.0) {
+    if seconds.is_nan() || seconds <= 0.0 {
         return Err(ApproxError::BadTimeLimit(seconds));
     }
     Ok(std::time::Duration::try_from_secs_f64(seconds)
