@@ -37,6 +37,10 @@ impl Default for PanelOptions {
     }
 }
 
+/// The most inner samples [`optimise_panels`] places (§4.8): 400, a BOBYQA model of
+/// about 6 MB (it grows as the square), and 80 100 mesh generations by default.
+pub const MAX_FREE_SAMPLES: usize = 400;
+
 /// Why the panel sizes cannot be optimised (§4.8).
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum PanelError {
@@ -52,6 +56,19 @@ pub enum PanelError {
          raise `samples` to 3 or more"
     )]
     NothingToChoose,
+    /// More inner samples to place than [`MAX_FREE_SAMPLES`].
+    #[error(
+        "the `bspline` guides have {free} samples between their ends to place, more than the \
+         {max} that panel-size optimisation (§4.8) takes: BOBYQA keeps a model of (2n + 1)² \
+         numbers and generates the whole mesh at each of its evaluations. Lower the guides' \
+         `samples` (a guide of {max} samples or fewer), optimise that design, and refine it after"
+    )]
+    TooManySamples {
+        /// Inner samples of the B-spline guides (`samples − 2` each).
+        free: usize,
+        /// [`MAX_FREE_SAMPLES`].
+        max: usize,
+    },
     /// `max_gap_ratio` is not a finite number above 1.
     #[error("max_gap_ratio is {0}: give a finite number above 1")]
     BadGapRatio(f64),
@@ -166,6 +183,12 @@ pub fn optimise_panels(
     let n: usize = counts.iter().sum();
     if n == 0 {
         return Err(PanelError::NothingToChoose);
+    }
+    if n > MAX_FREE_SAMPLES {
+        return Err(PanelError::TooManySamples {
+            free: n,
+            max: MAX_FREE_SAMPLES,
+        });
     }
     let start = generate(design, generate_options)?;
     let before = panel_stats(&start.grid);

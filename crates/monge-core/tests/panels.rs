@@ -3,7 +3,7 @@
 use monge_core::design::GuideSpec;
 use monge_core::guide::GuideError;
 use monge_core::measure::measure;
-use monge_core::panels::{optimise_panels, PanelError, PanelOptions};
+use monge_core::panels::{optimise_panels, PanelError, PanelOptions, MAX_FREE_SAMPLES};
 use monge_core::scan::panel_stats;
 use monge_core::{generate, Design, GenerateError};
 
@@ -75,6 +75,16 @@ fn panel_errors() {
     assert_eq!(
         optimise_panels(&d, &Default::default(), &o).unwrap_err(),
         PanelError::NothingToChoose
+    );
+    // 10 000 samples once took 3 GB of BOBYQA model before failing to allocate more.
+    let mut d = figure22();
+    d.guide_u.bspline.as_mut().unwrap().samples = 10_000;
+    assert_eq!(
+        optimise_panels(&d, &Default::default(), &o).unwrap_err(),
+        PanelError::TooManySamples {
+            free: 9_998 + d.guide_v.bspline.as_ref().unwrap().samples - 2,
+            max: MAX_FREE_SAMPLES
+        }
     );
     let mut d = figure22();
     d.theta_deg = 90.0;
