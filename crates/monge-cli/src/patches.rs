@@ -43,7 +43,9 @@ pub fn run_patches(args: &PatchesArgs) -> anyhow::Result<Outcome> {
             write_mesh(&mp.grid, &args.output, Some(format))?;
         }
     } else {
-        let isos = isometries(&design.symmetry).with_context(|| file.clone())?;
+        let copy = mp.grid.rows * mp.grid.cols;
+        let isos = isometries(&design.symmetry, args.max_vertices / copy.max(1))
+            .with_context(|| format!("{file} (--max-vertices {})", args.max_vertices))?;
         let a = assemble(std::slice::from_ref(&mp.grid), &isos);
         // Each patch of each copy: the copies' columns are only piecewise planar.
         let worst = isos

@@ -142,6 +142,34 @@ fn patches_incompatible_boundaries_exit_2() {
 }
 
 #[test]
+fn patches_refuses_more_copies_than_the_vertex_limit() {
+    // A rotation of order 10⁸: refused before any copy is made (it once ran for
+    // minutes and many GB), and the message names the option.
+    let dir = TempDir::new().unwrap();
+    let mut d: Value =
+        serde_json::from_str(&fs::read_to_string(example("fig20-piecewise.patches.json")).unwrap())
+            .unwrap();
+    d["symmetry"] = serde_json::json!([
+        {"rotate": {"point": [0, 0, 0], "axis": [0, 0, 1], "order": 100_000_000}}
+    ]);
+    let path = dir.path().join("d.json");
+    fs::write(&path, d.to_string()).unwrap();
+    let out = dir.path().join("m.obj");
+    monge()
+        .arg("patches")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains("100000000 copies")
+                .and(predicate::str::contains("--max-vertices")),
+        );
+    assert!(!out.exists());
+}
+
+#[test]
 fn help_teaches_the_design_format() {
     monge()
         .args(["patches", "--help"])

@@ -229,17 +229,20 @@ fn fig18_order_five_structure_has_no_duplicate_vertices() {
     let (grid, _) = check(&s);
     // Mirror in P3 (y = 0), then rotate by multiples of 72° about the z axis: the ten
     // copies of the dihedral group; the mirror image rotated by 72° is the mirror in P4.
-    let isos = isometries(&[
-        SymmetrySpec::Mirror {
-            point: [0.0; 3],
-            normal: [0.0, 1.0, 0.0],
-        },
-        SymmetrySpec::Rotate {
-            point: [0.0; 3],
-            axis: [0.0, 0.0, 1.0],
-            order: 5,
-        },
-    ])
+    let isos = isometries(
+        &[
+            SymmetrySpec::Mirror {
+                point: [0.0; 3],
+                normal: [0.0, 1.0, 0.0],
+            },
+            SymmetrySpec::Rotate {
+                point: [0.0; 3],
+                axis: [0.0, 0.0, 1.0],
+                order: 5,
+            },
+        ],
+        usize::MAX,
+    )
     .unwrap();
     assert_eq!(isos.len(), 10);
     let a = assemble(std::slice::from_ref(&grid), &isos);

@@ -52,7 +52,11 @@ fn check_merge(a: &Assembly) {
 fn two_mirrors_share_the_guides_and_keep_every_property() {
     let (r, c) = (9, 11);
     let g = patch(r, c);
-    let isos = isometries(&[mirror([1.0, 0.0, 0.0]), mirror([0.0, 1.0, 0.0])]).unwrap();
+    let isos = isometries(
+        &[mirror([1.0, 0.0, 0.0]), mirror([0.0, 1.0, 0.0])],
+        usize::MAX,
+    )
+    .unwrap();
     assert_eq!(isos.len(), 4);
     let a = assemble(&[g], &isos);
     // guide_v (row 0) lies in x = 0 and guide_u (column 0) in y = 0: shared once.
@@ -80,7 +84,7 @@ fn order_five_rotation_with_a_mirror_makes_ten_exact_copies() {
             order: 5,
         },
     ];
-    let isos = isometries(&ops).unwrap();
+    let isos = isometries(&ops, usize::MAX).unwrap();
     assert_eq!(isos.len(), 10);
     let a = assemble(&[g], &isos);
     check_merge(&a);
@@ -94,7 +98,7 @@ fn order_five_rotation_with_a_mirror_makes_ten_exact_copies() {
 
 #[test]
 fn error_bad_direction() {
-    let e = isometries(&[mirror([0.0; 3])]).unwrap_err();
+    let e = isometries(&[mirror([0.0; 3])], usize::MAX).unwrap_err();
     assert!(
         matches!(e, SymmetryError::BadDirection { index: 0, .. }),
         "{e}"
@@ -103,22 +107,52 @@ fn error_bad_direction() {
 }
 
 #[test]
-fn error_zero_order() {
-    let e = isometries(&[SymmetrySpec::Rotate {
+fn error_too_many_copies() {
+    // The same rotation of order 5 twelve times: 5¹² copies, refused before any is made
+    // (it once aborted, out of memory).
+    let rotation = SymmetrySpec::Rotate {
         point: [0.0; 3],
         axis: [0.0, 0.0, 1.0],
-        order: 0,
-    }])
+        order: 5,
+    };
+    let e = isometries(&vec![rotation.clone(); 12], 1_000_000).unwrap_err();
+    assert_eq!(
+        e,
+        SymmetryError::TooManyCopies {
+            copies: 5f64.powi(12),
+            max: 1_000_000
+        }
+    );
+    assert!(e.to_string().contains("244140625 copies"), "{e}");
+    assert_eq!(
+        isometries(&[rotation.clone(), rotation], 25).unwrap().len(),
+        25
+    );
+}
+
+#[test]
+fn error_zero_order() {
+    let e = isometries(
+        &[SymmetrySpec::Rotate {
+            point: [0.0; 3],
+            axis: [0.0, 0.0, 1.0],
+            order: 0,
+        }],
+        usize::MAX,
+    )
     .unwrap_err();
     assert_eq!(e, SymmetryError::ZeroOrder { index: 0 });
 }
 
 #[test]
 fn error_bad_point() {
-    let e = isometries(&[SymmetrySpec::Mirror {
-        point: [f64::NAN, 0.0, 0.0],
-        normal: [1.0, 0.0, 0.0],
-    }])
+    let e = isometries(
+        &[SymmetrySpec::Mirror {
+            point: [f64::NAN, 0.0, 0.0],
+            normal: [1.0, 0.0, 0.0],
+        }],
+        usize::MAX,
+    )
     .unwrap_err();
     assert!(matches!(e, SymmetryError::BadPoint { index: 0, .. }), "{e}");
 }
