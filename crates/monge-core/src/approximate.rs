@@ -49,7 +49,7 @@ use rstar::RTree;
 
 use crate::conical::conical_dual;
 use crate::design::{Design, GuideSpec, MeshKind, Xyz};
-use crate::generate::{generate, GenerateOptions};
+use crate::generate::{generate, GenerateOptions, MAX_SIZE, MIN_SIZE};
 use crate::grid::{bbox_diagonal, QuadGrid};
 
 mod patches;
@@ -146,6 +146,26 @@ pub enum ApproxError {
         index: usize,
         /// Its coordinates.
         point: Xyz,
+    },
+    /// The grid asked for has more vertices than a mesh may have.
+    #[error(
+        "a grid of {0} × {1} faces has more vertices than the limit of {2} a generated mesh may \
+         have: give a coarser grid (e.g. --grid 40x40)"
+    )]
+    GridTooLarge(usize, usize, usize),
+    /// The target is too small or too large for double precision.
+    #[error(
+        "the target's size (its bounding-box diagonal) is {size:e}, outside [{min:e}, {max:e}]: \
+         at such scales squared lengths underflow or overflow in double precision. Rescale the \
+         target (e.g. use other units)"
+    )]
+    ScaleOutOfRange {
+        /// The bounding-box diagonal of the target points.
+        size: f64,
+        /// [`crate::generate::MIN_SIZE`].
+        min: f64,
+        /// [`crate::generate::MAX_SIZE`].
+        max: f64,
     },
     /// The grid asked for is too small.
     #[error(
@@ -362,6 +382,14 @@ impl TargetCloud {
             return Err(ApproxError::NotFinite {
                 index,
                 point: points[index].to_array(),
+            });
+        }
+        let size = bbox_diagonal(points);
+        if !(MIN_SIZE..=MAX_SIZE).contains(&size) {
+            return Err(ApproxError::ScaleOutOfRange {
+                size,
+                min: MIN_SIZE,
+                max: MAX_SIZE,
             });
         }
         let tree = RTree::bulk_load(
@@ -1501,6 +1529,10 @@ pub fn approximate(
     let (fu, fv) = options.faces;
     if fu < 4 || fv < 4 {
         return Err(ApproxError::GridTooSmall(fu, fv));
+    }
+    let limit = GenerateOptions::default().max_vertices;
+    if (fu + 1).saturating_mul(fv + 1) > limit {
+        return Err(ApproxError::GridTooLarge(fu, fv, limit));
     }
     let target = TargetCloud::new(points)?;
     let mut guesses = initial_guesses(&target)?;

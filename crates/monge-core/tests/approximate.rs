@@ -324,6 +324,20 @@ fn every_error_is_triggered() {
         ApproxError::NotFinite { index: 7, .. }
     ));
     assert_eq!(run(&plane, &quick(3)), ApproxError::GridTooSmall(3, 3));
+    // Once "no design found can be generated without folds", after the whole search.
+    let limit = GenerateOptions::default().max_vertices;
+    assert_eq!(
+        run(&plane, &quick(100_000)),
+        ApproxError::GridTooLarge(100_000, 100_000, limit)
+    );
+    // Points of size 1e160 once kept the search running past its time limit.
+    for scale in [1e160, 1e-120] {
+        let scaled: Vec<DVec3> = plane.iter().map(|p| *p * scale).collect();
+        assert!(matches!(
+            run(&scaled, &quick(8)),
+            ApproxError::ScaleOutOfRange { .. }
+        ));
+    }
     assert!(matches!(run(&plane, &quick(8)), ApproxError::Flat { .. }));
     let target = generate(&roof(11), &GenerateOptions::default())
         .unwrap()
