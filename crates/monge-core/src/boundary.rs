@@ -257,9 +257,18 @@ pub enum AlignError {
         /// What is wrong.
         problem: String,
     },
-    /// Fewer than 3 samples per guide.
-    #[error("samples is {0}: give at least 3 samples per guide")]
-    Samples(usize),
+    /// Fewer than 3 samples per guide, or more than the vertex limit allows.
+    #[error(
+        "samples is {given}: give 3 to {max} samples per guide (the mesh has samples² vertices, \
+         at most the {} a generated mesh may have)",
+        max * max
+    )]
+    Samples {
+        /// Samples given.
+        given: usize,
+        /// The most samples whose square is within the generator's vertex limit.
+        max: usize,
+    },
 }
 
 /// Names of P1 … P4 as in the file format.
@@ -342,8 +351,9 @@ fn solve_gram(g: f64, a: f64, b: f64) -> (f64, f64) {
 /// Samples requested, validated.
 fn sample_count(spec: &BoundarySpec, options: &AlignOptions) -> Result<usize, AlignError> {
     let n = spec.samples.unwrap_or(options.samples);
-    if n < 3 {
-        return Err(AlignError::Samples(n));
+    let max = GenerateOptions::default().max_vertices.isqrt();
+    if !(3..=max).contains(&n) {
+        return Err(AlignError::Samples { given: n, max });
     }
     Ok(n)
 }

@@ -397,8 +397,18 @@ fn facade_errors() {
     };
     assert!(matches!(
         align(&s, &AlignOptions::default()),
-        Err(AlignError::Samples(2))
+        Err(AlignError::Samples { given: 2, .. })
     ));
+    // Once "no admissible θ … every such mesh folds".
+    let s = BoundarySpec {
+        samples: Some(100_000),
+        ..facade()
+    };
+    let e = align(&s, &AlignOptions::default()).unwrap_err();
+    assert!(
+        matches!(e, AlignError::Samples { given: 100_000, max } if max * max <= 25_000_000),
+        "{e}"
+    );
     let mut s = facade();
     s.first_row.normal = [0.0, 0.0, 0.0];
     assert!(matches!(
