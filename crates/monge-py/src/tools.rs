@@ -17,6 +17,7 @@ use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
 use monge_io::{
     parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat, ScheduleJson,
 };
+use numpy::ndarray::IxDyn;
 use numpy::{
     PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
 };
@@ -194,34 +195,70 @@ pub fn check<'py>(
 /// circular arcs (`center`, `radius`, `normal`, `start`, `end`, `sweep_deg`);
 /// and `nurbs`, the whole net as one exact degree-2 NURBS surface
 /// (`control_points` (R, C, 3), `weights` (R, C), `knots_u`, `knots_v`).
+///
+/// `max_bytes` (default 8e9, 8 GB, as the command's `--max-output`) bounds the
+/// memory the result takes: a net whose patches, arcs and NURBS surface would
+/// take more (about 24 bytes a sample point, 1.2 kB an arc) is refused before
+/// anything is built; lower `samples`, or raise `max_bytes`.
 #[pyfunction]
-#[pyo3(signature = (design, samples = 9, allow_folded = false))]
+#[pyo3(signature = (design, samples = 9, allow_folded = false, max_bytes = MAX_BYTES))]
 pub fn smooth<'py>(
     py: Python<'py>,
     design: &Bound<'py, PyAny>,
     samples: usize,
     allow_folded: bool,
+    max_bytes: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (grid, context) =
-        if let Ok(mesh) = design.cast::<Mesh>() {
-            match &mesh.get().geometry {
-                Geometry::Circular(g) => (g.clone(), None),
-                Geometry::Conical(_) => return Err(SmoothError::new_err(
-                    "a cyclidic net (§4.4) is built on a circular mesh with node axes, not on a \
-                     conical mesh: pass the design, or generate(design, kind=\"circular\")",
-                )),
-            }
-        } else {
-            let design = design.cast::<Design>()?.borrow();
-            let g = generate(&design.inner, &GenerateOptions::default())
-                .map_err(|e| generate_error(design.context(), &e))?;
-            (g.grid, design.source.clone())
-        };
     if !(2..=1000).contains(&samples) {
         return Err(SmoothError::new_err(format!(
             "samples = {samples}: give K in 2..=1000 (K × K points a patch)"
         )));
     }
+    let mesh = design.cast::<Mesh>().ok();
+    let design = match mesh {
+        Some(_) => None,
+        None => Some(design.cast::<Design>()?.borrow()),
+    };
+    // The size of the net, known before anything is built.
+    let (rows, cols, coarser) = match (&mesh, &design) {
+        (Some(m), _) => {
+            let g = m.get().geometry.grid();
+            (g.rows, g.cols, "pass a coarser mesh")
+        }
+        (None, Some(d)) => (
+            d.inner.guide_u.sample_count(),
+            d.inner.guide_v.sample_count(),
+            "use fewer guide samples",
+        ),
+        (None, None) => unreachable!("either a Mesh or a Design"),
+    };
+    let (what, bytes) = smooth_memory(rows, cols, samples);
+    check_memory(
+        "smooth",
+        bytes,
+        max_bytes,
+        &what,
+        &format!("lower samples (K × K points a patch) or {coarser}"),
+        SmoothError::new_err,
+    )?;
+    let (grid, context) =
+        match (&mesh, &design) {
+            (Some(m), _) => match &m.get().geometry {
+                Geometry::Circular(g) => (g.clone(), None),
+                Geometry::Conical(_) => return Err(SmoothError::new_err(
+                    "a cyclidic net (§4.4) is built on a circular mesh with node axes, not on a \
+                     conical mesh: pass the design, or generate(design, kind=\"circular\")",
+                )),
+            },
+            (None, Some(d)) => {
+                let inner = &d.inner;
+                let g = py
+                    .detach(|| generate(inner, &GenerateOptions::default()))
+                    .map_err(|e| generate_error(d.context(), &e))?;
+                (g.grid, d.source.clone())
+            }
+            (None, None) => unreachable!("either a Mesh or a Design"),
+        };
     let options = CyclidicOptions {
         allow_folded,
         ..CyclidicOptions::default()
@@ -232,13 +269,23 @@ pub fn smooth<'py>(
             let context = context.map(|c| format!("{c}: the cyclidic net"));
             SmoothError::new_err(text(context.as_deref(), e))
         })?;
-    let (rows, cols) = (net.rows() - 1, net.cols() - 1);
-    let points: Vec<DVec3> = (0..rows)
-        .flat_map(|i| (0..cols).map(move |j| (i, j)))
-        .flat_map(|(i, j)| net.sample_patch(i, j, samples))
-        .collect();
+    // The patches written straight into the array returned (no copy of it held).
+    let (fr, fc, k) = (net.rows() - 1, net.cols() - 1, samples);
+    let patches = PyArrayDyn::<f64>::zeros(py, IxDyn(&[fr, fc, k, k, 3]), false);
+    {
+        let mut array = patches.readwrite();
+        let out = array.as_slice_mut()?;
+        py.detach(|| {
+            for (p, chunk) in out.chunks_exact_mut(k * k * 3).enumerate() {
+                let points = net.sample_patch(p / fc, p % fc, k);
+                for (c, q) in chunk.chunks_exact_mut(3).zip(points) {
+                    c.copy_from_slice(&q.to_array());
+                }
+            }
+        });
+    }
     let lines = PyList::empty(py);
-    for line in net.curvature_lines() {
+    for line in net.curvature_lines_iter() {
         let arcs = PyList::empty(py);
         for a in &line.arcs {
             let arc = PyDict::new(py);
@@ -276,13 +323,97 @@ pub fn smooth<'py>(
     nurbs.set_item("knots_u", &s.knots_u)?;
     nurbs.set_item("knots_v", &s.knots_v)?;
     let d = PyDict::new(py);
-    d.set_item(
-        "patches",
-        points_array(py, &points, &[rows, cols, samples, samples])?,
-    )?;
+    d.set_item("patches", patches)?;
     d.set_item("lines", lines)?;
     d.set_item("nurbs", nurbs)?;
     Ok(d)
+}
+
+/// Default of `max_bytes` of `smooth` and `fabricate`: 8 GB (10⁹ bytes), the
+/// `monge` command's default `--max-output`.
+const MAX_BYTES: f64 = 8e9;
+
+/// Bytes of memory a Python arc dict of `smooth` takes (measured: 1.0–1.3 kB).
+const SMOOTH_BYTES_PER_ARC: f64 = 1200.0;
+
+/// Bytes of memory `fabricate` takes per face and layer (the panels', beams' and
+/// layers' dicts, with the schedule's JSON text while it is parsed), and per face
+/// of the base mesh (its nodes): measured (peak resident memory) on
+/// examples/fig13-freeform.json made finer (120 × 120 faces: 11.4 kB a face with
+/// one layer, 7.7 kB a face and layer with eight).
+const FABRICATE_BYTES_PER_FACE_LAYER: f64 = 9_000.0;
+const FABRICATE_BYTES_PER_FACE: f64 = 3_000.0;
+
+/// What `smooth` returns for a net on a `rows × cols` mesh with `k × k` samples a
+/// patch, and about how many bytes it takes: 24 bytes a sample point, the arcs
+/// (at most one a mesh edge) as dicts, the NURBS surface's control points and
+/// weights (32 bytes each), and the mesh and the net while they are built (about
+/// 3 kB a vertex). Measured (peak resident memory) on examples/fig13-freeform.json
+/// made finer (120 × 120 faces): 5.3 kB a face with 2 × 2 samples a patch, 43.6 kB
+/// with 40 × 40 (of which 38.4 kB of patches).
+fn smooth_memory(rows: usize, cols: usize, k: usize) -> (String, f64) {
+    let (fr, fc) = (rows.saturating_sub(1), cols.saturating_sub(1));
+    let arcs = rows * fc + cols * fr;
+    let nurbs = (2 * rows).saturating_sub(1) * (2 * cols).saturating_sub(1);
+    let bytes = 24.0 * (fr * fc) as f64 * (k * k) as f64
+        + SMOOTH_BYTES_PER_ARC * arcs as f64
+        + 32.0 * nurbs as f64
+        + 3000.0 * (rows * cols) as f64;
+    (
+        format!("{fr} × {fc} patches of {k} × {k} points, {arcs} arcs and the NURBS surface"),
+        bytes,
+    )
+}
+
+/// `x` as Python writes a float's value in messages: `nan`, `inf`, `-1.0`, `1e+20`.
+pub fn py_float(x: f64) -> String {
+    if x.is_nan() {
+        "nan".to_owned()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.to_owned()
+    } else if x != 0.0 && !(1e-4..1e16).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// `bytes` as `1.2 GB` or `345 MB` (10⁹ and 10⁶ bytes).
+fn size_text(bytes: f64) -> String {
+    if bytes >= 1e9 {
+        format!("{:.1} GB", bytes / 1e9)
+    } else {
+        format!("{:.0} MB", bytes / 1e6)
+    }
+}
+
+/// Refuses, before any work, a result of `function` estimated at `bytes` of
+/// memory above `max_bytes`: `what` says what it holds, `lower` which argument
+/// makes it smaller.
+fn check_memory(
+    function: &str,
+    bytes: f64,
+    max_bytes: f64,
+    what: &str,
+    lower: &str,
+    error: fn(String) -> PyErr,
+) -> PyResult<()> {
+    if max_bytes.is_nan() || max_bytes <= 0.0 {
+        return Err(error(format!(
+            "max_bytes = {}: give a positive number of bytes (default {MAX_BYTES:e}, \
+             8 GB; float(\"inf\") for no limit)",
+            py_float(max_bytes)
+        )));
+    }
+    if bytes > max_bytes {
+        return Err(error(format!(
+            "{function} would take about {} of memory ({what}), above max_bytes = {max_bytes:e} \
+             ({}): {lower}, or raise max_bytes if the machine has the memory",
+            size_text(bytes),
+            size_text(max_bytes)
+        )));
+    }
+    Ok(())
 }
 
 /// Everything a fabricator needs (§6), as `monge fabricate --full-json`: the contents of its
@@ -290,8 +421,13 @@ pub fn smooth<'py>(
 /// lists of dicts), and `layer_vertices`, each layer's vertices (rows, cols, 3):
 /// node offsets of a circular mesh, face offsets of a conical one.
 /// `radius_tol` defaults to `tol`; `angle_tol_deg` is in degrees.
+///
+/// `max_bytes` (default 8e9, 8 GB, as the command's `--max-output`) bounds the
+/// memory the result takes (about 10 kB a face and layer): a result that would
+/// take more is refused before anything is built; use fewer `layers` or fewer
+/// guide samples, or raise `max_bytes`.
 #[pyfunction]
-#[pyo3(signature = (design, layers = vec![0.0], tol = 1e-9, radius_tol = None, angle_tol_deg = 1e-4))]
+#[pyo3(signature = (design, layers = vec![0.0], tol = 1e-9, radius_tol = None, angle_tol_deg = 1e-4, max_bytes = MAX_BYTES))]
 pub fn fabricate<'py>(
     py: Python<'py>,
     design: &Design,
@@ -299,8 +435,26 @@ pub fn fabricate<'py>(
     tol: f64,
     radius_tol: Option<f64>,
     angle_tol_deg: f64,
+    max_bytes: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let context = design.context();
+    // The size of the result, known before anything is built.
+    let (fr, fc) = (
+        design.inner.guide_u.sample_count().saturating_sub(1),
+        design.inner.guide_v.sample_count().saturating_sub(1),
+    );
+    let faces = (fr * fc) as f64;
+    check_memory(
+        "fabricate",
+        faces * (FABRICATE_BYTES_PER_FACE + FABRICATE_BYTES_PER_FACE_LAYER * layers.len() as f64),
+        max_bytes,
+        &format!(
+            "the panels, beams and nodes of {fr} × {fc} faces and {} layer(s)",
+            layers.len()
+        ),
+        "use fewer layers or fewer guide samples",
+        FabricationError::new_err,
+    )?;
     let options = FabricationOptions {
         layers,
         tol,
@@ -321,15 +475,18 @@ pub fn fabricate<'py>(
     let mut schedule = Vec::new();
     write_schedule_json(&f, ScheduleJson::Full, &mut schedule)
         .map_err(|e| FabricationError::new_err(format!("cannot write the schedule: {e}")))?;
-    let d = py
-        .import("json")?
-        .call_method1("loads", (PyBytes::new(py, &schedule),))?
-        .cast_into::<PyDict>()?;
     let meshes = PyList::empty(py);
     for layer in &f.layers {
         let g = &layer.grid;
         meshes.append(points_array(py, &g.vertices, &[g.rows, g.cols])?)?;
     }
+    // Neither the fabrication nor a second copy of the text held while it is parsed.
+    drop(f);
+    let schedule = PyBytes::new(py, &std::mem::take(&mut schedule));
+    let d = py
+        .import("json")?
+        .call_method1("loads", (schedule,))?
+        .cast_into::<PyDict>()?;
     d.set_item("layer_vertices", meshes)?;
     Ok(d)
 }

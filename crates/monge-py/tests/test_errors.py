@@ -188,3 +188,45 @@ def test_optimise_errors(tmp_path, cli_error):
     assert str(e.value) == cli_error("fit", path, "-o", tmp_path / "f.json")
     with pytest.raises(monge.OptimiseError):
         monge.fit(patches)
+
+
+FREEFORM = example("fig13-freeform.json")  # 61 × 41 vertices, 60 × 40 faces
+
+
+def test_smooth_refuses_a_result_above_max_bytes_before_building_it():
+    design = monge.Design.from_file(FREEFORM)
+    # 60 × 40 patches of 1000 × 1000 points: 57.6 GB of patches alone
+    with pytest.raises(monge.SmoothError) as e:
+        monge.smooth(design, samples=1000)
+    assert str(e.value).startswith(
+        "smooth would take about 57.6 GB of memory (60 × 40 patches of 1000 × 1000 points, "
+    )
+    assert "above max_bytes = 8e9 (8.0 GB): lower samples (K × K points a patch) or use " \
+        "fewer guide samples, or raise max_bytes" in str(e.value)
+    # The estimate counts at least the patches returned.
+    s = monge.smooth(design, samples=4)
+    with pytest.raises(monge.SmoothError, match=r"above max_bytes = .*: lower samples"):
+        monge.smooth(design, samples=4, max_bytes=s["patches"].nbytes)
+    # On a mesh, the advice is a coarser mesh.
+    with pytest.raises(monge.SmoothError, match="lower samples .* or pass a coarser mesh"):
+        monge.smooth(monge.generate(design), samples=300, max_bytes=1e9)
+    assert monge.smooth(design, samples=4, max_bytes=float("inf"))["patches"].shape == (60, 40, 4, 4, 3)
+    for bad in (float("nan"), 0, -1.0):
+        with pytest.raises(monge.SmoothError, match=r"max_bytes = .*: give a positive number of bytes"):
+            monge.smooth(design, samples=4, max_bytes=bad)
+
+
+def test_fabricate_refuses_a_result_above_max_bytes_before_building_it():
+    design = monge.Design.from_file(FREEFORM)
+    with pytest.raises(monge.FabricationError) as e:
+        monge.fabricate(design, layers=[i * 0.01 for i in range(3000)])
+    assert str(e.value) == (
+        "fabricate would take about 64.8 GB of memory (the panels, beams and nodes of 60 × 40 "
+        "faces and 3000 layer(s)), above max_bytes = 8e9 (8.0 GB): use fewer layers or fewer "
+        "guide samples, or raise max_bytes if the machine has the memory"
+    )
+    with pytest.raises(monge.FabricationError, match=r"about 29 MB .* above max_bytes = 1e7 \(10 MB\)"):
+        monge.fabricate(design, layers=[0.0], max_bytes=1e7)
+    assert len(monge.fabricate(design, layers=[0.0, 0.1], max_bytes=1e8)["layer_vertices"]) == 2
+    with pytest.raises(monge.FabricationError, match="max_bytes = nan"):
+        monge.fabricate(design, max_bytes=float("nan"))

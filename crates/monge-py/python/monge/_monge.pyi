@@ -111,8 +111,17 @@ def check(
 ) -> Dict[str, Any]:
     """Independent measurements of a quad mesh (§2.2, §2.3) and its folded faces (§5.2), as ``monge check``."""
 
-def smooth(design: Union[Design, Mesh], samples: int = 9, allow_folded: bool = False) -> Dict[str, Any]:
-    """The cyclidic net (§4.4): patches, curvature lines as arcs, one NURBS surface."""
+def smooth(
+    design: Union[Design, Mesh],
+    samples: int = 9,
+    allow_folded: bool = False,
+    max_bytes: float = 8e9,
+) -> Dict[str, Any]:
+    """The cyclidic net (§4.4): patches, curvature lines as arcs, one NURBS surface.
+
+    Refused (SmoothError) before anything is built if the result would take more
+    than ``max_bytes`` of memory (default 8e9, 8 GB).
+    """
 
 def fabricate(
     design: Design,
@@ -120,8 +129,13 @@ def fabricate(
     tol: float = 1e-9,
     radius_tol: Optional[float] = None,
     angle_tol_deg: float = 1e-4,
+    max_bytes: float = 8e9,
 ) -> Dict[str, Any]:
-    """Layers, panels, beams, nodes and summary (§6), as ``monge fabricate``."""
+    """Layers, panels, beams, nodes and summary (§6), as ``monge fabricate``.
+
+    Refused (FabricationError) before anything is built if the result would take
+    more than ``max_bytes`` of memory (default 8e9, 8 GB; about 10 kB a face and layer).
+    """
 
 def scan(design: Design, values: Sequence[float], param: str = "theta") -> Dict[str, Any]:
     """Design-space scan (§4.3) in parallel, GIL released; returns columns."""
