@@ -25,7 +25,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 use pythonize::pythonize;
 
-use crate::design::{dict_to_json, json_to_python, parse_kind, Design};
+use crate::design::{dict_to_json, json_to_python, kind_name, parse_kind, Design};
 use crate::errors::{
     generate_error, io_error, text, FabricationError, MeshError, OptimiseError, ScanError,
     SmoothError,
@@ -627,10 +627,12 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
 /// The design whose exact mesh is nearest to a target, as `monge approximate`
 /// (monge's extension of the method): `points` is the target, any array of
 /// shape (..., 3) (a mesh's vertices or a point cloud). Returns the `design`
-/// found (a `Design`), the `initial` guess (a `Design`), its mesh's `vertices`
-/// and `normals` (rows, cols, 3), the deviation `before` and `after` (dicts of
-/// distances relative to the target's `size`), `theta_deg`, `evaluations`,
-/// `starts` and `timed_out`.
+/// found (a `Design`), the `initial` guess (a `Design`), its mesh's `kind`,
+/// `vertices` (rows, cols, 3) and `normals` (its node axes, (rows, cols, 3); None
+/// for `kind="conical"`, whose mesh is the conical dual, §2.3), its `max_error`
+/// as `check` measures it (the exactness the command prints), the deviation
+/// `before` and `after` (dicts of distances relative to the target's `size`),
+/// `theta_deg`, `evaluations`, `starts` and `timed_out`.
 #[pyfunction]
 #[pyo3(signature = (points, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false))]
 #[allow(clippy::too_many_arguments)]
@@ -662,9 +664,10 @@ pub fn approximate<'py>(
         }
         None => None,
     };
+    let kind = parse_kind(Some(kind), MeshKind::Circular)?;
     let options = ApproxOptions {
         faces: grid,
-        kind: parse_kind(Some(kind), MeshKind::Circular)?,
+        kind,
         starts,
         max_evaluations,
         deadline,
@@ -686,7 +689,14 @@ pub fn approximate<'py>(
         "vertices",
         points_array(py, &g.vertices, &[g.rows, g.cols])?,
     )?;
-    d.set_item("normals", points_array(py, &g.normals, &[g.rows, g.cols])?)?;
+    // A conical mesh has face normals, not node axes (§2.3).
+    let normals = match kind {
+        MeshKind::Circular => Some(points_array(py, &g.normals, &[g.rows, g.cols])?),
+        MeshKind::Conical => None,
+    };
+    d.set_item("kind", kind_name(kind))?;
+    d.set_item("normals", normals)?;
+    d.set_item("max_error", measurements(g, kind).1)?;
     d.set_item("before", pythonize(py, &r.before)?)?;
     d.set_item("after", pythonize(py, &r.after)?)?;
     d.set_item("evaluations", r.evaluations)?;

@@ -251,3 +251,28 @@ def test_approximate_equals_the_command_and_its_mesh_is_exact(cli, tmp_path):
         monge.approximate(points, time_limit=0.0)
     # Beyond what the clock holds: no limit (it once raised a PanicException).
     assert monge.approximate(points, grid=(8, 8), starts=1, max_evaluations=10, time_limit=1e20)
+
+
+def test_approximate_conical_equals_the_command(cli, tmp_path):
+    """kind="conical" returns the conical dual (§2.3): no node axes, the command's
+    design, and a mesh that is conical, measured with numpy (it once always
+    failed reshaping the missing normals)."""
+    target = example("targets/paraboloid.obj")
+    out = tmp_path / "fit.json"
+    cli("approximate", target, "-o", out, "--kind", "conical", "--grid", "6x6", "--starts", "1",
+        "--max-evaluations", "60")
+    points = np.array(
+        [[float(x) for x in line.split()[1:4]] for line in open(target) if line.startswith("v ")]
+    )
+    r = monge.approximate(points, grid=(6, 6), kind="conical", starts=1, max_evaluations=60)
+    assert r["design"] == monge.Design.from_file(out)
+    assert r["design"].mesh == "conical" and r["kind"] == "conical"
+    assert r["normals"] is None
+    v = r["vertices"]
+    assert v.shape == (7, 7, 3)
+    assert np.array_equal(v, monge.generate(r["design"]).vertices)
+    assert mnp.face_planarity(v) < 1e-9 and mnp.conical(v) < 1e-9
+    assert r["max_error"] == monge.check(v, kind="conical")["max_error"] <= 1e-9
+    circular = monge.approximate(points, grid=(6, 6), starts=1, max_evaluations=60)
+    assert circular["kind"] == "circular" and circular["normals"].shape == (7, 7, 3)
+    assert circular["max_error"] == monge.check(circular["vertices"], normals=circular["normals"])["max_error"]
