@@ -14,7 +14,7 @@ use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
 use monge_core::multipatch::{build, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
-use monge_io::{check_output, read_points, write_atomic, write_design, write_multipatch};
+use monge_io::{check_output, read_points, write_design_into, write_multipatch_into, Outputs};
 use monge_render::{RenderOptions, Scene};
 
 use crate::render::{distance_panel, sheet, Picture};
@@ -94,15 +94,14 @@ fn line(name: &str, d: &Deviation) -> String {
     )
 }
 
-/// The initial guess and the result side by side, coloured by their distance to the
-/// target on the initial guess's scale, written to `path`.
-fn write_picture(
+/// The picture of the initial guess and the result side by side, coloured by their
+/// distance to the target on the initial guess's scale.
+fn picture_bytes(
     r: &Approximation,
     result: &QuadGrid,
     target: &TargetCloud,
-    path: &std::path::Path,
     format: Picture,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<Vec<u8>> {
     let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
         let g = generate(design, &GenerateOptions::default())?;
         Ok(match design.mesh {
@@ -122,9 +121,7 @@ fn write_picture(
         height: 700,
         ..RenderOptions::default()
     };
-    let bytes = sheet(&[before, after], 2, &options, format)?;
-    write_atomic(path, |w| w.write_all(&bytes))?;
-    Ok(())
+    sheet(&[before, after], 2, &options, format)
 }
 
 /// The largest error of the patches of `design`, each measured on its own grid as by
@@ -198,20 +195,24 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     let better = patched
         .as_ref()
         .filter(|p| objective(&p.after) < objective(&r.after));
+    // The design and its picture change together or not at all.
+    let mut out = Outputs::new();
     let (grid, after) = match better {
         Some(p) => {
-            write_multipatch(&p.design, &args.output)?;
+            write_multipatch_into(&p.design, &args.output, &mut out)?;
             (&p.grid, p.after)
         }
         None => {
-            write_design(&r.design, &args.output)?;
+            write_design_into(&r.design, &args.output, &mut out)?;
             (&r.grid, r.after)
         }
     };
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
-        write_picture(&r, grid, &target, path, format)?;
+        let bytes = picture_bytes(&r, grid, &target, format)?;
+        out.write(path, |w| w.write_all(&bytes))?;
     }
+    out.commit()?;
     let m = measure(&r.grid);
     let exactness = match kind {
         MeshKind::Circular => m.max_error(),

@@ -7,7 +7,7 @@ use anyhow::Context;
 use monge_core::conical::conical_dual;
 use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, GenerateOptions, MeshKind};
-use monge_io::{read_design, write_fabrication, ScheduleJson};
+use monge_io::{check_output, read_design, write_fabrication, ScheduleJson, FABRICATION_FILES};
 
 use crate::output::{
     check_output_size, eprint, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
@@ -75,6 +75,18 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
             "--section takes WIDTH,DEPTH (two numbers), got {} number(s)",
             args.section.len()
         );
+    }
+    if let [w, d] = args.section[..] {
+        anyhow::ensure!(
+            w > 0.0 && d > 0.0 && w.is_finite() && d.is_finite(),
+            "--section {w},{d}: give a positive, finite width and depth"
+        );
+    }
+    // The files go into OUT: none of them may be the design.
+    if args.output.is_dir() {
+        for name in FABRICATION_FILES {
+            check_output(&args.output.join(name), &[&args.design])?;
+        }
     }
     let design = read_design(&args.design)?;
     let start = Instant::now();

@@ -11,8 +11,8 @@ use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode};
 pub use monge_io::generated::mode_name;
 use monge_io::generated::{json_extras, layers, node_offset, Layer};
 use monge_io::{
-    check_output, is_stdio, read_any_design, write_mesh_json, write_mesh_to, write_output,
-    AnyDesign, MeshFormat,
+    check_output, is_stdio, read_any_design, write_mesh_json, write_mesh_to, AnyDesign, MeshFormat,
+    Outputs,
 };
 use serde_json::{json, Map, Value};
 
@@ -47,7 +47,7 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
 
     let start = Instant::now();
     let layers = layers(&generated, design.mesh, &args.offsets);
-    write_layers(out, format, json_extras(&generated), &layers)?;
+    write_layers(out, &args.design, format, json_extras(&generated), &layers)?;
     let writing = start.elapsed().as_secs_f64();
 
     eprint(&summary(
@@ -72,32 +72,39 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
-/// Writes the layers: the first to OUT, each offset next to it, JSON with `extra`
-/// and each layer's own keys.
+/// Writes the layers as one set of files ([`Outputs`]: after an error none has
+/// changed): the first to OUT, each offset next to it, JSON with `extra` and each
+/// layer's own keys. No offset's file may be the design (`input`).
 fn write_layers(
     out: &Path,
+    input: &Path,
     format: MeshFormat,
     mut extra: Map<String, Value>,
     layers: &[Layer],
 ) -> anyhow::Result<()> {
+    let mut files = Outputs::new();
+    let mut paths = Vec::with_capacity(layers.len());
     for (k, layer) in layers.iter().enumerate() {
         let path = if k == 0 {
             out.to_path_buf()
         } else {
             offset_path(out, layer.offset)
         };
+        check_output(&path, &[input])?;
         extra.extend(layer.extra.clone());
-        write_output(&path, |w| match format {
+        files.write(&path, |w| match format {
             MeshFormat::Json => write_mesh_json(&layer.grid, &extra, w),
             other => write_mesh_to(&layer.grid, other, w),
         })?;
-        if k > 0 {
-            eprint(&format!(
-                "wrote the offset at {}: `{}`.\n",
-                num(layer.offset),
-                path.display()
-            ));
-        }
+        paths.push(path);
+    }
+    files.commit()?;
+    for (layer, path) in layers.iter().zip(&paths).skip(1) {
+        eprint(&format!(
+            "wrote the offset at {}: `{}`.\n",
+            num(layer.offset),
+            path.display()
+        ));
     }
     Ok(())
 }
@@ -119,11 +126,11 @@ fn run_developable(
     let mut extra = Map::new();
     extra.insert("alpha_deg".into(), json!(mesh.alpha_deg));
     let start = Instant::now();
-    write_layers(&args.output, format, extra, &layers)?;
+    write_layers(&args.output, &args.design, format, extra, &layers)?;
     let g = &mesh.grid;
     eprint(&format!(
         "{}: developable circular mesh (§3.3), slope α = {}°: {} rulings × {} cutting planes, \
-         {} faces (isosceles trapezoids). Generated in {} ms; wrote {} in {} ms.\n",
+         {} faces (isosceles trapezoids). Generated in {} ms; wrote {} `{}` in {} ms.\n",
         args.design.display(),
         num(mesh.alpha_deg),
         g.rows,
@@ -131,6 +138,7 @@ fn run_developable(
         g.face_count(),
         millis(generation),
         format.extension().to_uppercase(),
+        args.output.display(),
         millis(start.elapsed().as_secs_f64()),
     ));
     eprint(&far_from_origin_warning(&g.vertices).unwrap_or_default());

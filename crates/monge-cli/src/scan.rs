@@ -6,7 +6,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::scan::{parse_range, plot_svg, scan, to_csv, Scan, Status};
 use monge_core::GenerateOptions;
-use monge_io::{check_output, read_design, write_atomic};
+use monge_io::{check_output, read_design, Outputs};
 
 use crate::output::{eprint, num};
 use crate::Outcome;
@@ -71,11 +71,14 @@ pub fn run(args: &ScanArgs) -> anyhow::Result<Outcome> {
     let s = scan(&design, path, &values, &options, &|| bar.inc(1)).with_context(|| file.clone())?;
     bar.finish_and_clear();
     let csv = to_csv(&s);
-    write_atomic(&args.output, |w| w.write_all(csv.as_bytes()))?;
+    // The table and its plot change together or not at all.
+    let mut out = Outputs::new();
+    out.write(&args.output, |w| w.write_all(csv.as_bytes()))?;
     if let Some(plot) = &args.plot {
         let svg = plot_svg(&s);
-        write_atomic(plot, |w| w.write_all(svg.as_bytes()))?;
+        out.write(plot, |w| w.write_all(svg.as_bytes()))?;
     }
+    out.commit()?;
     eprint(&summary(&s));
     Ok(Outcome::Success)
 }

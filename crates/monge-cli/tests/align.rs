@@ -143,7 +143,7 @@ fn errors_exit_2_and_say_why() {
         .arg(&out)
         .assert()
         .code(2)
-        .stderr(predicate::str::contains("at least 3"));
+        .stderr(predicate::str::contains("give 3 to 5000 samples"));
     assert!(!out.exists());
 }
 

@@ -22,7 +22,8 @@ pub const STALE: Duration = Duration::from_secs(3600);
 /// untouched. The writer given to `f` is buffered. A new file gets the usual
 /// permissions (`0o666` less the umask on Unix). Errors are
 /// [`IoError::Write`] naming `path`, or [`IoError::Full`] when the file
-/// system refuses more bytes (full disk, quota, `ulimit -f`).
+/// system refuses more bytes (full disk, quota, `ulimit -f`). Several files
+/// that must change together are written with [`Outputs`].
 ///
 /// On Linux the temporary file is unnamed (`O_TMPFILE`): if the process is
 /// killed (`kill -9`, power cut) while `f` writes, it vanishes with the
@@ -45,41 +46,196 @@ pub fn write_atomic(
     path: &Path,
     f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<(), IoError> {
-    let err = |source| IoError::write(path, source);
-    let dir = existing_directory(path)?;
-    let prefix = match path.file_name() {
-        Some(name) => format!(".{}.", name.to_string_lossy()),
-        None => {
+    Outputs {
+        files: vec![Pending::write(path, f)?],
+    }
+    .commit()
+}
+
+/// The files of one command, written as one: each is written and synced beside
+/// its path as [`write_atomic`] does, and none replaces its path before every
+/// one is complete ([`Outputs::commit`]). If one fails, or the set is dropped
+/// without a commit, no file at any of the paths has changed. `-` is standard
+/// output, written at once.
+///
+/// ```
+/// # let dir = tempfile::tempdir().unwrap();
+/// let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+/// std::fs::write(&a, "old").unwrap();
+/// let mut out = monge_io::Outputs::new();
+/// out.write(&a, |w| w.write_all(b"new")).unwrap();
+/// // The second file fails: the first keeps its old content.
+/// let e = out.write(&b, |_| Err(std::io::Error::other("no")));
+/// assert!(e.is_err());
+/// drop(out);
+/// assert_eq!(std::fs::read_to_string(&a).unwrap(), "old");
+/// assert!(!b.exists());
+/// ```
+#[derive(Default)]
+pub struct Outputs {
+    files: Vec<Pending>,
+}
+
+impl Outputs {
+    /// No file yet.
+    pub fn new() -> Self {
+        Outputs::default()
+    }
+
+    /// Writes `path` beside it (or to standard output if `path` is `-`), to be
+    /// put in place by [`Outputs::commit`]. A path given twice is
+    /// [`IoError::SameOutput`].
+    pub fn write(
+        &mut self,
+        path: &Path,
+        f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> Result<(), IoError> {
+        if is_stdio(path) {
+            return write_stdout(f);
+        }
+        self.check_new(path)?;
+        self.files.push(Pending::write(path, f)?);
+        Ok(())
+    }
+
+    /// Writes `paths[k]` with `f(k, …)`, as many at once as the machine has
+    /// cores (as [`Outputs::write`] each); the first error in the order of the
+    /// paths is returned.
+    pub fn write_each(
+        &mut self,
+        paths: &[PathBuf],
+        f: impl Fn(usize, &mut dyn Write) -> io::Result<()> + Sync + Send,
+    ) -> Result<(), IoError> {
+        for path in paths {
+            self.check_new(path)?;
+        }
+        let written =
+            monge_core::tasks::map(paths.len(), |k| Pending::write(&paths[k], |w| f(k, w)));
+        for file in written {
+            self.files.push(file?);
+        }
+        Ok(())
+    }
+
+    /// Puts every file in place, then syncs their directories: first each is
+    /// given its hidden name beside its path (where a name the file system
+    /// refuses fails, with every path still as it was), then each is renamed
+    /// over its path.
+    pub fn commit(self) -> Result<(), IoError> {
+        let named = self
+            .files
+            .into_iter()
+            .map(|f| {
+                let tmp = f
+                    .staged
+                    .named(&f.dir, &temp_builder(&f.prefix))
+                    .map_err(|source| IoError::write(&f.path, source))?;
+                Ok((f.path, f.dir, tmp))
+            })
+            .collect::<Result<Vec<_>, IoError>>()?;
+        let mut dirs: Vec<PathBuf> = Vec::new();
+        for (path, dir, tmp) in named {
+            tmp.persist(&path)
+                .map_err(|e| IoError::write(&path, e.error))?;
+            if !dirs.contains(&dir) {
+                dirs.push(dir);
+            }
+        }
+        // Makes the renames durable across a power cut (elsewhere than Unix a
+        // rename needs no more). The files are in place by now, so a directory
+        // that refuses to be synced (some network file systems) is not an error.
+        #[cfg(unix)]
+        for dir in dirs {
+            if let Ok(d) = File::open(&dir) {
+                let _ = d.sync_all();
+            }
+        }
+        Ok(())
+    }
+
+    fn check_new(&self, path: &Path) -> Result<(), IoError> {
+        let key = canonical(path);
+        if self
+            .files
+            .iter()
+            .any(|f| f.path == path || (key.is_some() && canonical(&f.path) == key))
+        {
+            return Err(IoError::SameOutput {
+                path: path.to_owned(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A file of [`Outputs`] written and synced beside its path, not yet in place.
+struct Pending {
+    path: PathBuf,
+    dir: PathBuf,
+    prefix: String,
+    staged: Staged,
+}
+
+impl Pending {
+    /// Writes the temporary file of `path` with `f`, flushed and synced.
+    fn write(
+        path: &Path,
+        f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> Result<Pending, IoError> {
+        let err = |source| IoError::write(path, source);
+        let dir = existing_directory(path)?;
+        // A rename over a directory would fail only at the commit.
+        if path.is_dir() {
             return Err(err(io::Error::new(
                 io::ErrorKind::InvalidInput,
-                "not a file name",
-            )))
+                "it is a directory: give a file name",
+            )));
         }
-    };
+        let prefix = match path.file_name() {
+            Some(name) => format!(".{}.", name.to_string_lossy()),
+            None => {
+                return Err(err(io::Error::new(
+                    io::ErrorKind::InvalidInput,
+                    "not a file name",
+                )))
+            }
+        };
+        remove_stale(dir, &prefix);
+        let staged = Staged::create(dir, &temp_builder(&prefix)).map_err(err)?;
+        {
+            let mut w = BufWriter::with_capacity(BUFFER, Writeback::new(staged.file()));
+            f(&mut w).map_err(err)?;
+            w.flush().map_err(err)?;
+        }
+        staged.file().sync_all().map_err(err)?;
+        Ok(Pending {
+            path: path.to_owned(),
+            dir: dir.to_owned(),
+            prefix,
+            staged,
+        })
+    }
+}
+
+/// The builder of the temporary names `PREFIX` + 6 characters + `.tmp`.
+fn temp_builder(prefix: &str) -> tempfile::Builder<'_, 'static> {
     let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".tmp");
+    builder.prefix(prefix).suffix(".tmp");
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    remove_stale(dir, &prefix);
-    let staged = Staged::create(dir, &builder).map_err(err)?;
-    {
-        let mut w = BufWriter::with_capacity(BUFFER, Writeback::new(staged.file()));
-        f(&mut w).map_err(err)?;
-        w.flush().map_err(err)?;
-    }
-    staged.file().sync_all().map_err(err)?;
-    staged.persist(dir, path, &builder).map_err(err)?;
-    // Makes the rename durable across a power cut (elsewhere than Unix a
-    // rename needs no more). The file is in place by now, so a directory that
-    // refuses to be synced (some network file systems) is not an error.
-    #[cfg(unix)]
-    if let Ok(d) = File::open(dir) {
-        let _ = d.sync_all();
-    }
-    Ok(())
+    builder
+}
+
+/// `path` with its directory canonicalised, if that directory exists.
+fn canonical(path: &Path) -> Option<PathBuf> {
+    existing_directory(path)
+        .ok()
+        .and_then(|dir| dir.canonicalize().ok())
+        .zip(path.file_name())
+        .map(|(dir, name)| dir.join(name))
 }
 
 /// Bytes written between two requests of [`Writeback`] to start writing
@@ -203,10 +359,11 @@ impl Staged {
         }
     }
 
-    /// Renames the complete file to `path` (in `dir`), replacing any file there.
+    /// The complete file under its hidden name in `dir` (linked there if it
+    /// was unnamed), ready to be renamed over its path; removed if dropped.
     /// (`dir` and `builder` serve the unnamed file, which only Linux makes.)
     #[cfg_attr(not(target_os = "linux"), allow(unused_variables))]
-    fn persist(self, dir: &Path, path: &Path, builder: &tempfile::Builder) -> io::Result<()> {
+    fn named(self, dir: &Path, builder: &tempfile::Builder) -> io::Result<tempfile::TempPath> {
         match self {
             #[cfg(target_os = "linux")]
             Staged::Unnamed(file) => {
@@ -216,9 +373,9 @@ impl Staged {
                     rustix::fs::linkat(CWD, proc.as_str(), CWD, tmp, AtFlags::SYMLINK_FOLLOW)
                         .map_err(io::Error::from)
                 })?;
-                linked.persist(path).map_err(|e| e.error)
+                Ok(linked.into_temp_path())
             }
-            Staged::Named(tmp) => tmp.persist(path).map(drop).map_err(|e| e.error),
+            Staged::Named(tmp) => Ok(tmp.into_temp_path()),
         }
     }
 }
@@ -257,12 +414,8 @@ pub fn check_output(path: &Path, inputs: &[&Path]) -> Result<(), IoError> {
     if is_stdio(path) {
         return Ok(());
     }
-    let dir = existing_directory(path)?;
-    let canonical = dir
-        .canonicalize()
-        .ok()
-        .zip(path.file_name())
-        .map(|(dir, name)| dir.join(name));
+    existing_directory(path)?;
+    let canonical = canonical(path);
     let same = |input: &&Path| {
         !is_stdio(input) && canonical.is_some() && input.canonicalize().ok() == canonical
     };
@@ -281,9 +434,13 @@ pub fn write_output(
     path: &Path,
     f: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<(), IoError> {
-    if !is_stdio(path) {
-        return write_atomic(path, f);
-    }
+    let mut out = Outputs::new();
+    out.write(path, f)?;
+    out.commit()
+}
+
+/// Writes to standard output, buffered; errors name `<stdout>`.
+fn write_stdout(f: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), IoError> {
     let stdout = io::stdout();
     let mut w = BufWriter::with_capacity(BUFFER, stdout.lock());
     f(&mut w)

@@ -6,8 +6,9 @@ use std::path::Path;
 use monge_core::design::{Design, GuideSpec};
 use monge_core::developable::DevelopableDesign;
 use serde::de::DeserializeOwned;
+use serde::Serialize;
 
-use crate::atomic::write_atomic;
+use crate::atomic::Outputs;
 use crate::error::IoError;
 use crate::kind::{expect_kind, FileKind};
 use crate::path_name;
@@ -277,9 +278,16 @@ fn json_message(e: &serde_json::Error) -> String {
 /// Refuses non-finite numbers ([`IoError::NonFinite`]), which neither format
 /// could read back.
 pub fn write_design(design: &Design, path: &Path) -> Result<(), IoError> {
+    let mut out = Outputs::new();
+    write_design_into(design, path, &mut out)?;
+    out.commit()
+}
+
+/// [`write_design`] as one of several files of `out`, put in place by its commit.
+pub fn write_design_into(design: &Design, path: &Path, out: &mut Outputs) -> Result<(), IoError> {
     let format = DesignFormat::from_path(path)?;
     check_finite(design, &path_name(path))?;
-    write_atomic(path, |w| write_design_to(design, format, w))
+    out.write(path, |w| write_design_to(design, format, w))
 }
 
 /// Writes a design to `w` as pretty JSON or TOML (non-finite numbers are written
@@ -289,13 +297,22 @@ pub fn write_design_to<W: Write + ?Sized>(
     format: DesignFormat,
     w: &mut W,
 ) -> io::Result<()> {
+    write_pretty(design, format, w)
+}
+
+/// Writes any design file's value to `w` as pretty JSON or TOML.
+pub(crate) fn write_pretty<T: Serialize, W: Write + ?Sized>(
+    value: &T,
+    format: DesignFormat,
+    w: &mut W,
+) -> io::Result<()> {
     match format {
         DesignFormat::Json => {
-            serde_json::to_writer_pretty(&mut *w, design)?;
+            serde_json::to_writer_pretty(&mut *w, value)?;
             w.write_all(b"\n")
         }
         DesignFormat::Toml => {
-            let text = toml::to_string_pretty(design)
+            let text = toml::to_string_pretty(value)
                 .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
             w.write_all(text.as_bytes())
         }

@@ -95,6 +95,17 @@ pub enum IoError {
         path: PathBuf,
     },
 
+    /// Two outputs of one command are the same file.
+    #[error(
+        "`{}` would be written twice by this command (two of its outputs name the same \
+         file): give each output its own path",
+        path.display()
+    )]
+    SameOutput {
+        /// The path given the second time.
+        path: PathBuf,
+    },
+
     /// A file is of another kind than the command reads (a multi-patch design
     /// given to `monge generate`, a design given to `monge check`, …).
     #[error("{file} is {found}, not {expected}: use {}", found.commands())]

@@ -13,7 +13,7 @@ use crate::schedule::{
     ScheduleJson,
 };
 use crate::svg::write_overview_svg;
-use crate::write_atomic;
+use crate::Outputs;
 
 /// The files [`write_fabrication`] writes, in order (§6).
 pub const FABRICATION_FILES: [&str; 9] = [
@@ -29,8 +29,8 @@ pub const FABRICATION_FILES: [&str; 9] = [
 ];
 
 /// Writes the schedules, drawings and model of a gridshell into `dir` (§6),
-/// creating it if needed, each file atomically ([`write_atomic`]); returns the
-/// paths written, in the order of [`FABRICATION_FILES`]. Beams in the glTF are
+/// creating it if needed, the files as one ([`Outputs`]: after an error none
+/// has changed); returns the paths written, in the order of [`FABRICATION_FILES`]. Beams in the glTF are
 /// swept with a `section.0 × section.1` rectangle (width along the beam plane's
 /// normal, depth in the plane); `schedule.json` holds `json`.
 pub fn write_fabrication(
@@ -60,13 +60,10 @@ pub fn write_fabrication(
         .map(|name| dir.join(name))
         .collect();
     // The files are independent: as many are formatted and written at once as
-    // the machine has cores (each one atomically, as alone); the first error
-    // in the order of the files is returned, as when written one by one.
-    let results = monge_core::tasks::map(writers.len(), |k| {
-        write_atomic(&paths[k], |w| writers[k](w))
-    });
-    for result in results {
-        result?;
-    }
+    // the machine has cores; none replaces its path before all are written, and
+    // the first error in the order of the files is returned.
+    let mut out = Outputs::new();
+    out.write_each(&paths, |k, w| writers[k](w))?;
+    out.commit()?;
     Ok(paths)
 }

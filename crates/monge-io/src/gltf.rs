@@ -44,31 +44,40 @@ enum Shape<'a> {
 }
 
 impl Shape<'_> {
-    /// The number of vertices, their bounds (`f32`) and the number of indices.
-    fn size(&self) -> (usize, [[f32; 3]; 2], usize) {
+    /// The number of vertices, their bounds (`f32`) and the number of indices;
+    /// an error if a vertex is not finite in `f32` (glTF's positions are `f32`).
+    fn size(&self, part: &str) -> io::Result<(usize, [[f32; 3]; 2], usize)> {
         let widen = |bounds: &mut [[f32; 3]; 2], [lo, hi]: [[f32; 3]; 2]| {
             for k in 0..3 {
                 bounds[0][k] = bounds[0][k].min(lo[k]);
                 bounds[1][k] = bounds[1][k].max(hi[k]);
             }
         };
+        // Widens `bounds` by `p`; whether `p` is finite in `f32`.
         let bound = |bounds: &mut [[f32; 3]; 2], p: DVec3| {
-            let p = p.as_vec3().to_array();
-            widen(bounds, [p, p]);
+            let q = p.as_vec3();
+            widen(bounds, [q.to_array(); 2]);
+            q.is_finite()
         };
         let mut bounds = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
-        match self {
+        let mut finite = true;
+        let (count, indices) = match self {
             Shape::Grid(faces) => {
                 let vertices = &faces.grid.vertices;
                 // Blocks of vertices side by side (min and max in any order).
                 let blocks =
                     monge_core::tasks::ranges(vertices.len(), monge_core::tasks::BLOCK, |r| {
                         let mut block = [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]];
-                        vertices[r].iter().for_each(|p| bound(&mut block, *p));
-                        block
+                        let finite = vertices[r]
+                            .iter()
+                            .fold(true, |ok, p| bound(&mut block, *p) & ok);
+                        (block, finite)
                     });
-                blocks.into_iter().for_each(|b| widen(&mut bounds, b));
-                (vertices.len(), bounds, 6 * faces.count())
+                for (b, ok) in blocks {
+                    widen(&mut bounds, b);
+                    finite &= ok;
+                }
+                (vertices.len(), 6 * faces.count())
             }
             Shape::Produced {
                 positions,
@@ -76,14 +85,25 @@ impl Shape<'_> {
             } => {
                 let mut count = 0;
                 positions(&mut |p| {
-                    bound(&mut bounds, p);
+                    finite &= bound(&mut bounds, p);
                     count += 1;
                 });
                 let mut indices = 0;
                 triangles(&mut |_| indices += 3);
-                (count, bounds, indices)
+                (count, indices)
             }
+        };
+        if !finite {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "the part `{part}` has a coordinate that is not finite in 32-bit floats (NaN, \
+                     infinite, or beyond ±3.4e38), which glTF stores: rescale the model or \
+                     write another format"
+                ),
+            ));
         }
+        Ok((count, bounds, indices))
     }
 
     /// Appends the positions (`f32`), then the indices (`u32`).
@@ -209,7 +229,7 @@ fn write_parts<W: Write + ?Sized>(
     let mut offset = 0;
     let mut kept = Vec::new();
     for part in parts {
-        let (count, [lo, hi], indices) = part.shape.size();
+        let (count, [lo, hi], indices) = part.shape.size(&part.name)?;
         if indices == 0 {
             continue;
         }

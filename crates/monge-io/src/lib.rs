@@ -47,10 +47,10 @@ use std::fs::{File, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
 
-pub use atomic::{check_output, is_stdio, write_atomic, write_output, STALE};
+pub use atomic::{check_output, is_stdio, write_atomic, write_output, Outputs, STALE};
 pub use design::{
     parse_any_design, parse_design, parse_design_named, read_any_design, read_design, write_design,
-    write_design_to, AnyDesign, DesignFormat,
+    write_design_into, write_design_to, AnyDesign, DesignFormat,
 };
 pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
@@ -65,7 +65,7 @@ pub use mesh_write::{
 };
 pub use multipatch::{
     parse_multipatch, parse_planes, read_multipatch, read_planes, write_multipatch,
-    write_quad_mesh, write_quad_mesh_to,
+    write_multipatch_into, write_quad_mesh, write_quad_mesh_to,
 };
 pub use net::{conical_has_no_net, write_net_json};
 pub use points_read::{read_points, IGES_TARGET_POINTS};

@@ -205,6 +205,9 @@ pub fn write_ply_binary<W: Write + ?Sized>(
     w: &mut W,
 ) -> io::Result<()> {
     check_grid(grid)?;
+    if f32 {
+        check_f32(grid)?;
+    }
     let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
     grid_quads(grid, &comment).ply_binary(f32, w)
 }
@@ -472,6 +475,34 @@ pub fn write_mesh_json<W: Write + ?Sized>(
     })
 }
 
+/// Refuses a grid with a coordinate beyond `f32`'s range (±3.4e38), which a
+/// `float` PLY would hold as infinite.
+fn check_f32(grid: &QuadGrid) -> io::Result<()> {
+    match first_where(&grid.vertices, |p| !p.as_vec3().is_finite()) {
+        Some(k) => Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "vertex ({}, {}) is {}, beyond the range of 32-bit floats (±3.4e38): rescale \
+                 the model or write 64-bit coordinates (PLY `double`)",
+                k / grid.cols,
+                k % grid.cols,
+                grid.vertices[k]
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The first index of `points` where `bad` holds, blocks of points searched side by side.
+fn first_where(points: &[DVec3], bad: impl Fn(&DVec3) -> bool + Sync) -> Option<usize> {
+    monge_core::tasks::ranges(points.len(), monge_core::tasks::BLOCK, |r| {
+        r.clone().find(|&k| bad(&points[k]))
+    })
+    .into_iter()
+    .flatten()
+    .next()
+}
+
 /// Refuses a grid whose counts disagree or that has a non-finite coordinate
 /// (which no format could read back).
 fn check_grid(grid: &QuadGrid) -> io::Result<()> {
@@ -493,11 +524,7 @@ fn check_grid(grid: &QuadGrid) -> io::Result<()> {
         ));
     }
     for (what, points) in [("vertex", &grid.vertices), ("normal", &grid.normals)] {
-        // The first non-finite point, blocks of points searched side by side.
-        let firsts = monge_core::tasks::ranges(points.len(), monge_core::tasks::BLOCK, |r| {
-            r.clone().find(|&k| !points[k].is_finite())
-        });
-        if let Some(k) = firsts.into_iter().flatten().next() {
+        if let Some(k) = first_where(points, |p| !p.is_finite()) {
             let (i, j) = (k / grid.cols, k % grid.cols);
             return invalid(format!("{what} ({i}, {j}) is not finite: {}", points[k]));
         }

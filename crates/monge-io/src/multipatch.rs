@@ -7,8 +7,8 @@ use monge_core::boundary::BoundarySpec;
 use monge_core::multipatch::MultiPatchDesign;
 use monge_core::symmetry::QuadMesh;
 
-use crate::atomic::{write_atomic, write_output};
-use crate::design::{parse_as, DesignFormat};
+use crate::atomic::{write_output, Outputs};
+use crate::design::{parse_as, write_pretty, DesignFormat};
 use crate::error::IoError;
 use crate::kind::{expect_kind, FileKind};
 use crate::mesh_write::{MeshFormat, Quads};
@@ -76,18 +76,19 @@ fn parse_planes_named(
 
 /// Writes a multi-patch design (§4.7), pretty JSON or TOML by the path's extension, atomically.
 pub fn write_multipatch(design: &MultiPatchDesign, path: &Path) -> Result<(), IoError> {
+    let mut out = Outputs::new();
+    write_multipatch_into(design, path, &mut out)?;
+    out.commit()
+}
+
+/// [`write_multipatch`] as one of several files of `out`, put in place by its commit.
+pub fn write_multipatch_into(
+    design: &MultiPatchDesign,
+    path: &Path,
+    out: &mut Outputs,
+) -> Result<(), IoError> {
     let format = DesignFormat::from_path(path)?;
-    write_atomic(path, |w| match format {
-        DesignFormat::Json => {
-            serde_json::to_writer_pretty(&mut *w, design)?;
-            w.write_all(b"\n")
-        }
-        DesignFormat::Toml => {
-            let text = toml::to_string_pretty(design)
-                .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
-            w.write_all(text.as_bytes())
-        }
-    })
+    out.write(path, |w| write_pretty(design, format, w))
 }
 
 /// Writes an assembled [`QuadMesh`] (§4.5) to `path` (atomically, `-` for standard

@@ -187,3 +187,39 @@ fn the_next_write_removes_what_a_killed_write_left_an_hour_ago() {
         "only the stale leftover of out.obj is removed"
     );
 }
+
+/// Files written as one: an error in any leaves every path as it was, and a
+/// path given twice is refused (`scan -o k.csv --plot k.csv` once wrote the SVG
+/// over the CSV).
+#[test]
+fn outputs_change_together_or_not_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.svg"));
+    std::fs::write(&a, "old a").unwrap();
+    std::fs::write(&b, "old b").unwrap();
+    let mut out = monge_io::Outputs::new();
+    out.write(&a, |w| w.write_all(b"new a")).unwrap();
+    let e = out
+        .write(&dir.path().join(".").join("a.csv"), |w| {
+            w.write_all(b"again")
+        })
+        .unwrap_err();
+    assert!(matches!(e, IoError::SameOutput { .. }), "{e:?}");
+    assert!(e.to_string().contains("written twice"), "{e}");
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    let e = out
+        .write(&dir.path().join("sub"), |w| w.write_all(b"x"))
+        .unwrap_err();
+    assert!(matches!(e, IoError::Write { .. }), "{e:?}");
+    drop(out);
+    assert_eq!(std::fs::read_to_string(&a).unwrap(), "old a");
+    assert_eq!(entries(dir.path()), ["a.csv", "b.svg", "sub"]);
+    let mut out = monge_io::Outputs::new();
+    out.write(&a, |w| w.write_all(b"new a")).unwrap();
+    out.write(&b, |w| w.write_all(b"new b")).unwrap();
+    assert_eq!(std::fs::read_to_string(&a).unwrap(), "old a");
+    out.commit().unwrap();
+    assert_eq!(std::fs::read_to_string(&a).unwrap(), "new a");
+    assert_eq!(std::fs::read_to_string(&b).unwrap(), "new b");
+    assert_eq!(entries(dir.path()), ["a.csv", "b.svg", "sub"]);
+}

@@ -560,3 +560,32 @@ print("\n".join(struct.pack(">d", float(t)).hex() for t in nums if "." in t or "
         assert_eq!(read, want, "{format:?}");
     }
 }
+
+/// glTF and `float` PLY hold `f32`: a coordinate beyond its range (or NaN) is an
+/// error before anything is written, not an infinite position or `min`/`max` of
+/// `null` (both once written).
+#[test]
+fn f32_formats_refuse_coordinates_beyond_f32() {
+    for bad in [1e39, f64::NAN] {
+        let mut vertices: Vec<DVec3> = (0..9)
+            .map(|k| DVec3::new((k / 3) as f64, (k % 3) as f64, 0.0))
+            .collect();
+        vertices[4].z = bad;
+        let grid = QuadGrid::new(3, 3, vertices, Vec::new());
+        for format in [MeshFormat::Glb, MeshFormat::PlyF32] {
+            let mut out = Vec::new();
+            let e = write_mesh_to(&grid, format, &mut out).unwrap_err();
+            assert!(
+                e.to_string().contains("32-bit floats") || e.to_string().contains("not finite"),
+                "{format:?} {bad}: {e}"
+            );
+        }
+    }
+    // 1e39 is finite in f64: the other formats write it exactly.
+    let mut vertices: Vec<DVec3> = (0..4).map(|k| DVec3::splat(k as f64)).collect();
+    vertices[3].x = 1e39;
+    let grid = QuadGrid::new(2, 2, vertices, Vec::new());
+    for format in [MeshFormat::Obj, MeshFormat::PlyBinary, MeshFormat::Json] {
+        write_mesh_to(&grid, format, &mut Vec::new()).unwrap();
+    }
+}

@@ -1,0 +1,141 @@
+//! A command's output files change together or not at all, and none is its input:
+//! each once went wrong (an offset, a fabrication file, a plot or a picture that
+//! failed after the files before it had replaced their paths).
+
+use std::fs;
+use std::path::Path;
+
+use predicates::prelude::*;
+use tempfile::TempDir;
+
+mod common;
+use common::{example, monge};
+
+/// Every file of `dir` with its content, sorted by name (directories as `<dir>`).
+fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let name = e.file_name().to_string_lossy().into_owned();
+            let content = if e.path().is_dir() {
+                b"<dir>".to_vec()
+            } else {
+                fs::read(e.path()).unwrap()
+            };
+            (name, content)
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn generate_with_offsets_changes_no_file_when_one_offset_fails() {
+    let dir = TempDir::new().unwrap();
+    let d = dir.path();
+    fs::write(d.join("m.obj"), "previous").unwrap();
+    fs::create_dir(d.join("m.offset+1.obj")).unwrap();
+    let before = snapshot(d);
+    monge()
+        .arg("generate")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(d.join("m.obj"))
+        .args(["--offset", "0.5", "--offset", "1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("is a directory"));
+    assert_eq!(snapshot(d), before);
+    // A name the file system refuses (309 digits) fails before any file moves.
+    fs::remove_dir(d.join("m.offset+1.obj")).unwrap();
+    let before = snapshot(d);
+    monge()
+        .arg("generate")
+        .arg(example("fig13-freeform.json"))
+        .arg("-o")
+        .arg(d.join("m.obj"))
+        .args(["--offset", "0.5", "--offset", "1e308"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("too long"));
+    assert_eq!(snapshot(d), before);
+}
+
+#[test]
+fn generate_never_writes_an_offset_over_its_design() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("m.offset+1.json");
+    fs::copy(example("fig13-freeform.json"), &design).unwrap();
+    let before = snapshot(dir.path());
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(dir.path().join("m.json"))
+        .args(["--offset", "1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("is an input of this command"));
+    assert_eq!(snapshot(dir.path()), before);
+}
+
+#[test]
+fn fabricate_changes_no_file_when_one_fails_and_never_writes_over_its_design() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("F");
+    fs::create_dir(&out).unwrap();
+    fs::write(out.join("panels.csv"), "previous").unwrap();
+    fs::create_dir(out.join("nodes.csv")).unwrap();
+    let before = snapshot(&out);
+    monge()
+        .arg("fabricate")
+        .arg(example("fig25-biarc.json"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("nodes.csv").and(predicate::str::contains("directory")));
+    assert_eq!(snapshot(&out), before);
+    let design = out.join("schedule.json");
+    fs::copy(example("fig25-biarc.json"), &design).unwrap();
+    let before = snapshot(&out);
+    monge()
+        .arg("fabricate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("is an input of this command"));
+    assert_eq!(snapshot(&out), before);
+}
+
+#[test]
+fn scan_writes_its_table_and_plot_together() {
+    let dir = TempDir::new().unwrap();
+    let d = dir.path();
+    fs::write(d.join("k.csv"), "previous").unwrap();
+    fs::create_dir(d.join("plot.svg")).unwrap();
+    let scan = |csv: &str, svg: &str| {
+        let mut cmd = monge();
+        cmd.arg("scan")
+            .arg(example("fig14-family.toml"))
+            .args(["--theta", "0:10:1", "-o"])
+            .arg(d.join(csv))
+            .arg("--plot")
+            .arg(d.join(svg));
+        cmd
+    };
+    let before = snapshot(d);
+    scan("k.csv", "plot.svg")
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("is a directory"));
+    assert_eq!(snapshot(d), before);
+    scan("k.csv", "k.csv")
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("written twice"));
+    assert_eq!(snapshot(d), before);
+}
