@@ -84,6 +84,26 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
+/// `x` as Python's `repr` writes a float: `nan`, `inf`, `-1.0`, `1e+20`.
+pub fn py_float(x: f64) -> String {
+    if x.is_nan() {
+        "nan".to_owned()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.to_owned()
+    } else if x != 0.0 && !(1e-4..1e16).contains(&x.abs()) {
+        // Rust's `1.5e308` as Python's `1.5e+308`, `1e-5` as `1e-05`.
+        let s = format!("{x:e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let (sign, digits) = match exponent.strip_prefix('-') {
+            Some(d) => ('-', d),
+            None => ('+', exponent),
+        };
+        format!("{mantissa}e{sign}{digits:0>2}")
+    } else {
+        format!("{x:?}")
+    }
+}
+
 /// `context: message`, as the command line joins a file name and an error;
 /// the message alone without a context.
 pub fn text(context: Option<&str>, message: impl std::fmt::Display) -> String {
@@ -133,5 +153,33 @@ pub fn generate_error(context: Option<&str>, e: &GenerateError) -> PyErr {
         | GenerateError::ScaleOutOfRange { .. }
         | GenerateError::StartPointsDiffer { .. }
         | GenerateError::NotOrthogonal { .. } => DesignError::new_err(message),
+    }
+}
+
+/// `x` to 6 significant digits, as Python's `repr` writes it (`19.1068`).
+pub fn py_short(x: f64) -> String {
+    py_float(format!("{x:.5e}").parse().unwrap_or(x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn floats_are_written_as_python_writes_them() {
+        for (x, repr) in [
+            (f64::NAN, "nan"),
+            (f64::NEG_INFINITY, "-inf"),
+            (0.0, "0.0"),
+            (-1.0, "-1.0"),
+            (0.1, "0.1"),
+            (1.5e308, "1.5e+308"),
+            (1e-5, "1e-05"),
+            (1e16, "1e+16"),
+            (123456.0, "123456.0"),
+        ] {
+            assert_eq!(py_float(x), repr);
+        }
+        assert_eq!(py_short(19.106757330164218), "19.1068");
     }
 }

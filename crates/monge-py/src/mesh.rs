@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::design::{kind_name, parse_kind, Design};
-use crate::errors::{generate_error, DesignError};
+use crate::errors::{generate_error, py_float, py_short, DesignError, MeshError};
 
 /// The geometry of a mesh: a circular mesh with its node axes, or a conical mesh
 /// with its face normals and offset directions.
@@ -247,7 +247,9 @@ impl Mesh {
     }
 
     /// The offset mesh at distance `d` (§2.2, §2.3): for a circular mesh the node
-    /// offset along the node axes, for a conical mesh the face offset.
+    /// offset along the node axes, for a conical mesh the face offset. Refused
+    /// (`MeshError`) if its coordinates or its size (the bounding-box diagonal that
+    /// `check` measures against) are not finite in f64.
     fn offset(&self, d: f64) -> PyResult<Mesh> {
         if !d.is_finite() {
             return Err(DesignError::new_err(format!(
@@ -258,6 +260,7 @@ impl Mesh {
             Geometry::Circular(g) => Geometry::Circular(vertex_offset(g, d)),
             Geometry::Conical(c) => Geometry::Conical(face_offset(c, d)),
         };
+        check_offset(self.geometry.grid(), geometry.grid(), d)?;
         Ok(Mesh::new(
             geometry,
             self.theta_deg,
@@ -278,6 +281,40 @@ impl Mesh {
             self.offset
         )
     }
+}
+
+/// Refuses the offset `offset` of `base` at distance `d` if a vertex is not
+/// finite, or if its size (the bounding-box diagonal every measurement is
+/// relative to) is not: it could not be measured.
+fn check_offset(base: &QuadGrid, offset: &QuadGrid, d: f64) -> PyResult<()> {
+    let size = base.bbox_diagonal();
+    let advice = format!(
+        "give a smaller |d| (this mesh's own size is {}; the offset's size, about 2|d|, must \
+         stay below about 1e154, where its square overflows)",
+        py_short(size)
+    );
+    if let Some(k) = offset.vertices.iter().position(|p| !p.is_finite()) {
+        let (i, j) = (k / offset.cols, k % offset.cols);
+        return Err(MeshError::new_err(format!(
+            "offset(d={}): vertex [{i}, {j}] of the offset mesh is not finite ({}): {advice}",
+            py_float(d),
+            offset.vertices[k]
+        )));
+    }
+    let offset_size = offset.bbox_diagonal();
+    if !offset_size.is_finite() {
+        let far = offset
+            .vertices
+            .iter()
+            .map(|p| p.abs().max_element())
+            .fold(0.0, f64::max);
+        return Err(MeshError::new_err(format!(
+            "offset(d={}): the offset mesh's size (its bounding-box diagonal) is not finite in \
+             f64, its coordinates reaching {far:.1e}, so it cannot be measured: {advice}",
+            py_float(d)
+        )));
+    }
+    Ok(())
 }
 
 /// Generates the mesh of a design (§3): `kind` `"circular"` (§2.2) or

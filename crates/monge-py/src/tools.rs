@@ -27,8 +27,8 @@ use pythonize::pythonize;
 
 use crate::design::{dict_to_json, json_to_python, kind_name, parse_kind, Design};
 use crate::errors::{
-    generate_error, io_error, text, FabricationError, MeshError, OptimiseError, ScanError,
-    SmoothError,
+    generate_error, io_error, py_float, text, FabricationError, MeshError, OptimiseError,
+    ScanError, SmoothError,
 };
 use crate::mesh::{measurements, Geometry, Mesh};
 
@@ -363,19 +363,6 @@ fn smooth_memory(rows: usize, cols: usize, k: usize) -> (String, f64) {
         format!("{fr} × {fc} patches of {k} × {k} points, {arcs} arcs and the NURBS surface"),
         bytes,
     )
-}
-
-/// `x` as Python writes a float's value in messages: `nan`, `inf`, `-1.0`, `1e+20`.
-pub fn py_float(x: f64) -> String {
-    if x.is_nan() {
-        "nan".to_owned()
-    } else if x.is_infinite() {
-        if x > 0.0 { "inf" } else { "-inf" }.to_owned()
-    } else if x != 0.0 && !(1e-4..1e16).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        format!("{x:?}")
-    }
 }
 
 /// `bytes` as `1.2 GB` or `345 MB` (10⁹ and 10⁶ bytes).

@@ -2,6 +2,7 @@
 `monge` command prints for the same input (after its `error: `)."""
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -142,6 +143,24 @@ def test_offsets_must_be_finite():
     mesh = monge.generate(monge.Design.from_file(DUPIN))
     with pytest.raises(monge.DesignError, match="finite"):
         mesh.offset(float("inf"))
+
+
+@pytest.mark.parametrize("name", ["fig13-freeform.json", "fig13-conical.json"])
+def test_offsets_whose_size_overflows_are_refused_before_measuring(name, capfd):
+    # 1.5e308 once raised a PanicException ("Singular value was NaN", with a
+    # hundred panic traces on stderr); 5e307 gave max_error NaN.
+    mesh = monge.generate(monge.Design.from_file(example(name)))
+    for d in (1.5e308, -1.5e308, 5e307, 1e160):
+        with pytest.raises(monge.MeshError) as e:
+            mesh.offset(d)
+        assert str(e.value).startswith(f"offset(d={d!r}): ")
+        assert "give a smaller |d| (this mesh's own size is " in str(e.value)
+    assert "is not finite in f64, its coordinates reaching 5.0e307" in str(
+        pytest.raises(monge.MeshError, mesh.offset, 5e307).value
+    )
+    assert "panicked" not in capfd.readouterr().err
+    far = mesh.offset(1e6)
+    assert math.isfinite(far.report["max_error"]) and far.offset_distance == 1e6
 
 
 def test_smooth_errors(tmp_path, cli_error):
