@@ -125,7 +125,8 @@ pub fn io_error(e: IoError) -> PyErr {
         | IoError::Full { .. }
         | IoError::Changed { .. }
         | IoError::NoDirectory { .. }
-        | IoError::OutputIsInput { .. } => FileError::new_err(message),
+        | IoError::OutputIsInput { .. }
+        | IoError::SameOutput { .. } => FileError::new_err(message),
         IoError::Syntax { .. }
         | IoError::CountMismatch { .. }
         | IoError::NotAGrid { .. }
