@@ -114,21 +114,36 @@ impl Mesh {
             g.info.mode,
             g.report,
             0.0,
+            false,
         ))
     }
 
+    /// The mesh of `geometry`, measured. `report` is the generation's (§5.2); with
+    /// `measured_folds` (an offset, which the generation did not build) its folded
+    /// faces are replaced by those `check` finds on this mesh. The smallest
+    /// crossing sine is a property of the Gauss map, which an offset shares.
     fn new(
         geometry: Geometry,
         theta_deg: f64,
         mode: Mode,
         report: CombescureReport,
         offset: f64,
+        measured_folds: bool,
     ) -> Mesh {
         let kind = match geometry {
             Geometry::Circular(_) => MeshKind::Circular,
             Geometry::Conical(_) => MeshKind::Conical,
         };
-        let (_, max_error) = measurements(geometry.grid(), kind);
+        let (m, max_error) = measurements(geometry.grid(), kind);
+        let report = if measured_folds {
+            CombescureReport {
+                folded_faces: m.folded_faces,
+                first_fold: m.first_fold,
+                ..report
+            }
+        } else {
+            report
+        };
         Mesh {
             geometry,
             theta_deg,
@@ -234,6 +249,9 @@ impl Mesh {
     /// None), `min_crossing_sine`, `min_crossing_face`, and `max_error`, the
     /// largest error `check(mesh)` measures on this mesh (planarity, circularity
     /// or the conical condition, planar lines, torsion; lengths relative to its size).
+    /// For an offset (`offset(d)`), `folded_faces` and `first_fold` are those
+    /// `check` finds on the offset mesh itself; the crossing, a property of the
+    /// Gauss map it shares, is the generated mesh's.
     #[getter]
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let r = &self.report;
@@ -267,6 +285,7 @@ impl Mesh {
             self.mode,
             self.report,
             self.offset + d,
+            true,
         ))
     }
 

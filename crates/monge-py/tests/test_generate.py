@@ -1,6 +1,8 @@
 """monge.generate: the meshes equal `monge generate`'s and are exact, measured
 independently with numpy (SVD, least-squares circles) to 1e-9 of the model size."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -127,3 +129,29 @@ def test_arrays_are_read_only_views_of_the_mesh():
         v[0, 0, 0] = 1.0
     del mesh  # the view keeps the mesh alive
     assert np.isfinite(v).all()
+
+
+@pytest.mark.parametrize(
+    "name, d",
+    [("fig12-dupin-theta30.json", -5), ("fig12-torus.json", -5), ("fig12-dupin-theta30.json", 0.25),
+     ("fig13-conical.json", -20), ("fig13-conical.json", 0.3)],
+)
+def test_an_offsets_report_is_measured_on_the_offset(name, d, cli, tmp_path):
+    # It was the generated mesh's: dupin's offset at -5 reported 0 folded faces
+    # while check() and `monge check` find 288.
+    mesh = monge.generate(monge.Design.from_file(example(name)))
+    off = mesh.offset(d)
+    checked = monge.check(off)
+    assert off.report["folded_faces"] == checked["folded_faces"]["value"]
+    assert off.report["first_fold"] == checked["folded_faces"]["at"]
+    assert off.report["max_error"] == checked["max_error"]
+    assert off.report["min_crossing_sine"] == mesh.report["min_crossing_sine"]
+    out = tmp_path / "m.json"
+    cli("generate", example(name), "-o", out, "--offset", d)
+    kind = ["--kind", "conical"] if mesh.kind == "conical" else []
+    p = cli("check", "--json", *kind, tmp_path / f"m.offset{d:+}.json", check=False)
+    assert p.returncode in (0, 1), p.stderr  # 1: the mesh folds
+    ref = json.loads(p.stdout)
+    assert off.report["folded_faces"] == ref["metrics"]["folded_faces"]["value"]
+    if name == "fig12-dupin-theta30.json" and d == -5:
+        assert off.report["folded_faces"] == 288 and mesh.report["folded_faces"] == 0

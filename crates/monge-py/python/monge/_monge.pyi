@@ -94,7 +94,10 @@ class Mesh:
         """Distance from the generated mesh (0 for it)."""
     @property
     def report(self) -> Dict[str, Any]:
-        """folded_faces, first_fold, min_crossing_sine, min_crossing_face (§5.2), max_error (as check)."""
+        """folded_faces, first_fold, min_crossing_sine, min_crossing_face (§5.2), max_error (as check).
+
+        For an offset, folded_faces and first_fold are those check() finds on it.
+        """
     def offset(self, d: float) -> "Mesh":
         """Node offset (circular, §2.2) or face offset (conical, §2.3) at distance d."""
 
