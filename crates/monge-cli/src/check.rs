@@ -2,8 +2,8 @@
 
 use std::io;
 
-use anyhow::bail;
-use monge_core::measure::{conical_error, largest, measure, Measurements, Worst};
+use anyhow::{bail, Context};
+use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
 use monge_core::QuadGrid;
 use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
 use serde_json::{json, Map, Value};
@@ -29,6 +29,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     } else {
         path.display().to_string()
     };
+    measurable(&grid).with_context(|| name.clone())?;
     let m = measure(&grid);
     let conical = match args.kind {
         KindArg::Conical => conical_error(&grid),

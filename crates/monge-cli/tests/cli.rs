@@ -644,6 +644,32 @@ fn check_reports_a_malformed_mesh_as_an_error() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("expected 4, found 1"));
+    // Meshes that cannot be measured: once PASSed with metrics 0, NaN or "at face
+    // (0, 0)" of a grid without faces.
+    for (name, text, says) in [
+        (
+            "empty.json",
+            r#"{"rows": 0, "cols": 0, "vertices": []}"#,
+            "0 × 0 vertices",
+        ),
+        (
+            "line.json",
+            r#"{"rows": 1, "cols": 3, "vertices": [[0,0,0],[1,0,0],[2,0,0]]}"#,
+            "no face to measure",
+        ),
+        (
+            "huge.json",
+            r#"{"rows": 2, "cols": 2, "vertices": [[0,0,0],[0,1,0],[1e200,0,0],[1,1,0]]}"#,
+            "outside [1e-100, 1e100]",
+        ),
+    ] {
+        monge()
+            .arg("check")
+            .arg(write(&dir, name, text))
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains(says));
+    }
 }
 
 #[test]

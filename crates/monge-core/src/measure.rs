@@ -170,6 +170,89 @@ pub fn largest(values: impl IntoIterator<Item = f64>) -> f64 {
     })
 }
 
+/// Why a quad grid cannot be measured (§2.2, §2.3): what [`measurable`] finds.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum MeasureError {
+    /// Fewer than 2 × 2 vertices: no face.
+    #[error(
+        "the mesh has {rows} × {cols} vertices, so no face to measure: a quad mesh has at least \
+         2 × 2 vertices"
+    )]
+    NoFaces {
+        /// Rows of vertices.
+        rows: usize,
+        /// Columns of vertices.
+        cols: usize,
+    },
+    /// A vertex or node axis is NaN or infinite.
+    #[error("{what} ({}, {}) is {point:?}, not finite: fix or remove it", at.0, at.1)]
+    NotFinite {
+        /// `vertex` or `node axis`.
+        what: &'static str,
+        /// Its row and column.
+        at: (usize, usize),
+        /// Its coordinates.
+        point: [f64; 3],
+    },
+    /// The mesh is too small or too large for its measurements to be computed.
+    #[error(
+        "the mesh's size (its bounding-box diagonal) is {size:e}, outside [{min:e}, {max:e}]: \
+         at such scales squared lengths underflow or overflow in double precision and the \
+         measurements would be meaningless. Rescale the mesh (e.g. use other units)"
+    )]
+    ScaleOutOfRange {
+        /// The bounding-box diagonal (infinite if it overflows).
+        size: f64,
+        /// [`crate::generate::MIN_SIZE`].
+        min: f64,
+        /// [`crate::generate::MAX_SIZE`].
+        max: f64,
+    },
+}
+
+/// Whether [`measure`] can measure `grid` (§2.2, §2.3): at least one face, every
+/// vertex and node axis finite, and a size (bounding-box diagonal) in the range
+/// the generator accepts, [`MIN_SIZE`](crate::generate::MIN_SIZE) to
+/// [`MAX_SIZE`](crate::generate::MAX_SIZE). A single point (size 0) passes.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::measure::{measurable, MeasureError};
+/// use monge_core::QuadGrid;
+/// let square = |s: f64| QuadGrid::new(2, 2, vec![DVec3::ZERO, DVec3::Y * s, DVec3::X * s, DVec3::ONE * s], vec![]);
+/// assert!(measurable(&square(1.0)).is_ok());
+/// assert!(matches!(measurable(&square(1e200)), Err(MeasureError::ScaleOutOfRange { .. })));
+/// let line = QuadGrid::new(1, 2, vec![DVec3::ZERO, DVec3::X], vec![]);
+/// assert_eq!(measurable(&line), Err(MeasureError::NoFaces { rows: 1, cols: 2 }));
+/// ```
+pub fn measurable(grid: &QuadGrid) -> Result<(), MeasureError> {
+    use crate::generate::{MAX_SIZE, MIN_SIZE};
+    if grid.rows < 2 || grid.cols < 2 {
+        return Err(MeasureError::NoFaces {
+            rows: grid.rows,
+            cols: grid.cols,
+        });
+    }
+    for (what, points) in [("vertex", &grid.vertices), ("node axis", &grid.normals)] {
+        if let Some(k) = points.iter().position(|p| !p.is_finite()) {
+            return Err(MeasureError::NotFinite {
+                what,
+                at: (k / grid.cols, k % grid.cols),
+                point: points[k].to_array(),
+            });
+        }
+    }
+    let size = grid.bbox_diagonal();
+    if size != 0.0 && !(MIN_SIZE..=MAX_SIZE).contains(&size) {
+        return Err(MeasureError::ScaleOutOfRange {
+            size,
+            min: MIN_SIZE,
+            max: MAX_SIZE,
+        });
+    }
+    Ok(())
+}
+
 /// Measure planarity and circularity of faces, planarity of rows and columns,
 /// and (with normals) torsion and unit length of the node axes (§2.2).
 ///
@@ -471,6 +554,11 @@ pub fn polyline_planarity(points: &[DVec3]) -> (f64, usize) {
     let centroid = points.iter().map(|p| *p - origin).sum::<DVec3>() / points.len() as f64;
     let local = |p: &DVec3| (*p - origin) - centroid;
     let m = DMatrix::from_fn(points.len(), 3, |r, c| local(&points[r])[c]);
+    if let Some(bad) = (0..points.len()).find(|&r| !local(&points[r]).is_finite()) {
+        // Finite points whose differences overflow (beyond ±9e307): the SVD
+        // would panic ("Singular value was NaN"); report, never hide.
+        return (f64::NAN, bad);
+    }
     // Golub–Kahan converges in a few sweeps per singular value; the cap only
     // guards against pathological input, which is then reported as NaN.
     let Some(svd) = m.try_svd(false, true, f64::EPSILON, 10_000) else {
@@ -538,6 +626,44 @@ mod tests {
     /// A one-face grid with corners `A, B, C, D` = `(0,0), (1,0), (1,1), (0,1)`.
     fn one_face([a, b, c, d]: [DVec3; 4]) -> QuadGrid {
         QuadGrid::new(2, 2, vec![a, d, b, c], vec![])
+    }
+
+    #[test]
+    fn finite_points_whose_differences_overflow_are_nan_not_a_panic() {
+        // Once "Singular value was NaN" (a Python offset of 1.5e308).
+        let p = [
+            v(-1.5e308, 0.0, 0.0),
+            v(1.5e308, 0.0, 0.0),
+            v(0.0, 1.0, 0.0),
+            v(0.0, 0.0, 1.0),
+        ];
+        assert!(polyline_planarity(&p).0.is_nan());
+        let g = QuadGrid::new(2, 2, p.to_vec(), vec![]);
+        let _ = measure(&g); // no panic; `measurable` says why it means nothing:
+        assert!(matches!(
+            measurable(&g),
+            Err(MeasureError::ScaleOutOfRange { .. })
+        ));
+        let mut g = g;
+        g.vertices[3].y = f64::INFINITY;
+        assert!(matches!(
+            measurable(&g),
+            Err(MeasureError::NotFinite {
+                what: "vertex",
+                at: (1, 1),
+                ..
+            })
+        ));
+        g.vertices[3].y = 0.0;
+        g.normals = vec![DVec3::Z, DVec3::Z, DVec3::NAN, DVec3::Z];
+        assert!(matches!(
+            measurable(&g),
+            Err(MeasureError::NotFinite {
+                what: "node axis",
+                at: (1, 0),
+                ..
+            })
+        ));
     }
 
     #[test]
