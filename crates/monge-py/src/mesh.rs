@@ -8,7 +8,7 @@ use monge_core::measure::{conical_error, measure, Measurements, Worst};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate as core_generate, GenerateOptions, MeshKind, Mode, QuadGrid};
 use numpy::ndarray::ArrayView3;
-use numpy::{PyArray2, PyArray3, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -187,20 +187,19 @@ impl Mesh {
     }
 
     /// The quad faces as rows of four 0-based indices into `vertices.reshape(-1, 3)`,
-    /// face (i, j) at row `i·(cols − 1) + j`, corners (i, j), (i+1, j), (i+1, j+1),
-    /// (i, j+1) as in the OBJ and PLY files of `monge generate`.
+    /// face (i, j) at row `i·(cols − 1) + j`, wound as in the OBJ, PLY and glTF
+    /// files of `monge generate` (the same function decides): corners (i, j),
+    /// (i+1, j), (i+1, j+1), (i, j+1), counter-clockwise about the node axes, or
+    /// the other way round, (i, j), (i, j+1), (i+1, j+1), (i+1, j), when most faces
+    /// turn the other way about them (an offset through the focal surface; §2.2).
     #[getter]
     fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u64>>> {
         let g = self.geometry.grid();
-        let c = g.cols as u64;
-        let faces: Vec<Vec<u64>> = (0..g.rows.saturating_sub(1) as u64)
-            .flat_map(|i| (0..c.saturating_sub(1)).map(move |j| i * c + j))
-            .map(|k| vec![k, k + c, k + c + 1, k + 1])
+        let faces: Vec<u64> = g
+            .oriented_faces()
+            .flat_map(|f| f.map(|k| k as u64))
             .collect();
-        if faces.is_empty() {
-            return Ok(PyArray2::zeros(py, (0, 4), false));
-        }
-        Ok(PyArray2::from_vec2(py, &faces)?)
+        PyArray1::from_vec(py, faces).reshape([g.face_count(), 4])
     }
 
     /// Number of rows (samples of guide_u, or one less for a conical mesh).

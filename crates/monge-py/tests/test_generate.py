@@ -155,3 +155,25 @@ def test_an_offsets_report_is_measured_on_the_offset(name, d, cli, tmp_path):
     assert off.report["folded_faces"] == ref["metrics"]["folded_faces"]["value"]
     if name == "fig12-dupin-theta30.json" and d == -5:
         assert off.report["folded_faces"] == 288 and mesh.report["folded_faces"] == 0
+
+
+def obj_faces(path):
+    return np.array([[int(c.split("/")[0]) - 1 for c in l.split()[1:]]
+                     for l in path.read_text().splitlines() if l.startswith("f ")])
+
+
+@pytest.mark.parametrize("name", ["fig12-dupin-theta30.json", "fig12-torus.json", "fig13-conical.json"])
+@pytest.mark.parametrize("d", [-20, -5, 5])
+def test_faces_are_wound_as_the_commands_obj_files(name, d, cli, tmp_path):
+    # An offset through the focal surface turns its faces over: the command winds
+    # them the other way round (dupin and torus at -5: face 0 [0, 1, 34, 33]),
+    # and so must Mesh.faces (it once kept [0, 33, 34, 1]).
+    mesh = monge.generate(monge.Design.from_file(example(name)))
+    out = tmp_path / "m.obj"
+    cli("generate", example(name), "-o", out, "--offset", d)
+    assert np.array_equal(mesh.faces, obj_faces(out))
+    off = mesh.offset(d)
+    assert off.faces.dtype == np.uint64 and off.faces.shape == ((off.rows - 1) * (off.cols - 1), 4)
+    assert np.array_equal(off.faces, obj_faces(tmp_path / f"m.offset{d:+}.obj"))
+    if name != "fig13-conical.json" and d == -5:
+        assert list(off.faces[0]) == [0, 1, mesh.cols + 1, mesh.cols]

@@ -78,7 +78,7 @@ class Mesh:
         """(rows − 1, cols − 1, 3) unit face normals of a conical mesh (None for circular)."""
     @property
     def faces(self) -> npt.NDArray[np.uint64]:
-        """(faces, 4) indices into vertices.reshape(-1, 3), as in OBJ/PLY files."""
+        """(faces, 4) indices into vertices.reshape(-1, 3), wound as in the OBJ/PLY files of ``monge generate``."""
     @property
     def rows(self) -> int: ...
     @property
