@@ -15,7 +15,8 @@ use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
 use monge_core::scan::scan as core_scan;
 use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
 use monge_io::{
-    parse_multipatch, read_mesh, read_multipatch, write_schedule_json, DesignFormat, ScheduleJson,
+    conical_has_no_net, parse_multipatch, read_mesh, read_multipatch, write_schedule_json,
+    DesignFormat, ScheduleJson,
 };
 use numpy::ndarray::IxDyn;
 use numpy::{
@@ -188,7 +189,9 @@ pub fn check<'py>(
 }
 
 /// The smooth C¹ surface (§4.4): the cyclidic net of Dupin cyclide patches on
-/// the circular mesh of a design (or on a circular `Mesh`), as `monge smooth`.
+/// the circular mesh of a design (or on a circular `Mesh`), as `monge smooth`,
+/// which refuses a design that asks for a conical mesh (pass
+/// `generate(design, kind="circular")` for its circular mesh's net).
 ///
 /// Returns `patches`, an array (rows − 1, cols − 1, K, K, 3) of each patch
 /// sampled on a K × K grid; `lines`, every curvature line as a chain of
@@ -219,6 +222,18 @@ pub fn smooth<'py>(
         Some(_) => None,
         None => Some(design.cast::<Design>()?.borrow()),
     };
+    if let Some(d) = design
+        .as_ref()
+        .filter(|d| d.inner.mesh == MeshKind::Conical)
+    {
+        // The command's message, without a file name for a design made in Python.
+        let message = conical_has_no_net(d.context().unwrap_or(""));
+        return Err(SmoothError::new_err(format!(
+            "{}; or keep it and pass its circular mesh, smooth(generate(design, \
+             kind=\"circular\"))",
+            message.trim_start_matches(": ")
+        )));
+    }
     // The size of the net, known before anything is built.
     let (rows, cols, coarser) = match (&mesh, &design) {
         (Some(m), _) => {

@@ -176,6 +176,24 @@ def test_smooth_errors(tmp_path, cli_error):
         monge.smooth(conical)
 
 
+def test_smooth_refuses_a_conical_design_as_the_command_does(tmp_path, cli_error):
+    # It once built the net of the design's circular mesh without a word.
+    path = example("fig13-conical.json")
+    design = monge.Design.from_file(path)
+    with pytest.raises(monge.SmoothError) as e:
+        monge.smooth(design)
+    expected = cli_error("smooth", path, "-o", tmp_path / "net.json")
+    assert str(e.value) == expected + (
+        '; or keep it and pass its circular mesh, smooth(generate(design, kind="circular"))'
+    )
+    assert str(e.value).startswith(path + ': the design asks for a conical mesh')
+    with pytest.raises(monge.SmoothError, match=r'^the design asks for a conical mesh'):
+        monge.smooth(monge.Design.from_dict(design.to_dict()))
+    # its circular mesh has a net
+    s = monge.smooth(monge.generate(design, kind="circular"), samples=3)
+    assert s["patches"].shape[2:] == (3, 3, 3)
+
+
 def test_fabrication_errors():
     design = monge.Design.from_file(DUPIN)
     with pytest.raises(monge.FabricationError, match=r"^.*fig12-dupin-theta30.json: no layer"):

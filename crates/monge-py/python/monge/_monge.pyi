@@ -122,8 +122,9 @@ def smooth(
 ) -> Dict[str, Any]:
     """The cyclidic net (§4.4): patches, curvature lines as arcs, one NURBS surface.
 
-    Refused (SmoothError) before anything is built if the result would take more
-    than ``max_bytes`` of memory (default 8e9, 8 GB).
+    Refused (SmoothError) for a design that asks for a conical mesh (as ``monge
+    smooth``), and before anything is built if the result would take more than
+    ``max_bytes`` of memory (default 8e9, 8 GB).
     """
 
 def fabricate(
