@@ -193,10 +193,10 @@ pub enum Command {
         long_about = "Fabrication output of a gridshell built on the design's mesh (§6, Figure 25).\n\n\
              Generates the mesh (the conical dual for `\"mesh\": \"conical\"`), offsets it to every \
              --layers distance (node offsets along the node axes §2.2, face offsets §2.3), and writes \
-             into DIR, each file atomically: panels.csv (every face flattened exactly in its plane: \
+             into DIR, all files or none (if one cannot be written, no file in DIR changes): panels.csv (every face flattened exactly in its plane: \
              outline, edges, angles, area, circumradius, residuals), beams.csv and segments.csv \
              (every row and column in its plane, split into circular arcs where the circle changes, \
-             §4.6: radius, sweep, centre, split nodes: the roller-bender list), nodes.csv (axis, \
+             §4.6: radius, sweep, centre, split nodes, length along the arcs: the roller-bender list), nodes.csv (axis, \
              beam angles, height across the layers, torsion, node type), schedule.json (the \
              summary and the layers; with --full-json also every panel, beam and node), panels.dxf and beams.dxf (R12 drawings, labelled), overview.svg (plan) and \
              gridshell.glb (glTF of all layers, beams swept with a rectangular section). Prints a \

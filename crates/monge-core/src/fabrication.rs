@@ -296,6 +296,18 @@ pub struct Beam {
 }
 
 impl Beam {
+    /// Developed length (§4.6): the lengths of its arcs and straight pieces, what
+    /// a bent beam is cut to (longer than the polyline through its nodes, the sum
+    /// of [`Beam::edge_lengths`]).
+    pub fn length(&self) -> f64 {
+        self.segments
+            .iter()
+            .map(|s| match s.shape {
+                SegmentShape::Arc { length, .. } | SegmentShape::Straight { length } => length,
+            })
+            .sum()
+    }
+
     /// Node indices where one segment ends and the next starts (§4.6).
     pub fn splits(&self) -> Vec<usize> {
         self.segments.iter().skip(1).map(|s| s.start).collect()

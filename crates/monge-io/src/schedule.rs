@@ -111,13 +111,15 @@ pub fn write_panels_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
     })
 }
 
-/// The beam schedule (§4.6, §6): one line per beam with its node count, length
-/// along the nodes, number of circular segments, split nodes, radii, largest
-/// torsion, plane residual and plane in space.
+/// The beam schedule (§4.6, §6): one line per beam with its node count, its
+/// developed length along its arcs ([`Beam::length`](monge_core::fabrication::Beam::length))
+/// and the length of the polyline through its nodes, number of circular
+/// segments, split nodes, radii, largest torsion, plane residual and plane in space.
 pub fn write_beams_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
     emit(w, |o| {
         o.str(
-            "label,layer,family,index,nodes,length,segments,splits,radii,plane_residual,max_torsion,\
+            "label,layer,family,index,nodes,length,polyline_length,segments,splits,radii,\
+             plane_residual,max_torsion,\
              origin_x,origin_y,origin_z,x_axis_x,x_axis_y,x_axis_z,normal_x,normal_y,normal_z",
         );
         o.end()?;
@@ -131,7 +133,7 @@ pub fn write_beams_csv(f: &Fabrication, w: &mut dyn Write) -> io::Result<()> {
             o.int(b.index);
             o.push(b',');
             o.int(b.nodes.len());
-            cells(o, [b.edge_lengths.iter().sum::<f64>()]);
+            cells(o, [b.length(), b.edge_lengths.iter().sum::<f64>()]);
             o.push(b',');
             o.int(b.segments.len());
             o.push(b',');

@@ -83,15 +83,39 @@ fn csv_schedules_read_back_exactly() {
     assert_eq!(rows.len(), f.beams().len());
     // Rows are bi-arcs split at node 4; columns one arc.
     for (cells, b) in rows.iter().zip(f.beams()) {
-        assert_eq!(cells[6].parse::<usize>().unwrap(), b.segments.len());
+        assert_eq!(cells[7].parse::<usize>().unwrap(), b.segments.len());
         if cells[2] == "row" {
-            assert_eq!(cells[7], "4");
-            assert_eq!(cells[8].split(';').count(), 2);
+            assert_eq!(cells[8], "4");
+            assert_eq!(cells[9].split(';').count(), 2);
         }
     }
     let segments = read("segments.csv");
     let n: usize = f.beams().map(|b| b.segments.len()).sum();
     assert_eq!(segments.lines().count(), n + 1);
+    // A beam's length is what it is cut to: the sum of its segments' lengths in
+    // segments.csv (once the shorter polyline through its nodes), each arc's
+    // radius × sweep, measured again from the file's own numbers.
+    let header: Vec<&str> = segments.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (beam, radius, sweep, length) =
+        (col("beam"), col("radius"), col("sweep_deg"), col("length"));
+    let mut by_beam = std::collections::HashMap::<String, f64>::new();
+    for line in segments.lines().skip(1) {
+        let c: Vec<&str> = line.split(',').collect();
+        let l: f64 = c[length].parse().unwrap();
+        if let (Ok(r), Ok(s)) = (c[radius].parse::<f64>(), c[sweep].parse::<f64>()) {
+            assert!((r * s.to_radians().abs() - l).abs() <= 1e-12 * l, "{line}");
+        }
+        *by_beam.entry(c[beam].to_owned()).or_default() += l;
+    }
+    for cells in &rows {
+        let (length, polyline): (f64, f64) = (cells[5].parse().unwrap(), cells[6].parse().unwrap());
+        assert!(
+            (length - by_beam[cells[0]]).abs() <= 1e-12 * length,
+            "{cells:?}"
+        );
+        assert!(polyline < length, "{cells:?}: chords are shorter than arcs");
+    }
     let nodes = read("nodes.csv");
     assert_eq!(nodes.lines().count(), f.nodes().len() + 1);
 }
