@@ -1,10 +1,14 @@
 //! The typed errors of monge-core and monge-io as Python exceptions, all under
 //! `monge.MongeError`, with the messages the `monge` command prints.
 
+use std::ffi::CString;
+
+use glam::DVec3;
+use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN};
 use monge_core::GenerateError;
 use monge_io::IoError;
 use pyo3::create_exception;
-use pyo3::exceptions::PyException;
+use pyo3::exceptions::{PyException, PyUserWarning};
 use pyo3::prelude::*;
 
 create_exception!(
@@ -68,6 +72,13 @@ create_exception!(
     "θ fitting (§4.7) or panel-size optimisation (§4.8) cannot be run."
 );
 
+create_exception!(
+    monge,
+    FarFromOriginWarning,
+    PyUserWarning,
+    "The coordinates lie so far from the origin, compared with the design's size, that f64 numbers cannot hold the mesh to 1e-9 of its size: model the design near the origin and move it into place afterwards."
+);
+
 /// Registers the exception classes in the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -81,7 +92,33 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FabricationError", py.get_type::<FabricationError>())?;
     m.add("ScanError", py.get_type::<ScanError>())?;
     m.add("OptimiseError", py.get_type::<OptimiseError>())?;
+    m.add(
+        "FarFromOriginWarning",
+        py.get_type::<FarFromOriginWarning>(),
+    )?;
     Ok(())
+}
+
+/// Warns (`FarFromOriginWarning`) when `points` lie so far from the origin,
+/// compared with their size, that f64 coordinates cannot hold them to 1e-9 of
+/// it: the test of `monge generate`, `info` and `check`
+/// ([`monge_core::grid::origin_ratio`] above [`FAR_FROM_ORIGIN`]), and their
+/// words. Raises instead if warnings are errors (`-W error`).
+pub fn warn_far_from_origin(py: Python<'_>, points: &[DVec3]) -> PyResult<()> {
+    let ratio = origin_ratio(points);
+    if ratio <= FAR_FROM_ORIGIN {
+        return Ok(());
+    }
+    let message = format!(
+        "the coordinates are up to {ratio:.1e} times the design's size away from the origin: as \
+         f64 numbers they are rounded by up to {:.1e} of the size, so no array or file can hold \
+         the mesh to 1e-9 of its size (beyond {FAR_FROM_ORIGIN:.1e} times). Model the design \
+         near the origin (e.g. with the guides' start point at 0) and move it into place \
+         afterwards.",
+        ratio * f64::EPSILON
+    );
+    let message = CString::new(message).unwrap_or_default();
+    PyErr::warn(py, &py.get_type::<FarFromOriginWarning>(), &message, 1)
 }
 
 /// `x` as Python's `repr` writes a float: `nan`, `inf`, `-1.0`, `1e+20`.

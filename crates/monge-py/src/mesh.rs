@@ -13,7 +13,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::design::{kind_name, parse_kind, Design};
-use crate::errors::{generate_error, py_float, py_short, DesignError, MeshError};
+use crate::errors::{
+    generate_error, py_float, py_short, warn_far_from_origin, DesignError, MeshError,
+};
 
 /// The geometry of a mesh: a circular mesh with its node axes, or a conical mesh
 /// with its face normals and offset directions.
@@ -336,11 +338,15 @@ fn check_offset(base: &QuadGrid, offset: &QuadGrid, d: f64) -> PyResult<()> {
 }
 
 /// Generates the mesh of a design (§3): `kind` `"circular"` (§2.2) or
-/// `"conical"` (§2.3), by default the design's own `mesh`.
+/// `"conical"` (§2.3), by default the design's own `mesh`. Warns
+/// (`FarFromOriginWarning`) as `monge generate` does when the mesh lies so far
+/// from the origin that f64 coordinates cannot hold it to 1e-9 of its size.
 #[pyfunction]
 #[pyo3(signature = (design, kind = None))]
 pub fn generate(py: Python<'_>, design: &Design, kind: Option<&str>) -> PyResult<Mesh> {
     let kind = parse_kind(kind, design.inner.mesh)?;
     let design = design.clone();
-    py.detach(move || Mesh::generate(&design, kind))
+    let mesh = py.detach(move || Mesh::generate(&design, kind))?;
+    warn_far_from_origin(py, &mesh.geometry.grid().vertices)?;
+    Ok(mesh)
 }

@@ -28,8 +28,8 @@ use pythonize::pythonize;
 
 use crate::design::{dict_to_json, json_to_python, kind_name, parse_kind, Design};
 use crate::errors::{
-    generate_error, io_error, py_float, text, FabricationError, MeshError, OptimiseError,
-    ScanError, SmoothError,
+    generate_error, io_error, py_float, text, warn_far_from_origin, FabricationError, MeshError,
+    OptimiseError, ScanError, SmoothError,
 };
 use crate::mesh::{measurements, Geometry, Mesh};
 
@@ -67,7 +67,9 @@ fn guide_dict<'py>(py: Python<'py>, g: &Guide) -> PyResult<Bound<'py, PyDict>> {
 
 /// Validates a design without generating it (§3.1, §3.2), as `monge info`: the
 /// mode, θ and its admissible range, the grid size, and each guide's samples,
-/// start tangent, plane normal, planarity and size.
+/// start tangent, plane normal, planarity and size. Warns
+/// (`FarFromOriginWarning`) as the command does when the guides lie far from
+/// the origin compared with their size.
 #[pyfunction]
 pub fn info<'py>(py: Python<'py>, design: &Design) -> PyResult<Bound<'py, PyDict>> {
     let i = inspect(&design.inner, &GenerateOptions::default())
@@ -84,6 +86,10 @@ pub fn info<'py>(py: Python<'py>, design: &Design) -> PyResult<Bound<'py, PyDict
     d.set_item("faces", (rows - 1) * (cols - 1))?;
     d.set_item("guide_u", guide_dict(py, &i.guide_u)?)?;
     d.set_item("guide_v", guide_dict(py, &i.guide_v)?)?;
+    warn_far_from_origin(
+        py,
+        &[i.guide_u.points.as_slice(), &i.guide_v.points].concat(),
+    )?;
     Ok(d)
 }
 
@@ -156,6 +162,8 @@ fn grid_of(vertices: &Bound<'_, PyAny>, normals: Option<&Bound<'_, PyAny>>) -> P
 /// first folded face or None}`, which must be 0.
 ///
 /// `vertices` is a `Mesh`, a mesh file path, or an array (rows, cols, 3).
+/// Warns (`FarFromOriginWarning`) as the command does when the mesh lies far
+/// from the origin compared with its size.
 #[pyfunction]
 #[pyo3(signature = (vertices, kind = None, normals = None))]
 pub fn check<'py>(
@@ -185,6 +193,7 @@ pub fn check<'py>(
     d.set_item("max_error", max_error)?;
     d.set_item("rows", grid.rows)?;
     d.set_item("cols", grid.cols)?;
+    warn_far_from_origin(py, &grid.vertices)?;
     Ok(d.into_any())
 }
 

@@ -3,6 +3,7 @@
 
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -267,3 +268,44 @@ def test_fabricate_refuses_a_result_above_max_bytes_before_building_it():
     assert len(monge.fabricate(design, layers=[0.0, 0.1], max_bytes=1e8)["layer_vertices"]) == 2
     with pytest.raises(monge.FabricationError, match="max_bytes = nan"):
         monge.fabricate(design, max_bytes=float("nan"))
+
+
+def shifted(path, by):
+    """The design at `path` with both guides moved by `by` along x, y and z."""
+    with open(path) as f:
+        d = json.load(f)
+    for g in ("guide_u", "guide_v"):
+        spec = d[g]["bspline"]
+        spec["control_points"] = [[c + by for c in p] for p in spec["control_points"]]
+    return d
+
+
+def test_far_from_origin_warns_as_the_command_does(tmp_path, cli):
+    # 1e10 away, the mesh is generated with max_error 2e-7: it was silent.
+    path = write(tmp_path, "far.json", shifted(FREEFORM, 1e10))
+    design = monge.Design.from_file(path)
+    command = cli("generate", path, "-o", tmp_path / "far.obj").stderr
+    command = command.split("warning: ", 1)[1].rstrip("\n")
+    with pytest.warns(monge.FarFromOriginWarning) as w:
+        mesh = monge.generate(design)
+    assert len(w) == 1 and issubclass(monge.FarFromOriginWarning, UserWarning)
+    message = str(w[0].message)
+    # the command's words, arrays beside files
+    assert message == command.replace("no output file can", "no array or file can")
+    assert message.startswith("the coordinates are up to 5.1e8 times the design's size away")
+    assert "(beyond 1.1e6 times). Model the design near the origin" in message
+    assert w[0].filename == __file__  # the caller's line, not monge's
+    with pytest.warns(monge.FarFromOriginWarning):
+        monge.info(design)
+    with pytest.warns(monge.FarFromOriginWarning):
+        monge.check(mesh)
+    # as errors (-W error), a warning is raised
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", monge.FarFromOriginWarning)
+        with pytest.raises(monge.FarFromOriginWarning):
+            monge.generate(design)
+    # near the origin, no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", monge.FarFromOriginWarning)
+        monge.check(monge.generate(monge.Design.from_file(FREEFORM)))
+        monge.info(monge.Design.from_dict(shifted(FREEFORM, 1e4)))

@@ -13,7 +13,8 @@ architectural envelopes", Automation in Construction 106 (2019) 102880
     (21, 21, 3)
 
 Every error is a ``monge.MongeError`` (``DesignError``, ``ThetaError``, ...)
-whose message is the one the ``monge`` command prints. Optional modules:
+whose message is the one the ``monge`` command prints; its warnings are
+Python warnings (``monge.FarFromOriginWarning``, a ``UserWarning``). Optional modules:
 ``monge.rhino`` (Rhino .3dm files, needs rhino3dm) and ``monge.compas``
 (COMPAS meshes, needs compas).
 """
@@ -23,6 +24,7 @@ from ._monge import (
     Design,
     DesignError,
     FabricationError,
+    FarFromOriginWarning,
     FileError,
     Mesh,
     MeshError,
@@ -48,6 +50,7 @@ __all__ = [
     "Design",
     "DesignError",
     "FabricationError",
+    "FarFromOriginWarning",
     "FileError",
     "Mesh",
     "MeshError",

@@ -42,6 +42,9 @@ class ScanError(MongeError):
 class OptimiseError(MongeError):
     """θ fitting (§4.7) or panel-size optimisation (§4.8) cannot be run."""
 
+class FarFromOriginWarning(UserWarning):
+    """The coordinates lie so far from the origin, compared with the design's size, that f64 numbers cannot hold the mesh to 1e-9 of its size: model the design near the origin and move it into place afterwards."""
+
 class Design:
     """A design (§3): two planar guide curves that meet at 90° and the angle θ."""
 
