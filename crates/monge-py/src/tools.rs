@@ -659,10 +659,25 @@ pub fn approximate<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let numpy = py.import("numpy")?;
     let array = numpy
-        .call_method1("asarray", (points, "float64"))?
-        .call_method1("reshape", (-1, 3))
-        .map_err(|_| OptimiseError::new_err("points must be an array of shape (..., 3)"))?;
-    let array: PyReadonlyArray2<f64> = array.extract()?;
+        .call_method1("asarray", (points, "float64"))
+        .map_err(|e| {
+            OptimiseError::new_err(format!(
+                "points must be numbers, an array of shape (..., 3): {}",
+                e.value(py)
+            ))
+        })?;
+    // x, y, z along the last axis: any other shape is refused, never reshaped.
+    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+    if shape.last() != Some(&3) {
+        let shape: Vec<String> = shape.iter().map(usize::to_string).collect();
+        return Err(OptimiseError::new_err(format!(
+            "points must be an array of shape (..., 3), x, y, z along the last axis; got shape \
+             ({}{}): give the target's points as an (N, 3) array",
+            shape.join(", "),
+            if shape.len() == 1 { "," } else { "" }
+        )));
+    }
+    let array: PyReadonlyArray2<f64> = array.call_method1("reshape", (-1, 3))?.extract()?;
     let a = array.as_array();
     let target: Vec<DVec3> = a
         .rows()

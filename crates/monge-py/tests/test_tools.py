@@ -276,3 +276,20 @@ def test_approximate_conical_equals_the_command(cli, tmp_path):
     circular = monge.approximate(points, grid=(6, 6), starts=1, max_evaluations=60)
     assert circular["kind"] == "circular" and circular["normals"].shape == (7, 7, 3)
     assert circular["max_error"] == monge.check(circular["vertices"], normals=circular["normals"])["max_error"]
+
+
+def test_approximate_requires_x_y_z_along_the_last_axis():
+    # (600, 2) was once reshaped into 400 points and optimised.
+    for shape, text in [((600, 2), "(600, 2)"), ((5,), "(5,)"), ((6,), "(6,)"), ((4, 3, 2), "(4, 3, 2)"),
+                        ((), "()")]:
+        with pytest.raises(monge.OptimiseError) as e:
+            monge.approximate(np.zeros(shape))
+        assert str(e.value) == (
+            f"points must be an array of shape (..., 3), x, y, z along the last axis; got shape {text}: "
+            "give the target's points as an (N, 3) array"
+        )
+    with pytest.raises(monge.OptimiseError, match=r"points must be numbers"):
+        monge.approximate([["a", "b", "c"]])
+    # (..., 3) of any rank is accepted: a mesh's (rows, cols, 3) vertices (too few here)
+    with pytest.raises(monge.OptimiseError, match="too few"):
+        monge.approximate(np.zeros((1, 2, 3)))
