@@ -9,6 +9,7 @@ use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, GenerateOptions, MeshKind};
 use monge_io::{check_output, read_design, write_fabrication, ScheduleJson, FABRICATION_FILES};
 
+use crate::generate::generation_warnings;
 use crate::output::{
     check_output_size, eprint, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
 };
@@ -93,9 +94,12 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
-    let grid = generate(&design, &options)
-        .with_context(|| args.design.display().to_string())?
-        .grid;
+    let generated =
+        generate(&design, &options).with_context(|| args.design.display().to_string())?;
+    // As `monge generate` warns: a folded or near-singular mesh makes panels and
+    // beams that cross each other.
+    eprint(&generation_warnings(&generated));
+    let grid = generated.grid;
     let faces = grid.rows.saturating_sub(1) * grid.cols.saturating_sub(1);
     let (json, per_face) = if args.full_json {
         (

@@ -231,8 +231,14 @@ fn summary(
         target,
         millis(writing),
     );
-    s.push_str(&warnings(g.info.theta_deg, &Pinching::from(&g.report)).concat());
+    s.push_str(&generation_warnings(g));
     s
+}
+
+/// The warnings of a generation (near-singular θ, folds and pinches, §5.2), one
+/// line each, for every command that builds on a generated mesh.
+pub fn generation_warnings(g: &Generated) -> String {
+    warnings(g.info.theta_deg, &Pinching::from(&g.report)).concat()
 }
 
 /// The singular θ (§3.1): every Gauss circle passes through the corner normal.

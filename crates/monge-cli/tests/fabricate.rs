@@ -142,7 +142,7 @@ fn bad_arguments_exit_with_status_2() {
         .args(["--layers", "0,-3"])
         .assert()
         .code(2)
-        .stderr(predicate::str::contains("has zero length"));
+        .stderr(predicate::str::contains("no reliable direction"));
 }
 
 #[test]
@@ -179,4 +179,26 @@ fn an_output_above_max_output_is_refused_before_anything_is_written() {
     .stderr(predicate::str::contains("would be about 32 MB"));
     assert!(!out.exists());
     run(&["--max-output", "0"]).stderr(predicate::str::contains("positive number of gigabytes"));
+}
+
+/// A folded mesh is fabricated with the warning `monge generate` gives (it once
+/// exited 0 without a word: its panels and beams cross each other).
+#[test]
+fn fabricate_warns_of_a_folded_mesh() {
+    let dir = tempfile::TempDir::new().unwrap();
+    let text = std::fs::read_to_string(common::example("fig14-family.toml")).unwrap();
+    let folded = text.replace("theta_deg = 20.0", "theta_deg = 100.0");
+    assert_ne!(folded, text);
+    let design = dir.path().join("folded.toml");
+    std::fs::write(&design, folded).unwrap();
+    common::monge()
+        .arg("fabricate")
+        .arg(&design)
+        .arg("-o")
+        .arg(dir.path().join("F"))
+        .assert()
+        .success()
+        .stderr(predicates::str::contains(
+            "warning: the mesh folds over itself / pinches (§5.2) in 380 faces",
+        ));
 }

@@ -89,8 +89,11 @@ pub enum FabricationError {
     /// No layer distance was given (§2.2).
     #[error("no layer: give at least one offset distance (0 for the mesh itself)")]
     NoLayers,
-    /// A layer distance is NaN or infinite (§2.2).
-    #[error("layer {index} has distance {value}; distances must be finite")]
+    /// A layer distance is NaN, infinite or beyond [`MAX_SIZE`](crate::generate::MAX_SIZE) (§2.2).
+    #[error(
+        "layer {index} has distance {value}; distances must be finite and at most 1e100 in \
+         size (beyond, the offset's coordinates overflow double precision)"
+    )]
     NonFiniteLayer {
         /// Position of the distance in [`FabricationOptions::layers`].
         index: usize,
@@ -108,8 +111,9 @@ pub enum FabricationError {
     /// An edge of a layer is no longer than `tol · size`, so it has no reliable
     /// direction: the mesh or its offset pinches there (§5.2).
     #[error(
-        "layer {layer} (offset {distance}): edge from vertex ({}, {}) to ({}, {}) has zero length \
-         (at most tol × size; the mesh pinches there, §5.2); choose other layer distances or another θ",
+        "layer {layer} (offset {distance}): edge from vertex ({}, {}) to ({}, {}) is {length:.3e} \
+         long, at most tol × size = {limit:.3e}, so it has no reliable direction: the mesh pinches \
+         there (§5.2), or tol is too large; choose other layer distances, another θ or a smaller tol",
         from.0, from.1, to.0, to.1
     )]
     DegenerateEdge {
@@ -121,6 +125,10 @@ pub enum FabricationError {
         from: (usize, usize),
         /// Grid indices of the second vertex.
         to: (usize, usize),
+        /// The edge's length.
+        length: f64,
+        /// `tol · size`.
+        limit: f64,
     },
     /// A face of a layer has crossing diagonals of zero cross product: no plane.
     #[error(
@@ -680,7 +688,7 @@ fn validate(base: BaseMesh<'_>, options: &FabricationOptions) -> Result<(), Fabr
         .layers
         .iter()
         .enumerate()
-        .find(|(_, d)| !d.is_finite())
+        .find(|(_, d)| !(d.abs() <= crate::generate::MAX_SIZE))
     {
         return Err(FabricationError::NonFiniteLayer { index, value });
     }
@@ -721,15 +729,18 @@ fn check_edges(k: usize, layer: &LayerMesh, tol: f64) -> Result<(), FabricationE
         for j in 0..g.cols {
             for (di, dj) in [(1, 0), (0, 1)] {
                 let (a, b) = ((i, j), (i + di, j + dj));
-                if b.0 < g.rows
-                    && b.1 < g.cols
-                    && (g.vertex(a.0, a.1) - g.vertex(b.0, b.1)).length() <= tol
-                {
+                if b.0 >= g.rows || b.1 >= g.cols {
+                    continue;
+                }
+                let length = (g.vertex(a.0, a.1) - g.vertex(b.0, b.1)).length();
+                if length <= tol {
                     return Err(FabricationError::DegenerateEdge {
                         layer: k,
                         distance: layer.distance,
                         from: a,
                         to: b,
+                        length,
+                        limit: tol,
                     });
                 }
             }

@@ -390,6 +390,12 @@ fn error_non_finite_layer() {
         matches!(e, FabricationError::NonFiniteLayer { index: 1, .. }),
         "{e}"
     );
+    // Finite, but its offset overflows (it once wrote -2.69e308 in panels.csv).
+    let e = error(&square(true), &options(&[1e308]));
+    assert!(
+        matches!(e, FabricationError::NonFiniteLayer { index: 0, .. }),
+        "{e}"
+    );
 }
 
 #[test]
