@@ -688,7 +688,7 @@ fn validate(base: BaseMesh<'_>, options: &FabricationOptions) -> Result<(), Fabr
         .layers
         .iter()
         .enumerate()
-        .find(|(_, d)| !(d.abs() <= crate::generate::MAX_SIZE))
+        .find(|(_, d)| d.is_nan() || d.abs() > crate::generate::MAX_SIZE)
     {
         return Err(FabricationError::NonFiniteLayer { index, value });
     }
