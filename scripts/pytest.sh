@@ -16,7 +16,7 @@ fi
 # for one CPython version at a time (3.11 for bpy 4.1–5.0).
 "$venv/bin/python" -m pip install --quiet bpy ||
   echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
-"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask
+"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask mypy
 
 # A debug wheel by default: it reuses what `cargo test` just built, and the tests
 # are small (MONGE_WHEEL_PROFILE=--release builds the wheel that users get).

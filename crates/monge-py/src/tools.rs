@@ -213,7 +213,10 @@ pub fn check<'py>(
 /// take more (about 24 bytes a sample point, 1.2 kB an arc) is refused before
 /// anything is built; lower `samples`, or raise `max_bytes`.
 #[pyfunction]
-#[pyo3(signature = (design, samples = 9, allow_folded = false, max_bytes = MAX_BYTES))]
+#[pyo3(
+    signature = (design, samples = 9, allow_folded = false, max_bytes = MAX_BYTES),
+    text_signature = "(design, samples=9, allow_folded=False, max_bytes=8e9)"
+)]
 pub fn smooth<'py>(
     py: Python<'py>,
     design: &Bound<'py, PyAny>,
@@ -438,7 +441,10 @@ fn check_memory(
 /// take more is refused before anything is built; use fewer `layers` or fewer
 /// guide samples, or raise `max_bytes`.
 #[pyfunction]
-#[pyo3(signature = (design, layers = vec![0.0], tol = 1e-9, radius_tol = None, angle_tol_deg = 1e-4, max_bytes = MAX_BYTES))]
+#[pyo3(
+    signature = (design, layers = vec![0.0], tol = 1e-9, radius_tol = None, angle_tol_deg = 1e-4, max_bytes = MAX_BYTES),
+    text_signature = "(design, layers=[0.0], tol=1e-9, radius_tol=None, angle_tol_deg=1e-4, max_bytes=8e9)"
+)]
 pub fn fabricate<'py>(
     py: Python<'py>,
     design: &Design,
@@ -645,7 +651,10 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
 /// `before` and `after` (dicts of distances relative to the target's `size`),
 /// `theta_deg`, `evaluations`, `starts` and `timed_out`.
 #[pyfunction]
-#[pyo3(signature = (points, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false))]
+#[pyo3(
+    signature = (points, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false),
+    text_signature = "(points, grid=(40, 40), kind='circular', starts=4, max_evaluations=1500, time_limit=None, keep_boundary=False)"
+)]
 #[allow(clippy::too_many_arguments)]
 pub fn approximate<'py>(
     py: Python<'py>,

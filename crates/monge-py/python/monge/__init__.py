@@ -10,7 +10,7 @@ architectural envelopes", Automation in Construction 106 (2019) 102880
     >>> design = monge.Design.from_file("examples/fig12-dupin-theta30.json")
     >>> mesh = monge.generate(design)
     >>> mesh.vertices.shape          # (rows, cols, 3), float64, no copy
-    (21, 21, 3)
+    (41, 33, 3)
 
 Every error is a ``monge.MongeError`` (``DesignError``, ``ThetaError``, ...)
 whose message is the one the ``monge`` command prints; its warnings are

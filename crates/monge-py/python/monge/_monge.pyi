@@ -1,16 +1,43 @@
 """Type stubs of the native module monge._monge (re-exported by ``monge``)."""
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Literal, Optional, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
 
-Kind = Literal["circular", "conical"]
-PathLike = Union[str, "os.PathLike[str]"]
-Array = npt.NDArray[np.float64]
+__all__ = [
+    "__version__",
+    "MongeError",
+    "FileError",
+    "DesignError",
+    "ThetaError",
+    "DegenerateError",
+    "MeshError",
+    "SmoothError",
+    "FabricationError",
+    "ScanError",
+    "OptimiseError",
+    "FarFromOriginWarning",
+    "Design",
+    "Mesh",
+    "generate",
+    "info",
+    "check",
+    "smooth",
+    "fabricate",
+    "scan",
+    "fit",
+    "optimise_panels",
+    "approximate",
+]
+
+# Private aliases: names of the stub only, not of the module.
+_Kind = Literal["circular", "conical"]
+_PathLike = Union[str, "os.PathLike[str]"]
+_Array = npt.NDArray[np.float64]
 
 class MongeError(Exception):
     """Every error raised by monge; the message says what, where, by how much, and how to fix it."""
@@ -45,39 +72,41 @@ class OptimiseError(MongeError):
 class FarFromOriginWarning(UserWarning):
     """The coordinates lie so far from the origin, compared with the design's size, that f64 numbers cannot hold the mesh to 1e-9 of its size: model the design near the origin and move it into place afterwards."""
 
+@final
 class Design:
     """A design (§3): two planar guide curves that meet at 90° and the angle θ."""
 
     theta_deg: float
     """θ in degrees (§3.1, §3.2); settable."""
     @property
-    def mesh(self) -> Kind:
+    def mesh(self) -> _Kind:
         """The mesh ``generate`` builds by default (the file's ``"mesh"``)."""
     @property
     def source(self) -> Optional[str]:
         """The file the design was read from, or None."""
     @staticmethod
-    def from_file(path: PathLike) -> "Design":
+    def from_file(path: _PathLike) -> "Design":
         """Reads a design file, JSON or TOML by its extension (§3)."""
     @staticmethod
     def from_dict(d: Dict[str, Any]) -> "Design":
         """A design from the keys of a design file; numpy arrays accepted for lists."""
     def to_dict(self) -> Dict[str, Any]:
         """The design as a dict with the keys of a design file."""
-    def to_file(self, path: PathLike) -> None:
+    def to_file(self, path: _PathLike) -> None:
         """Writes the design file, pretty JSON or TOML by the extension, atomically."""
 
+@final
 class Mesh:
     """A generated mesh (§2.2, §2.3); arrays are read-only views of its memory."""
 
     @property
-    def vertices(self) -> Array:
+    def vertices(self) -> _Array:
         """(rows, cols, 3): vertex (i, j), i along guide_u, j along guide_v."""
     @property
-    def normals(self) -> Optional[Array]:
+    def normals(self) -> Optional[_Array]:
         """(rows, cols, 3) unit node axes, the Gauss map (circular meshes; None for conical)."""
     @property
-    def face_normals(self) -> Optional[Array]:
+    def face_normals(self) -> Optional[_Array]:
         """(rows − 1, cols − 1, 3) unit face normals of a conical mesh (None for circular)."""
     @property
     def faces(self) -> npt.NDArray[np.uint64]:
@@ -87,7 +116,7 @@ class Mesh:
     @property
     def cols(self) -> int: ...
     @property
-    def kind(self) -> Kind: ...
+    def kind(self) -> _Kind: ...
     @property
     def theta_deg(self) -> float: ...
     @property
@@ -104,15 +133,15 @@ class Mesh:
     def offset(self, d: float) -> "Mesh":
         """Node offset (circular, §2.2) or face offset (conical, §2.3) at distance d."""
 
-def generate(design: Design, kind: Optional[Kind] = None) -> Mesh:
+def generate(design: Design, kind: Optional[_Kind] = None) -> Mesh:
     """The circular (§2.2) or conical (§2.3) mesh of a design (§3)."""
 
 def info(design: Design) -> Dict[str, Any]:
     """Mode, θ and its admissible range, grid size, guides (§3.1, §3.2)."""
 
 def check(
-    vertices: Union[Mesh, PathLike, npt.ArrayLike],
-    kind: Optional[Kind] = None,
+    vertices: Union[Mesh, _PathLike, npt.ArrayLike],
+    kind: Optional[_Kind] = None,
     normals: Optional[npt.ArrayLike] = None,
 ) -> Dict[str, Any]:
     """Independent measurements of a quad mesh (§2.2, §2.3) and its folded faces (§5.2), as ``monge check``."""
@@ -132,7 +161,7 @@ def smooth(
 
 def fabricate(
     design: Design,
-    layers: Sequence[float] = (0.0,),
+    layers: npt.ArrayLike = [0.0],
     tol: float = 1e-9,
     radius_tol: Optional[float] = None,
     angle_tol_deg: float = 1e-4,
@@ -144,7 +173,7 @@ def fabricate(
     more than ``max_bytes`` of memory (default 8e9, 8 GB; about 10 kB a face and layer).
     """
 
-def scan(design: Design, values: Sequence[float], param: str = "theta") -> Dict[str, Any]:
+def scan(design: Design, values: npt.ArrayLike, param: str = "theta") -> Dict[str, Any]:
     """Design-space scan (§4.3) in parallel, GIL released; returns columns."""
 
 def optimise_panels(
@@ -152,18 +181,16 @@ def optimise_panels(
 ) -> Dict[str, Any]:
     """Panel-size optimisation (§4.8), as ``monge optimise-panels``."""
 
-def fit(design: Union[PathLike, Dict[str, Any]]) -> Dict[str, Any]:
+def fit(design: Union[_PathLike, Dict[str, Any]]) -> Dict[str, Any]:
     """Fit θ of a multi-patch design (§4.7), as ``monge fit``."""
 
 def approximate(
-    points: Any,
+    points: npt.ArrayLike,
     grid: Tuple[int, int] = (40, 40),
-    kind: str = "circular",
+    kind: _Kind = "circular",
     starts: int = 4,
     max_evaluations: int = 1500,
     time_limit: Optional[float] = None,
     keep_boundary: bool = False,
 ) -> Dict[str, Any]:
     """The design nearest to a target's points, as ``monge approximate``."""
-
-__all__: List[str]

@@ -12,8 +12,8 @@ Blender, or with the ``bpy`` module from the package index.
 
 try:
     import bpy
-except ImportError as e:  # pragma: no cover - depends on the environment
-    raise ImportError("monge.blender runs inside Blender, or needs the bpy module: pip install bpy") from e
+except ImportError as _missing:  # pragma: no cover - depends on the environment
+    raise ImportError("monge.blender runs inside Blender, or needs the bpy module: pip install bpy") from _missing
 
 from ._monge import Mesh, MeshError
 

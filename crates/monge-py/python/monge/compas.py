@@ -14,8 +14,8 @@ import numpy as np
 
 try:
     from compas.datastructures import Mesh as CompasMesh
-except ImportError as e:  # pragma: no cover - depends on the environment
-    raise ImportError("monge.compas needs compas: pip install monge[compas]") from e
+except ImportError as _missing:  # pragma: no cover - depends on the environment
+    raise ImportError("monge.compas needs compas: pip install monge[compas]") from _missing
 
 from ._monge import Mesh, MeshError
 

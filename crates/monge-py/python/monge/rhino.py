@@ -26,8 +26,8 @@ import numpy as np
 
 try:
     import rhino3dm
-except ImportError as e:  # pragma: no cover - depends on the environment
-    raise ImportError("monge.rhino needs rhino3dm: pip install monge[rhino]") from e
+except ImportError as _missing:  # pragma: no cover - depends on the environment
+    raise ImportError("monge.rhino needs rhino3dm: pip install monge[rhino]") from _missing
 
 from ._monge import FileError, Mesh, MeshError
 
