@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand, ValueEnum};
+use monge_core::cyclidic::CyclidicOptions;
 use monge_core::GenerateOptions;
 use monge_io::{is_stdio, MeshFormat};
 use monge_render::MAX_SIDE;
@@ -575,6 +576,10 @@ pub struct SmoothArgs {
     /// Build folded faces instead of refusing the design.
     #[arg(long)]
     pub allow_folded: bool,
+    /// Largest accepted non-circularity of a face: |Im q| / |q| for the cross-ratio q of
+    /// its corners (0 for a circle). Raise it for a mesh that is only nearly circular.
+    #[arg(long, value_name = "TOL", default_value_t = CyclidicOptions::default().circularity_tolerance, value_parser = parse_tolerance)]
+    pub circularity_tol: f64,
     /// DESIGN is a circular quad mesh (`.obj`, `.ply` or `.json`, row-major grid), not a design:
     /// the net is built on it (its lines need not be planar; then neither are the net's).
     #[arg(long)]

@@ -56,6 +56,7 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
     )?;
     let options = CyclidicOptions {
         allow_folded: args.allow_folded,
+        circularity_tolerance: args.circularity_tol,
         ..CyclidicOptions::default()
     };
     let net = match &args.frame {

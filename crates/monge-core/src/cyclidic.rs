@@ -161,14 +161,14 @@ pub enum CyclidicError {
     /// §4.4 frames need the node axes (the Gauss map) and the mesh has none.
     #[error(
         "the mesh carries no normals, so the frames of §4.4 cannot be computed from its Gauss map: \
-         build the net from one given frame instead (`CyclidicNet::from_frame`)"
+         build the net from one given frame instead (`monge smooth --frame`, `CyclidicNet::from_frame`)"
     )]
     NoNormals,
     /// Both families have lines of only 2 vertices, so no Gauss circle is known.
     #[error(
         "the mesh has {rows} × {cols} vertices: with fewer than 3 vertices along both families the \
          planes of the Gauss circles are not determined. Use a mesh with 3 or more vertices along one \
-         family, or give one frame (`CyclidicNet::from_frame`)"
+         family, or give one frame (`monge smooth --frame`, `CyclidicNet::from_frame`)"
     )]
     GaussUndetermined {
         /// Vertices along guide_u.
@@ -180,7 +180,7 @@ pub enum CyclidicError {
     #[error(
         "the Gauss map of {family} {index} does not span a plane (normals of its first, middle and last \
          vertices are collinear, sine {sine:.1e}): the line is straight or its normals do not turn. \
-         Give one frame instead (`CyclidicNet::from_frame`)"
+         Give one frame instead (`monge smooth --frame`, `CyclidicNet::from_frame`)"
     )]
     GaussLineDegenerate {
         /// The family of the line.
@@ -195,7 +195,7 @@ pub enum CyclidicError {
     #[error(
         "at vertex ({}, {}) the tangents of the two Gauss circles make {angle_deg:.6}°, not 90° \
          (tolerance {tolerance_deg:.1e}°): the normals are not the Gauss map of a circular mesh with \
-         planar lines (§2.2). Give one frame instead (`CyclidicNet::from_frame`)",
+         planar lines (§2.2). Give one frame instead (`monge smooth --frame`, `CyclidicNet::from_frame`)",
         vertex.0, vertex.1
     )]
     GaussNotOrthogonal {
@@ -223,7 +223,8 @@ pub enum CyclidicError {
     #[error(
         "face ({}, {}) is not circular: its cross-ratio is off the real line by an angle of {deviation:.3e} rad \
          (tolerance {tolerance:.1e}). A cyclidic net needs a circular mesh (§2.2); raise \
-         `CyclidicOptions::circularity_tolerance` if the mesh is only nearly circular",
+         the tolerance if the mesh is only nearly circular (`monge smooth --circularity-tol`, \
+         `CyclidicOptions::circularity_tolerance`)",
         face.0, face.1
     )]
     NotCircular {
@@ -237,8 +238,8 @@ pub enum CyclidicError {
     /// A face is folded.
     #[error(
         "face ({}, {}) is folded: {reason}. Its Dupin cyclide patch would cross itself; this happens for \
-         some θ with tight curvature (§5.2). Change θ or the guides, or set \
-         `CyclidicOptions::allow_folded` to build it anyway",
+         some θ with tight curvature (§5.2). Change θ or the guides, or build it anyway \
+         (`monge smooth --allow-folded`, Python `allow_folded=True`, `CyclidicOptions::allow_folded`)",
         face.0, face.1
     )]
     Folded {
@@ -922,8 +923,8 @@ impl CyclidicNet {
             frame.t2.length() - 1.0,
             frame.t1.dot(frame.t2),
         );
-        let off = t1_len.abs().max(t2_len.abs()).max(dot.abs());
-        if off.is_nan() || off > 1e-9 {
+        // NaN fails too (`f64::max` would have dropped it).
+        if ![t1_len, t2_len, dot].iter().all(|x| x.abs() <= 1e-9) {
             return Err(CyclidicError::FrameNotOrthonormal {
                 t1_len,
                 t2_len,

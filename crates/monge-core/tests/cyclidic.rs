@@ -891,6 +891,18 @@ fn errors() {
         "{e:?}"
     );
     assert!(e.to_string().contains("t1·t2 = 1.0e-1"), "{e}");
+    // A NaN frame (once accepted: `f64::max` dropped the NaN, and 339 853 nulls
+    // were written).
+    let e = CyclidicNet::from_frame(
+        &square_grid(),
+        Frame::new(DVec3::new(f64::NAN, 0.0, 0.0), DVec3::Y),
+        &opts,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, CyclidicError::FrameNotOrthonormal { .. }),
+        "{e:?}"
+    );
     // NotCircular: move one vertex off the circle of its face.
     let mut off = g.clone();
     let k = off.index(2, 3);
