@@ -74,6 +74,21 @@ pub enum GenerateError {
     /// θ is NaN or infinite.
     #[error("theta_deg is {0}: give a finite angle in degrees, in (−180, 180]")]
     ThetaNotFinite(f64),
+    /// A tolerance of the design is negative, NaN or beyond its meaningful range.
+    #[error(
+        "`tolerance.{name}` is {value}: give a number from 0 to {max} ({unit}; the default, \
+         1e-9, suits exact input)"
+    )]
+    BadTolerance {
+        /// `planarity`, `angle` or `start`.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The largest meaningful value: 1 for the relative distances, π/2 for the angle.
+        max: f64,
+        /// `relative to the guide's size` or `radians`.
+        unit: &'static str,
+    },
     /// The design is too small or too large for double precision to keep every
     /// property exact (squared lengths would underflow or overflow).
     #[error(
@@ -271,6 +286,25 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
         return Err(GenerateError::ThetaNotFinite(design.theta_deg));
     }
     let tol = design.tolerance.unwrap_or_default();
+    for (name, value, max, unit) in [
+        (
+            "planarity",
+            tol.planarity,
+            1.0,
+            "relative to the guide's size",
+        ),
+        ("angle", tol.angle, std::f64::consts::FRAC_PI_2, "radians"),
+        ("start", tol.start, 1.0, "relative to the guides' size"),
+    ] {
+        if !(0.0..=max).contains(&value) {
+            return Err(GenerateError::BadTolerance {
+                name,
+                value,
+                max,
+                unit,
+            });
+        }
+    }
     let guide_u = Guide::from_spec(&design.guide_u, GuideName::U, &tol)?;
     let guide_v = Guide::from_spec(&design.guide_v, GuideName::V, &tol)?;
     let size = guide_u.size.max(guide_v.size);

@@ -139,6 +139,48 @@ fn grid_too_large_is_refused_before_sampling() {
 }
 
 #[test]
+fn bad_tolerance() {
+    // A negative tolerance once gave contradictory errors ("0.0e0 from the
+    // best-fit plane … tolerance -1e0"); an angle above π rejected valid guides.
+    use monge_core::design::Tolerances;
+    for (tolerance, name) in [
+        (
+            Tolerances {
+                planarity: -1.0,
+                ..Default::default()
+            },
+            "planarity",
+        ),
+        (
+            Tolerances {
+                angle: 3.0,
+                ..Default::default()
+            },
+            "angle",
+        ),
+        (
+            Tolerances {
+                start: f64::NAN,
+                ..Default::default()
+            },
+            "start",
+        ),
+    ] {
+        let mut d = characteristic(30.0);
+        d.tolerance = Some(tolerance);
+        let e = refused(&d, &opts());
+        assert!(
+            matches!(e, GenerateError::BadTolerance { name: n, .. } if n == name),
+            "{e}"
+        );
+        assert!(
+            e.to_string().contains(&format!("`tolerance.{name}`")),
+            "{e}"
+        );
+    }
+}
+
+#[test]
 fn theta_not_finite() {
     for theta in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         let d = characteristic(theta);
