@@ -187,6 +187,7 @@ pub fn generate_error(context: Option<&str>, e: &GenerateError) -> PyErr {
             DegenerateError::new_err(message)
         }
         GenerateError::Guide(_)
+        | GenerateError::BadTolerance { .. }
         | GenerateError::GridTooLarge { .. }
         | GenerateError::ScaleOutOfRange { .. }
         | GenerateError::StartPointsDiffer { .. }
