@@ -88,9 +88,17 @@ fn stroke(pen: Option<Pen>) -> String {
     }
 }
 
-/// `text` with `&`, `<` and `>` escaped.
+/// `text` with `&`, `<` and `>` escaped, and the control characters XML 1.0
+/// forbids (all but tab, line feed and carriage return) replaced by U+FFFD.
 fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
+    text.chars()
+        .map(|c| match c {
+            '\t' | '\n' | '\r' => c,
+            c if c.is_control() => '\u{FFFD}',
+            c => c,
+        })
+        .collect::<String>()
+        .replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
 }
@@ -156,5 +164,7 @@ mod tests {
     #[test]
     fn text_is_escaped() {
         assert_eq!(escape("a<b & c>d"), "a&lt;b &amp; c&gt;d");
+        // A file name with BEL and ESC once made the SVG invalid XML.
+        assert_eq!(escape("ctl\u{7}\u{1b}.json"), "ctl\u{FFFD}\u{FFFD}.json");
     }
 }
