@@ -176,9 +176,26 @@ pub fn io_error(e: IoError) -> PyErr {
     }
 }
 
-/// A generation error (§3, §5.2), after `context` (the design file, if any).
+/// A generation error (§3, §5.2), after `context` (the design file, if any);
+/// a grid above the vertex limit says how to raise it in Python.
 pub fn generate_error(context: Option<&str>, e: &GenerateError) -> PyErr {
-    let message = text(context, e);
+    let message = match e {
+        GenerateError::GridTooLarge {
+            rows,
+            cols,
+            vertices,
+            limit,
+        } => text(
+            context,
+            format!(
+                "the grid would have {rows} × {cols} = {vertices} vertices, more than the limit \
+                 of {limit}: lower the `samples` of the guides, or raise the limit with \
+                 generate(design, max_vertices=N) if the machine has the memory (48 bytes a \
+                 vertex)"
+            ),
+        ),
+        e => text(context, e),
+    };
     match e {
         GenerateError::ThetaNotFinite(_)
         | GenerateError::ThetaInadmissible { .. }

@@ -10,6 +10,7 @@
 
 use pyo3::prelude::*;
 
+mod args;
 mod design;
 mod errors;
 mod mesh;

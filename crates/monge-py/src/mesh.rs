@@ -12,6 +12,7 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args;
 use crate::design::{kind_name, parse_kind, Design};
 use crate::errors::{
     generate_error, py_float, py_short, warn_far_from_origin, DesignError, MeshError,
@@ -101,8 +102,8 @@ fn view<'py>(
 
 impl Mesh {
     /// The mesh of `kind` (§2.2, §2.3) generated from `design`.
-    fn generate(design: &Design, kind: MeshKind) -> PyResult<Mesh> {
-        let g = core_generate(&design.inner, &GenerateOptions::default())
+    fn generate(design: &Design, kind: MeshKind, options: &GenerateOptions) -> PyResult<Mesh> {
+        let g = core_generate(&design.inner, options)
             .map_err(|e| generate_error(design.context(), &e))?;
         let geometry = match kind {
             MeshKind::Circular => Geometry::Circular(g.grid),
@@ -341,12 +342,36 @@ fn check_offset(base: &QuadGrid, offset: &QuadGrid, d: f64) -> PyResult<()> {
 /// `"conical"` (§2.3), by default the design's own `mesh`. Warns
 /// (`FarFromOriginWarning`) as `monge generate` does when the mesh lies so far
 /// from the origin that f64 coordinates cannot hold it to 1e-9 of its size.
+///
+/// `max_vertices` (default 25 000 000, about 1.2 GB of vertices and normals, as
+/// the command's `--max-vertices`) bounds the grid: a design whose guides have
+/// more samples is refused before anything is allocated.
 #[pyfunction]
-#[pyo3(signature = (design, kind = None))]
-pub fn generate(py: Python<'_>, design: &Design, kind: Option<&str>) -> PyResult<Mesh> {
+#[pyo3(
+    signature = (design, kind = None, max_vertices = GenerateOptions::default().max_vertices),
+    text_signature = "(design, kind=None, max_vertices=25000000)"
+)]
+pub fn generate(
+    py: Python<'_>,
+    design: &Design,
+    kind: Option<&str>,
+    #[pyo3(from_py_with = args::max_vertices)] max_vertices: usize,
+) -> PyResult<Mesh> {
     let kind = parse_kind(kind, design.inner.mesh)?;
     let design = design.clone();
-    let mesh = py.detach(move || Mesh::generate(&design, kind))?;
+    let options = GenerateOptions { max_vertices };
+    let mesh = py.detach(move || Mesh::generate(&design, kind, &options))?;
     warn_far_from_origin(py, &mesh.geometry.grid().vertices)?;
     Ok(mesh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The default `generate`'s text signature, its stub and its docstring write.
+    #[test]
+    fn the_written_default_of_max_vertices_is_the_cores() {
+        assert_eq!(GenerateOptions::default().max_vertices, 25_000_000);
+    }
 }

@@ -26,6 +26,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 use pythonize::pythonize;
 
+use crate::args;
 use crate::design::{dict_to_json, json_to_python, kind_name, parse_kind, Design};
 use crate::errors::{
     generate_error, io_error, py_float, text, warn_far_from_origin, FabricationError, MeshError,
@@ -220,7 +221,7 @@ pub fn check<'py>(
 pub fn smooth<'py>(
     py: Python<'py>,
     design: &Bound<'py, PyAny>,
-    samples: usize,
+    #[pyo3(from_py_with = args::samples)] samples: usize,
     allow_folded: bool,
     max_bytes: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -570,7 +571,7 @@ pub fn optimise_panels<'py>(
     py: Python<'py>,
     design: &Design,
     max_gap_ratio: f64,
-    max_evaluations: Option<usize>,
+    #[pyo3(from_py_with = args::panel_evaluations)] max_evaluations: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let options = PanelOptions {
         max_gap_ratio,
@@ -659,10 +660,10 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
 pub fn approximate<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
-    grid: (usize, usize),
+    #[pyo3(from_py_with = args::grid)] grid: (usize, usize),
     kind: &str,
-    starts: usize,
-    max_evaluations: usize,
+    #[pyo3(from_py_with = args::starts)] starts: usize,
+    #[pyo3(from_py_with = args::approximate_evaluations)] max_evaluations: usize,
     time_limit: Option<f64>,
     keep_boundary: bool,
 ) -> PyResult<Bound<'py, PyDict>> {

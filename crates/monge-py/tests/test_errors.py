@@ -309,3 +309,60 @@ def test_far_from_origin_warns_as_the_command_does(tmp_path, cli):
         warnings.simplefilter("error", monge.FarFromOriginWarning)
         monge.check(monge.generate(monge.Design.from_file(FREEFORM)))
         monge.info(monge.Design.from_dict(shifted(FREEFORM, 1e4)))
+
+
+@pytest.mark.parametrize(
+    "call, error, message",
+    [
+        (lambda d: monge.smooth(d, samples=-1), monge.SmoothError,
+         "samples = -1: give K in 2..=1000 (K × K points a patch)"),
+        (lambda d: monge.smooth(d, samples=np.int64(-3)), monge.SmoothError,
+         "samples = -3: give K in 2..=1000 (K × K points a patch)"),
+        (lambda d: monge.smooth(d, samples=10**30), monge.SmoothError,
+         f"samples = {10**30}: give K in 2..=1000 (K × K points a patch)"),
+        (lambda d: monge.approximate(np.zeros((9, 3)), grid=(-1, 5)), monge.OptimiseError,
+         "grid = (-1, 5): give (faces along guide_u, faces along guide_v), whole numbers, e.g. (40, 40)"),
+        (lambda d: monge.approximate(np.zeros((9, 3)), starts=-2), monge.OptimiseError,
+         "starts = -2: give a whole number of starts (default 4)"),
+        (lambda d: monge.approximate(np.zeros((9, 3)), max_evaluations=-5), monge.OptimiseError,
+         "max_evaluations = -5: give a whole number of mesh generations for each optimiser run "
+         "(default 1500)"),
+        (lambda d: monge.optimise_panels(d, max_evaluations=-1), monge.OptimiseError,
+         "max_evaluations = -1: give a whole number of evaluations, or None for the optimiser's "
+         "own budget"),
+        (lambda d: monge.generate(d, max_vertices=-1), monge.DesignError,
+         "max_vertices = -1: give a whole number of vertices (default 25000000)"),
+    ],
+)
+def test_negative_whole_numbers_are_refused_naming_the_argument(call, error, message):
+    # They once raised a bare "OverflowError: can't convert negative int to unsigned".
+    with pytest.raises(error) as e:
+        call(monge.Design.from_file(DUPIN))
+    assert str(e.value) == message
+
+
+def test_other_types_are_type_errors_naming_the_argument():
+    design = monge.Design.from_file(DUPIN)
+    with pytest.raises(TypeError, match="samples"):
+        monge.smooth(design, samples=9.0)
+    with pytest.raises(TypeError, match="grid"):
+        monge.approximate(np.zeros((9, 3)), grid=5)
+    assert monge.smooth(design, samples=np.int64(3))["patches"].shape[2] == 3
+
+
+def test_generate_takes_a_vertex_limit_in_pythons_words(tmp_path):
+    design = monge.Design.from_file(DUPIN)  # 41 × 33 = 1353 vertices
+    with pytest.raises(monge.DesignError) as e:
+        monge.generate(design, max_vertices=1000)
+    assert str(e.value) == (
+        f"{DUPIN}: the grid would have 41 × 33 = 1353 vertices, more than the limit of 1000: lower "
+        "the `samples` of the guides, or raise the limit with generate(design, max_vertices=N) if the "
+        "machine has the memory (48 bytes a vertex)"
+    )
+    assert "--max-vertices" not in str(e.value) and "GenerateOptions" not in str(e.value)
+    assert monge.generate(design, max_vertices=1353).vertices.shape == (41, 33, 3)
+    d = dupin()
+    d["guide_u"]["arc"]["samples"] = 10**5
+    d["guide_v"]["arc"]["samples"] = 10**5
+    with pytest.raises(monge.DesignError, match="100000 × 100000 = 10000000000 vertices, more than the limit of 25000000"):
+        monge.generate(monge.Design.from_dict(d))

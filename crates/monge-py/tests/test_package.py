@@ -62,6 +62,7 @@ def test_signatures_show_the_real_defaults():
     assert inspect.signature(monge.approximate).parameters["grid"].default == (40, 40)
     assert inspect.signature(monge.fabricate).parameters["layers"].default == [0.0]
     assert inspect.signature(monge.smooth).parameters["max_bytes"].default == 8e9
+    assert inspect.signature(monge.generate).parameters["max_vertices"].default == 25_000_000
 
 
 def test_numpy_arrays_are_accepted_where_the_stubs_say_array_like():

@@ -133,8 +133,12 @@ class Mesh:
     def offset(self, d: float) -> "Mesh":
         """Node offset (circular, §2.2) or face offset (conical, §2.3) at distance d."""
 
-def generate(design: Design, kind: Optional[_Kind] = None) -> Mesh:
-    """The circular (§2.2) or conical (§2.3) mesh of a design (§3)."""
+def generate(design: Design, kind: Optional[_Kind] = None, max_vertices: int = 25000000) -> Mesh:
+    """The circular (§2.2) or conical (§2.3) mesh of a design (§3).
+
+    A grid of more than ``max_vertices`` vertices (default 25 000 000, about
+    1.2 GB) is refused (DesignError) before anything is allocated.
+    """
 
 def info(design: Design) -> Dict[str, Any]:
     """Mode, θ and its admissible range, grid size, guides (§3.1, §3.2)."""
