@@ -320,7 +320,7 @@ pub enum Command {
                       nearest to TARGET both ways (mesh → target and target → mesh), with BOBYQA from \
                       the target's principal directions at its corners; prints the deviation before \
                       and after, relative to the target's size, and the measured exactness.",
-        after_help = format!("Example:\n  monge approximate examples/targets/roof.obj -o roof.json --grid 20x20\n\n{EXIT}")
+        after_help = format!("Example:\n  monge approximate examples/targets/roof-pcl.obj -o roof.json --grid 20x20\n\n{EXIT}")
     )]
     Approximate(crate::approximate::ApproximateArgs),
 
@@ -603,13 +603,13 @@ pub struct BenchArgs {
     /// --all, runs of each command and size: 1].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub runs: Option<u32>,
-    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 1
-    /// [default: 100,1000; with --all 100,400,1000].
+    /// Comma-separated grid sizes n (n × n faces, n + 1 samples per guide), each ≥ 2
+    /// (a curved guide has 3 samples or more) [default: 100,1000; with --all 100,400,1000].
     #[arg(
         long,
         value_name = "N,N,…",
         value_delimiter = ',',
-        value_parser = clap::value_parser!(u32).range(1..)
+        value_parser = clap::value_parser!(u32).range(2..)
     )]
     pub sizes: Option<Vec<u32>>,
     /// Time every command instead (generate to .json/.obj/.ply (ASCII and binary)/.glb, check, fabricate,

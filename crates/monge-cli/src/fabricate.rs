@@ -83,6 +83,10 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
             "--section {w},{d}: give a positive, finite width and depth"
         );
     }
+    anyhow::ensure!(
+        !monge_io::is_stdio(&args.output),
+        "fabricate writes a directory of nine files: give a directory for -o, not `-`"
+    );
     // The files go into OUT: none of them may be the design.
     if args.output.is_dir() {
         for name in FABRICATION_FILES {

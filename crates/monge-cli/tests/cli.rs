@@ -673,6 +673,16 @@ fn check_reports_a_malformed_mesh_as_an_error() {
 }
 
 #[test]
+fn bench_refuses_a_size_below_2() {
+    // n = 1 was documented as valid, then failed on a straight guide.
+    monge()
+        .args(["bench", "--sizes", "1"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--sizes"));
+}
+
+#[test]
 fn bench_prints_one_json_line_per_size() {
     let out = monge()
         .args(["bench", "--sizes", "10,12", "--runs", "3"])

@@ -202,3 +202,15 @@ fn fabricate_warns_of_a_folded_mesh() {
             "warning: the mesh folds over itself / pinches (§5.2) in 380 faces",
         ));
 }
+
+/// `-o -` is a directory named `-` no more (fabricate writes nine files).
+#[test]
+fn fabricate_refuses_standard_output() {
+    monge()
+        .arg("fabricate")
+        .arg(example("fig25-biarc.json"))
+        .args(["-o", "-"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("give a directory for -o"));
+}
