@@ -3,18 +3,19 @@
 use std::path::PathBuf;
 
 use monge_core::MeshKind;
-use monge_io::{parse_design, read_design, write_design, DesignFormat};
+use monge_io::{parse_design, read_design, write_design, DesignFormat, IoError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde::Serialize;
 
-use crate::errors::{io_error, DesignError};
+use crate::errors::{io_error, py_float, DesignError};
 
 /// A design (§3): two planar guide curves that meet at 90° and the angle θ.
 ///
 /// Build it with `Design.from_file(path)` (JSON or TOML) or
 /// `Design.from_dict(d)` (the same keys as a design file); `to_dict()` gives the
-/// keys back. Errors name the file, line and column, as `monge` does.
+/// keys back. Errors name the file, line and column, as `monge` does, or for a
+/// dict the key (`guide_u.bspline.samples`).
 #[pyclass(module = "monge")]
 #[derive(Clone)]
 pub struct Design {
@@ -32,31 +33,157 @@ impl Design {
     }
 }
 
-/// `obj.tolist()`: lets `json.dumps` write numpy arrays and numbers.
-#[pyfunction]
-fn tolist<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-    obj.call_method0("tolist")
+/// JSON text of Python data, one value a line, with the key path of each line:
+/// what a dict given for a design file becomes, so that an error located by
+/// its line can name the key instead (`guide_u.bspline.samples`).
+struct Json {
+    text: String,
+    /// The key path of each line (the container's on its closing line).
+    paths: Vec<String>,
 }
 
-/// `d` as JSON text (numpy arrays as lists), indented so that an error's line
-/// and column point at one key.
-pub fn dict_to_json(d: &Bound<'_, PyAny>) -> PyResult<String> {
-    let py = d.py();
-    let kwargs = PyDict::new(py);
-    kwargs.set_item("indent", 2)?;
-    kwargs.set_item("allow_nan", false)?;
-    kwargs.set_item("default", wrap_pyfunction!(tolist, py)?)?;
-    let json = py.import("json")?;
-    let text = json
-        .call_method("dumps", (d,), Some(&kwargs))
-        .map_err(|e| {
-            DesignError::new_err(format!(
-                "the design is not JSON-like data (dicts, lists, numbers, strings; numpy arrays are \
-                 accepted): {}",
-                e.value(py)
-            ))
-        })?;
-    text.extract()
+impl Json {
+    fn newline(&mut self, depth: usize, path: &str) {
+        self.text.push('\n');
+        self.text.push_str(&" ".repeat(2 * depth));
+        self.paths.push(path.to_owned());
+    }
+
+    /// Writes `obj` (dicts with string keys, lists, tuples, numbers, strings,
+    /// booleans, None; numpy arrays and scalars through `tolist()`).
+    fn value(&mut self, obj: &Bound<'_, PyAny>, path: &str, depth: usize) -> PyResult<()> {
+        let key = |name: &str| {
+            if path.is_empty() {
+                name.to_owned()
+            } else {
+                format!("{path}.{name}")
+            }
+        };
+        let at = |path: &str| {
+            if path.is_empty() {
+                String::new()
+            } else {
+                format!(" at `{path}`")
+            }
+        };
+        if obj.is_none() {
+            self.text.push_str("null");
+        } else if let Ok(b) = obj.cast::<PyBool>() {
+            self.text
+                .push_str(if b.is_true() { "true" } else { "false" });
+        } else if obj.is_instance_of::<PyInt>() {
+            self.text.push_str(&obj.str()?.to_cow()?);
+        } else if let Ok(x) = obj.cast::<PyFloat>() {
+            let x = x.value();
+            if !x.is_finite() {
+                return Err(DesignError::new_err(format!(
+                    "a number is not finite{} ({}): give a finite number",
+                    at(path),
+                    py_float(x)
+                )));
+            }
+            self.text
+                .push_str(&serde_json::to_string(&x).unwrap_or_default());
+        } else if let Ok(t) = obj.cast::<PyString>() {
+            let t = t.to_cow()?;
+            self.text
+                .push_str(&serde_json::to_string(&*t).unwrap_or_default());
+        } else if let Ok(d) = obj.cast::<PyDict>() {
+            self.text.push('{');
+            for (k, (name, v)) in d.iter().enumerate() {
+                let name = name.cast::<PyString>().map_err(|_| {
+                    DesignError::new_err(format!(
+                        "the keys of a design are strings; got {}{}",
+                        name.repr()
+                            .map_or_else(|_| "another key".into(), |r| r.to_string()),
+                        at(path)
+                    ))
+                })?;
+                let name = name.to_cow()?;
+                if k > 0 {
+                    self.text.push(',');
+                }
+                let child = key(&name);
+                self.newline(depth + 1, &child);
+                self.text
+                    .push_str(&serde_json::to_string(&*name).unwrap_or_default());
+                self.text.push_str(": ");
+                self.value(&v, &child, depth + 1)?;
+            }
+            if !d.is_empty() {
+                self.newline(depth, path);
+            }
+            self.text.push('}');
+        } else if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+            self.text.push('[');
+            for (k, v) in obj.try_iter()?.enumerate() {
+                if k > 0 {
+                    self.text.push(',');
+                }
+                let child = format!("{path}[{k}]");
+                self.newline(depth + 1, &child);
+                self.value(&v?, &child, depth + 1)?;
+            }
+            if obj.len()? > 0 {
+                self.newline(depth, path);
+            }
+            self.text.push(']');
+        } else if obj.hasattr("tolist")? {
+            // numpy arrays and scalars
+            self.value(&obj.call_method0("tolist")?, path, depth)?;
+        } else {
+            return Err(DesignError::new_err(format!(
+                "the design is not JSON-like data (dicts, lists, numbers, strings; numpy arrays \
+                 are accepted): {} is {}{}",
+                obj.repr()?,
+                obj.get_type().name()?,
+                at(path)
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// `d` parsed by `parse` (monge-io's parser of a design file's text) as a dict
+/// of the file's keys: errors say `function: at `key.path`: what`, not the line
+/// of a text the caller never saw.
+pub fn parse_dict<T>(
+    d: &Bound<'_, PyAny>,
+    function: &str,
+    parse: impl FnOnce(&str) -> Result<T, IoError>,
+) -> PyResult<T> {
+    if !d.is_instance_of::<PyDict>() {
+        return Err(DesignError::new_err(format!(
+            "{function}: give a dict with the keys of the file, got {} {}",
+            d.get_type().name()?,
+            d.repr()?
+        )));
+    }
+    let mut json = Json {
+        text: String::new(),
+        paths: vec![String::new()],
+    };
+    json.value(d, "", 0)
+        .map_err(|e| DesignError::new_err(format!("{function}: {}", e.value(d.py()))))?;
+    parse(&json.text).map_err(|e| match e {
+        IoError::Parse { line, message, .. } => {
+            let path = line
+                .checked_sub(1)
+                .and_then(|l| json.paths.get(l))
+                .map_or("", String::as_str);
+            DesignError::new_err(if path.is_empty() || message.contains(path) {
+                format!("{function}: {message}")
+            } else {
+                format!("{function}: at `{path}`: {message}")
+            })
+        }
+        // The kind of the data (`WrongKind`): the text is named `<input>`.
+        e => {
+            let message = e.to_string();
+            let message = message.strip_prefix("<input>").unwrap_or(&message);
+            DesignError::new_err(format!("{function}: the dict{message}"))
+        }
+    })
 }
 
 /// `value` as the Python data `json.loads` makes of its JSON: dicts and lists,
@@ -83,11 +210,13 @@ impl Design {
     }
 
     /// A design from a dict with the keys of a design file (§3); numpy arrays
-    /// are accepted wherever the file has lists.
+    /// are accepted wherever the file has lists. Errors name the key, e.g.
+    /// `guide_u.bspline.control_points[1][0]`.
     #[staticmethod]
     fn from_dict(d: &Bound<'_, PyAny>) -> PyResult<Design> {
-        let text = dict_to_json(d)?;
-        let inner = parse_design(&text, DesignFormat::Json).map_err(io_error)?;
+        let inner = parse_dict(d, "Design.from_dict", |text| {
+            parse_design(text, DesignFormat::Json)
+        })?;
         Ok(Design {
             inner,
             source: None,

@@ -27,7 +27,7 @@ use pyo3::types::{PyBytes, PyDict, PyList};
 use pythonize::pythonize;
 
 use crate::args;
-use crate::design::{dict_to_json, json_to_python, kind_name, parse_kind, Design};
+use crate::design::{json_to_python, kind_name, parse_dict, parse_kind, Design};
 use crate::errors::{
     generate_error, io_error, py_float, text, warn_far_from_origin, FabricationError, MeshError,
     OptimiseError, ScanError, SmoothError,
@@ -610,7 +610,9 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
             Some(path.display().to_string()),
         ),
         Err(_) => (
-            parse_multipatch(&dict_to_json(design)?, DesignFormat::Json).map_err(io_error)?,
+            parse_dict(design, "fit", |text| {
+                parse_multipatch(text, DesignFormat::Json)
+            })?,
             None,
         ),
     };

@@ -12,6 +12,7 @@ import monge
 from conftest import example
 
 DUPIN = example("fig12-dupin-theta30.json")
+FREEFORM = example("fig13-freeform.json")  # 61 × 41 vertices, 60 × 40 faces
 
 
 def dupin(**changes):
@@ -59,10 +60,56 @@ def test_unknown_extension_is_a_design_error(tmp_path, cli_error):
 def test_from_dict_errors_name_the_key():
     with pytest.raises(monge.DesignError, match="unknown field `thetadeg`"):
         monge.Design.from_dict({"thetadeg": 30})
-    with pytest.raises(monge.DesignError, match="not JSON-like"):
+    with pytest.raises(monge.DesignError, match="not JSON-like .* at `theta_deg`"):
         monge.Design.from_dict(dupin(theta_deg=object()))
-    with pytest.raises(monge.DesignError, match="not JSON-like"):
-        monge.Design.from_dict(dupin(theta_deg=float("nan")))
+
+
+def freeform(change):
+    with open(FREEFORM) as f:
+        d = json.load(f)
+    change(d)
+    return d
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        # They once named `<input>:63:1`, a line of a JSON text the caller never saw.
+        (lambda d: d["guide_u"]["bspline"].update(foo=1),
+         "at `guide_u.bspline.foo`: unknown field `foo`, expected one of"),
+        (lambda d: d["guide_u"]["bspline"].pop("samples"), "at `guide_u.bspline`: missing field `samples`"),
+        (lambda d: d.update(mesh="hex"), "at `mesh`: unknown variant `hex`, expected `circular` or `conical`"),
+        (lambda d: d["guide_u"]["bspline"].update(samples="x"),
+         'guide_u.bspline.samples must be a whole number ≥ 0, got the string "x"'),
+        (lambda d: d.pop("guide_v"), "missing field `guide_v`"),
+        # NaN and infinities (which JSON has not) are named where they are.
+        (lambda d: d.update(theta_deg=float("nan")), "a number is not finite at `theta_deg` (nan): give a finite number"),
+        (lambda d: d["guide_u"]["bspline"]["control_points"][1].__setitem__(0, float("-inf")),
+         "a number is not finite at `guide_u.bspline.control_points[1][0]` (-inf): give a finite number"),
+        (lambda d: d["guide_v"]["bspline"].update(control_points=np.array([[0, 0, 0], [0, np.nan, 1.0]])),
+         "a number is not finite at `guide_v.bspline.control_points[1][1]` (nan): give a finite number"),
+        (lambda d: d.update(patches=[]), "the dict is a multi-patch design (§4.7), not a design"),
+    ],
+)
+def test_from_dict_errors_name_the_key_path_not_a_line(change, message):
+    with pytest.raises(monge.DesignError) as e:
+        monge.Design.from_dict(freeform(change))
+    assert str(e.value).startswith("Design.from_dict: ")
+    assert str(e.value).split("\n")[0].startswith("Design.from_dict: " + message), str(e.value)
+    assert "<input>" not in str(e.value) and "\n" not in str(e.value)
+
+
+def test_from_dict_takes_a_dict_and_numpy_values():
+    with pytest.raises(monge.DesignError, match=r"^Design.from_dict: give a dict with the keys of the file, got list \[1, 2\]$"):
+        monge.Design.from_dict([1, 2])
+    d = freeform(lambda d: d.update(theta_deg=np.float32(-30.0)))
+    d["guide_u"]["bspline"]["samples"] = np.int64(61)
+    d["guide_u"]["bspline"]["control_points"] = np.array(d["guide_u"]["bspline"]["control_points"])
+    assert monge.Design.from_dict(d) == monge.Design.from_file(FREEFORM)
+    p = json.loads(open(example("fig20-piecewise.patches.json")).read())
+    p["patches"][0]["theta_deg"] = "x"
+    with pytest.raises(monge.DesignError, match=r'^fit: patches\[0\]\.theta_deg must be a number, got the string "x"$'):
+        monge.fit(p)
 
 
 def test_invalid_guides_are_design_errors_with_the_commands_message(tmp_path, cli_error):
@@ -227,8 +274,6 @@ def test_optimise_errors(tmp_path, cli_error):
     with pytest.raises(monge.OptimiseError):
         monge.fit(patches)
 
-
-FREEFORM = example("fig13-freeform.json")  # 61 × 41 vertices, 60 × 40 faces
 
 
 def test_smooth_refuses_a_result_above_max_bytes_before_building_it():
