@@ -59,9 +59,11 @@ pub enum Command {
              point, meeting at 90°, θ admissible), builds the mesh exactly (§3) and writes it to OUT \
              in the format of OUT's extension (`.obj`, `.ply` or `.json`; `--format ply-binary` \
              or `ply-f32` for binary PLY with double or float coordinates), atomically: on any error \
-             no file is created and an existing OUT is left untouched. JSON output has, besides \
-             `rows`, `cols`, `vertices` and `normals`, the keys `theta_deg`, `mode` and `report` \
-             (folded faces, first fold, smallest crossing sine). A one-paragraph summary (grid \
+             no file is created and an existing OUT is left untouched (with --offset, no file at \
+             all). JSON output has `rows`, `cols`, `vertices`, `kind` and `offset`; a circular \
+             mesh adds its node axes `normals`, a conical mesh its `face_normals` (§2.3), and \
+             both `theta_deg`, `mode` and `report` (folded faces, first fold, smallest crossing \
+             sine); a developable mesh (§3.3) adds `normals` and its slope `alpha_deg`. A one-paragraph summary (grid \
              size, mode, θ, admissible range, time taken, warnings about folds and pinches) goes \
              to stderr.\n\n{THETA}"
         ),
