@@ -156,12 +156,18 @@ pub fn text(context: Option<&str>, message: impl std::fmt::Display) -> String {
 pub fn io_error(e: IoError) -> PyErr {
     let message = e.to_string();
     match e {
+        // The command's message says "choose another -o".
+        IoError::NoDirectory { path, dir } => FileError::new_err(format!(
+            "cannot write `{}`: the folder `{}` does not exist: create it first (e.g. \
+             os.makedirs), or give a path in a folder that exists",
+            path.display(),
+            dir.display()
+        )),
         IoError::NotFound { .. }
         | IoError::Read { .. }
         | IoError::Write { .. }
         | IoError::Full { .. }
         | IoError::Changed { .. }
-        | IoError::NoDirectory { .. }
         | IoError::OutputIsInput { .. }
         | IoError::SameOutput { .. } => FileError::new_err(message),
         IoError::Syntax { .. }

@@ -411,3 +411,15 @@ def test_generate_takes_a_vertex_limit_in_pythons_words(tmp_path):
     d["guide_v"]["arc"]["samples"] = 10**5
     with pytest.raises(monge.DesignError, match="100000 × 100000 = 10000000000 vertices, more than the limit of 25000000"):
         monge.generate(monge.Design.from_dict(d))
+
+
+def test_to_file_into_a_missing_folder_says_so_in_pythons_words(tmp_path):
+    # It once said "choose another -o".
+    path = tmp_path / "missing" / "d.json"
+    with pytest.raises(monge.FileError) as e:
+        monge.Design.from_file(DUPIN).to_file(path)
+    assert str(e.value) == (
+        f"cannot write `{path}`: the folder `{tmp_path / 'missing'}` does not exist: create it first "
+        "(e.g. os.makedirs), or give a path in a folder that exists"
+    )
+    assert not path.parent.exists()
