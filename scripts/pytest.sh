@@ -19,12 +19,16 @@ fi
 "$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask mypy
 
 # A debug wheel by default: it reuses what `cargo test` just built, and the tests
-# are small (MONGE_WHEEL_PROFILE=--release builds the wheel that users get).
+# are small (MONGE_WHEEL_PROFILE=--release builds the wheel that users get). It
+# is named as the release wheel is, so it goes to a folder of its own,
+# target/wheels-test: target/wheels, where the README's `maturin build --release`
+# puts the wheel to install, is neither written nor emptied here.
 profile="${MONGE_WHEEL_PROFILE:-}"
-echo "== wheel (maturin build ${profile:-(debug)})"
-rm -rf "$target/wheels"
-(cd crates/monge-py && "$venv/bin/maturin" build $profile --locked --out "$target/wheels")
-wheel="$(ls "$target"/wheels/monge-*.whl)"
+wheels="$target/wheels-test"
+echo "== wheel (maturin build ${profile:-(debug)}, into $wheels)"
+rm -rf "$wheels"
+(cd crates/monge-py && "$venv/bin/maturin" build $profile --locked --out "$wheels")
+wheel="$(ls "$wheels"/monge-*.whl)"
 case "$(basename "$wheel")" in
   *-cp39-abi3-*) echo "wheel: $(basename "$wheel") (abi3, CPython ≥ 3.9)" ;;
   *) echo "error: $(basename "$wheel") is not an abi3 wheel for CPython ≥ 3.9" >&2; exit 2 ;;
@@ -34,6 +38,7 @@ esac
 echo "== pytest"
 cargo build --quiet --locked -p monge-cli
 export MONGE_BIN="$target/debug/monge"
+export MONGE_TEST_WHEEL="$wheel"
 # Run from outside the source tree so that the installed wheel is imported.
 cd "$target"
 "$venv/bin/python" -m pytest -q "$OLDPWD/crates/monge-py/tests" "$@"

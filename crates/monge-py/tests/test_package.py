@@ -3,6 +3,7 @@
 import ast
 import doctest
 import inspect
+import os
 import pathlib
 import subprocess
 import sys
@@ -82,3 +83,13 @@ def test_the_stubs_pass_stubtest(tmp_path):
         capture_output=True, text=True, cwd=tmp_path,
     )
     assert p.returncode == 0, p.stdout + p.stderr
+
+
+def test_the_test_wheel_is_not_where_the_release_wheel_goes():
+    # scripts/pytest.sh once built its debug wheel into target/wheels, under the
+    # release wheel's name, after emptying that folder.
+    if "MONGE_BIN" not in os.environ:
+        pytest.skip("run by scripts/pytest.sh only")
+    wheel = pathlib.Path(os.environ.get("MONGE_TEST_WHEEL", ""))
+    assert wheel.parent.name == "wheels-test", wheel
+    assert wheel.name.startswith("monge-") and "-cp39-abi3-" in wheel.name
