@@ -1358,3 +1358,29 @@ fn designs_too_far_from_the_origin_for_f64_output_are_warned_about() {
         }
     }
 }
+
+/// An offset's JSON `report` counts the offset's own folds, as `monge check`
+/// finds them (it once copied the generated mesh's 0).
+#[test]
+fn an_offsets_report_counts_its_own_folds() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("d.json");
+    monge()
+        .arg("generate")
+        .arg(example("fig12-dupin-theta30.json"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--offset", "-5"])
+        .assert()
+        .success();
+    let report = |path: &Path| -> Value {
+        serde_json::from_str::<Value>(&fs::read_to_string(path).unwrap()).unwrap()["report"].clone()
+    };
+    assert_eq!(report(&out)["folded_faces"], 0);
+    let offset = dir.path().join("d.offset-5.json");
+    let (code, checked) = check_json(&offset, &[]);
+    assert_eq!(code, Some(1));
+    let folds = &checked["metrics"]["folded_faces"];
+    assert_eq!(report(&offset)["folded_faces"], folds["value"], "{checked}");
+    assert_eq!(report(&offset)["folded_faces"], 288);
+}

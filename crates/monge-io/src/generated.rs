@@ -96,10 +96,12 @@ pub fn layer_extras(offset: f64, kind: &str, face_normals: Option<&[DVec3]>) -> 
 /// The design's mesh of `kind` at distance 0, then at each of `offsets`: node
 /// offsets of the circular mesh (§2.2), or face offsets of its conical dual
 /// (§2.3; the circular mesh has at least 3 × 3 vertices, as every curved guide
-/// has at least 3 samples).
+/// has at least 3 samples). An offset's JSON `report` counts the folds of the
+/// offset itself (an offset through a focal surface folds where the mesh does
+/// not); its crossing sine is the generation's, whose normals it shares.
 pub fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer<'a>> {
     let distances = std::iter::once(0.0).chain(offsets.iter().copied());
-    match kind {
+    let layers: Vec<Layer<'a>> = match kind {
         MeshKind::Circular => distances
             .map(|d| Layer::new(d, node_offset(&g.grid, d), kind_name(kind), None))
             .collect(),
@@ -117,7 +119,22 @@ pub fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Laye
                 })
                 .collect()
         }
-    }
+    };
+    layers
+        .into_iter()
+        .map(|mut layer| {
+            if layer.offset != 0.0 {
+                let folds = layer.grid.folds();
+                let report = CombescureReport {
+                    folded_faces: folds.count(),
+                    first_fold: folds.first(),
+                    ..g.report
+                };
+                layer.extra.insert("report".into(), report_json(&report));
+            }
+            layer
+        })
+        .collect()
 }
 
 /// The node offset of `grid` at distance `d` (§2.2): the grid itself, borrowed,
