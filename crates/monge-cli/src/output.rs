@@ -5,7 +5,7 @@ use std::io::{self, Write};
 use anyhow::Context;
 use glam::DVec3;
 use monge_core::design::Xyz;
-use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN};
+use monge_io::generated::far_from_origin;
 
 /// Writes `text` to standard output and flushes it; a closed pipe is an error
 /// (never a panic).
@@ -25,17 +25,7 @@ pub fn eprint(text: &str) {
 /// origin, compared with the design's size, that f64 output cannot hold the mesh
 /// to 1e-9 of its size (`None` otherwise).
 pub fn far_from_origin_warning(points: &[DVec3]) -> Option<String> {
-    let ratio = origin_ratio(points);
-    (ratio > FAR_FROM_ORIGIN).then(|| {
-        format!(
-            "warning: the coordinates are up to {ratio:.1e} times the design's size away from the \
-             origin: as f64 numbers they are rounded by up to {:.1e} of the size, so no output file \
-             can hold the mesh to 1e-9 of its size (beyond {FAR_FROM_ORIGIN:.1e} times). Model the \
-             design near the origin (e.g. with the guides' start point at 0) and move it into place \
-             afterwards.\n",
-            ratio * f64::EPSILON
-        )
-    })
+    far_from_origin(points).map(|m| format!("warning: {m}\n"))
 }
 
 /// A point or vector as `(x, y, z)` with 6 significant digits.

@@ -9,6 +9,7 @@ use std::borrow::Cow;
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
 use monge_core::conical::conical_dual;
+use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN};
 use monge_core::measure::{conical_error, measure};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{Generated, MeshKind, Mode, QuadGrid};
@@ -28,6 +29,31 @@ pub fn kind_name(kind: MeshKind) -> &'static str {
         MeshKind::Circular => "circular",
         MeshKind::Conical => "conical",
     }
+}
+
+/// What every front end says when the coordinates lie so far from the origin,
+/// compared with their size, that f64 numbers cannot hold the mesh to 1e-9 of
+/// its size ([`origin_ratio`] above [`FAR_FROM_ORIGIN`]); `None` otherwise.
+///
+/// ```
+/// use glam::DVec3;
+/// let near = [DVec3::ZERO, DVec3::ONE];
+/// assert!(monge_io::generated::far_from_origin(&near).is_none());
+/// let far = [DVec3::splat(1e10), DVec3::splat(1e10) + DVec3::ONE];
+/// assert!(monge_io::generated::far_from_origin(&far).unwrap().contains("away from the origin"));
+/// ```
+pub fn far_from_origin(points: &[DVec3]) -> Option<String> {
+    let ratio = origin_ratio(points);
+    (ratio > FAR_FROM_ORIGIN).then(|| {
+        format!(
+            "the coordinates are up to {ratio:.1e} times the design's size away from the origin: \
+             as f64 numbers they are rounded by up to {:.1e} of the size, so no file or array can \
+             hold the mesh to 1e-9 of its size (beyond {FAR_FROM_ORIGIN:.1e} times). Model the \
+             design near the origin (e.g. with the guides' start point at 0) and move it into \
+             place afterwards.",
+            ratio * f64::EPSILON
+        )
+    })
 }
 
 /// The Combescure report as JSON (§5.2): `folded_faces`, `first_fold`,

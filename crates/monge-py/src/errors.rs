@@ -4,8 +4,8 @@
 use std::ffi::CString;
 
 use glam::DVec3;
-use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN};
 use monge_core::GenerateError;
+use monge_io::generated::far_from_origin;
 use monge_io::IoError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyUserWarning};
@@ -101,22 +101,12 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 
 /// Warns (`FarFromOriginWarning`) when `points` lie so far from the origin,
 /// compared with their size, that f64 coordinates cannot hold them to 1e-9 of
-/// it: the test of `monge generate`, `info` and `check`
-/// ([`monge_core::grid::origin_ratio`] above [`FAR_FROM_ORIGIN`]), and their
-/// words. Raises instead if warnings are errors (`-W error`).
+/// it: the test and words of `monge generate`, `info` and `check`
+/// ([`monge_io::generated::far_from_origin`]). Raises instead if warnings are errors (`-W error`).
 pub fn warn_far_from_origin(py: Python<'_>, points: &[DVec3]) -> PyResult<()> {
-    let ratio = origin_ratio(points);
-    if ratio <= FAR_FROM_ORIGIN {
+    let Some(message) = far_from_origin(points) else {
         return Ok(());
-    }
-    let message = format!(
-        "the coordinates are up to {ratio:.1e} times the design's size away from the origin: as \
-         f64 numbers they are rounded by up to {:.1e} of the size, so no array or file can hold \
-         the mesh to 1e-9 of its size (beyond {FAR_FROM_ORIGIN:.1e} times). Model the design \
-         near the origin (e.g. with the guides' start point at 0) and move it into place \
-         afterwards.",
-        ratio * f64::EPSILON
-    );
+    };
     let message = CString::new(message).unwrap_or_default();
     PyErr::warn(py, &py.get_type::<FarFromOriginWarning>(), &message, 1)
 }
