@@ -10,6 +10,7 @@ use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
 use monge_core::guide::Guide;
+use monge_core::measure::measurable;
 use monge_core::optimise::fit as core_fit;
 use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
 use monge_core::scan::scan as core_scan;
@@ -179,6 +180,7 @@ pub fn check<'py>(
     };
     let kind = parse_kind(kind, default)?;
     let grid = grid_of(vertices, normals)?;
+    measurable(&grid).map_err(|e| MeshError::new_err(e.to_string()))?;
     let (m, max_error) = measurements(&grid, kind);
     let d = pythonize(py, &m)?.cast_into::<PyDict>()?;
     if kind == MeshKind::Conical {

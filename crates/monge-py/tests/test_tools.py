@@ -73,6 +73,21 @@ def test_check_finds_a_crossed_face():
     assert monge.check(v)["folded_faces"] == {"value": 1, "at": (1, 0)}
 
 
+def test_check_refuses_what_cannot_be_measured():
+    # As `monge check`: once max_error 0 for an empty mesh, NaN at 1e150.
+    with pytest.raises(monge.MeshError, match="no face to measure"):
+        monge.check(np.zeros((0, 0, 3)))
+    with pytest.raises(monge.MeshError, match="no face to measure"):
+        monge.check(np.zeros((1, 5, 3)))
+    v = monge.generate(monge.Design.from_file(example("fig13-freeform.json"))).vertices
+    with pytest.raises(monge.MeshError, match=r"outside \[1e-100, 1e100\]"):
+        monge.check(v * 1e150)
+    bad = np.array(v)
+    bad[3, 4, 1] = np.nan
+    with pytest.raises(monge.MeshError, match=r"vertices\[3, 4\] = .* is not finite"):
+        monge.check(bad)
+
+
 def test_check_conical(cli, tmp_path):
     conical = monge.generate(monge.Design.from_file(example("fig13-conical.json")))
     m = monge.check(conical)
