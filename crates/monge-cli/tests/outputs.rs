@@ -36,30 +36,23 @@ fn generate_with_offsets_changes_no_file_when_one_offset_fails() {
     let d = dir.path();
     fs::write(d.join("m.obj"), "previous").unwrap();
     fs::create_dir(d.join("m.offset+1.obj")).unwrap();
-    let before = snapshot(d);
-    monge()
-        .arg("generate")
-        .arg(example("fig13-freeform.json"))
-        .arg("-o")
-        .arg(d.join("m.obj"))
-        .args(["--offset", "0.5", "--offset", "1"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("is a directory"));
-    assert_eq!(snapshot(d), before);
+    let generate = |offsets: [&str; 2], says: &str| {
+        let before = snapshot(d);
+        monge()
+            .arg("generate")
+            .arg(example("fig13-freeform.json"))
+            .arg("-o")
+            .arg(d.join("m.obj"))
+            .args(["--offset", offsets[0], "--offset", offsets[1]])
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains(says));
+        assert_eq!(snapshot(d), before);
+    };
+    generate(["0.5", "1"], "is a directory");
     // A name the file system refuses (309 digits) fails before any file moves.
     fs::remove_dir(d.join("m.offset+1.obj")).unwrap();
-    let before = snapshot(d);
-    monge()
-        .arg("generate")
-        .arg(example("fig13-freeform.json"))
-        .arg("-o")
-        .arg(d.join("m.obj"))
-        .args(["--offset", "0.5", "--offset", "1e308"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("too long"));
-    assert_eq!(snapshot(d), before);
+    generate(["0.5", "1e308"], "too long");
 }
 
 #[test]
