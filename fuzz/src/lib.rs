@@ -62,11 +62,12 @@ pub fn design(data: &[u8], format: DesignFormat) {
                 return;
             };
             assert_grid("multi-patch", &mp.grid);
-            if let Ok(isos) = isometries(&d.symmetry) {
-                if isos.len() * mp.grid.vertices.len() <= MAX_VERTICES {
-                    let a = assemble(std::slice::from_ref(&mp.grid), &isos);
-                    assert_finite("assembly", &a.mesh.vertices);
-                }
+            // As `monge patches` does: no more copies than the vertex limit allows.
+            let max_copies = MAX_VERTICES / mp.grid.vertices.len().max(1);
+            if let Ok(isos) = isometries(&d.symmetry, max_copies) {
+                assert!(isos.len() <= max_copies, "{} copies", isos.len());
+                let a = assemble(std::slice::from_ref(&mp.grid), &isos);
+                assert_finite("assembly", &a.mesh.vertices);
             }
         }
         // Parsed only: `monge align` scans θ with an optimiser (0.3–1 s an

@@ -275,8 +275,11 @@ fn face_matches(f: &[usize; 4], k: usize, cols: usize) -> bool {
         return false;
     };
     let g = [f[p], f[(p + 1) % 4], f[(p + 2) % 4], f[(p + 3) % 4]];
-    let (a, b) = (k + cols, k + 1);
-    g[2] == k + cols + 1 && ((g[1] == a && g[3] == b) || (g[1] == b && g[3] == a))
+    // Checked: a file's indices can be anything up to usize::MAX.
+    let (Some(a), Some(b)) = (k.checked_add(cols), k.checked_add(1)) else {
+        return false;
+    };
+    a.checked_add(1) == Some(g[2]) && ((g[1] == a && g[3] == b) || (g[1] == b && g[3] == a))
 }
 
 /// Checks that `faces` are exactly the faces of a `rows × cols` grid, each once.
@@ -846,4 +849,19 @@ fn parse_ply_binary(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by the fuzzer (mesh_ply): a first face `(0, usize::MAX, …, 1)` made
+    /// `k + cols + 1` overflow (a panic in debug builds).
+    #[test]
+    fn face_indices_near_usize_max_are_no_grid_not_a_panic() {
+        assert_eq!(first_face_cols(&[0, usize::MAX, 5, 1]), None);
+        assert!(!face_matches(&[usize::MAX, 0, 0, 0], usize::MAX, 3));
+        assert_eq!(first_face_cols(&[0, 3, 4, 1]), Some(3));
+        assert_eq!(first_face_cols(&[1, 4, 3, 0]), Some(3));
+    }
 }
