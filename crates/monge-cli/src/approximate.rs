@@ -39,10 +39,16 @@ pub struct ApproximateArgs {
     /// Circular (default) or conical mesh (§2.3).
     #[arg(long, value_enum, default_value_t = KindArg::Circular)]
     pub kind: KindArg,
-    /// Number of starts (best θ at each corner of the target first).
-    #[arg(long, value_name = "N", default_value_t = ApproxOptions::default().starts)]
+    /// Number of starts, at least 1 (best θ at each corner of the target first).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = ApproxOptions::default().starts,
+        value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..)
+    )]
     pub starts: usize,
-    /// Budget of mesh generations of each optimiser run.
+    /// Budget of mesh generations of each optimiser run (a smaller N is raised to the
+    /// fewest its optimiser needs to start: 2n + 2 for its n parameters).
     #[arg(long, value_name = "N", default_value_t = ApproxOptions::default().max_evaluations)]
     pub max_evaluations: usize,
     /// Stop searching after this many seconds and keep the best design found.

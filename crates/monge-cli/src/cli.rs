@@ -204,7 +204,8 @@ pub enum Command {
              summary and the layers; with --full-json also every panel, beam and node), panels.dxf and beams.dxf (R12 drawings, labelled), overview.svg (plan) and \
              gridshell.glb (glTF of all layers, beams swept with a rectangular section). Prints a \
              summary: counts, segments per beam, distinct radii, node types, node heights, worst \
-             residuals.",
+             residuals. Lengths and residuals in the files and the summary are in the model's \
+             units; --tol is relative to the model's size (the summary prints it).",
         after_help = format!(
             "Examples:\n  \
              monge fabricate examples/fig12-dupin-theta30.json -o out --layers 0,0.1,0.2\n  \

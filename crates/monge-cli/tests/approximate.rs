@@ -124,6 +124,14 @@ fn approximate_refuses_a_malformed_grid_and_time_limit() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("positive number of seconds"));
+    // Once quietly taken as 1.
+    monge()
+        .args(["approximate"])
+        .arg(&target)
+        .args(["-o", "x.json", "--starts", "0"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--starts"));
     // Beyond what the clock holds (it once panicked: "overflow when adding duration
     // to instant", "cannot convert float seconds to Duration"): no limit.
     let dir = TempDir::new().unwrap();

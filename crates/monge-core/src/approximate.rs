@@ -72,6 +72,11 @@ const CONTROL_POINTS: usize = 5;
 /// the second control point's distance and two coordinates of each later one.
 const PARAMETERS: usize = 9 + 2 * (1 + 2 * (CONTROL_POINTS - 2));
 
+/// The fewest mesh generations a BOBYQA run of [`approximate`] takes (§4.7):
+/// `2n + 2` for its `n` parameters; a smaller [`ApproxOptions::max_evaluations`]
+/// is raised to it.
+pub const MIN_EVALUATIONS: usize = 2 * PARAMETERS + 2;
+
 /// Options of [`approximate`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ApproxOptions {
@@ -82,7 +87,8 @@ pub struct ApproxOptions {
     /// Number of starts: the best θ of the scan at each corner, then the next best ones
     /// (default 4).
     pub starts: usize,
-    /// Budget of mesh generations of each BOBYQA run (default 1500).
+    /// Budget of mesh generations of each BOBYQA run (default 1500; at least
+    /// [`MIN_EVALUATIONS`]).
     pub max_evaluations: usize,
     /// Stop improving at this instant and return the best design found (default none).
     pub deadline: Option<Instant>,
@@ -1543,7 +1549,7 @@ pub fn approximate(
         }
     }
     let coarse = ((fu / 2).max(4), (fv / 2).max(4));
-    let budget = options.max_evaluations.max(2 * PARAMETERS + 2);
+    let budget = options.max_evaluations.max(MIN_EVALUATIONS);
     let starts_wanted = options.starts.max(1);
     let mut search = Search {
         target: &target,
