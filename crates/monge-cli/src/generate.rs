@@ -32,6 +32,10 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     if is_stdio(out) && !args.offsets.is_empty() {
         bail!("--offset writes one file per offset next to OUT: give a file for -o, not `-`");
     }
+    // No offset's file may be the design.
+    for d in &args.offsets {
+        check_output(&offset_path(out, *d), &[&args.design])?;
+    }
 
     let design = match read_any_design(&args.design)? {
         AnyDesign::Surface(design) => *design,
@@ -47,7 +51,7 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
 
     let start = Instant::now();
     let layers = layers(&generated, design.mesh, &args.offsets);
-    write_layers(out, &args.design, format, json_extras(&generated), &layers)?;
+    write_layers(out, format, json_extras(&generated), &layers)?;
     let writing = start.elapsed().as_secs_f64();
 
     eprint(&summary(
@@ -74,10 +78,9 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
 
 /// Writes the layers as one set of files ([`Outputs`]: after an error none has
 /// changed): the first to OUT, each offset next to it, JSON with `extra` and each
-/// layer's own keys. No offset's file may be the design (`input`).
+/// layer's own keys.
 fn write_layers(
     out: &Path,
-    input: &Path,
     format: MeshFormat,
     mut extra: Map<String, Value>,
     layers: &[Layer],
@@ -90,7 +93,6 @@ fn write_layers(
         } else {
             offset_path(out, layer.offset)
         };
-        check_output(&path, &[input])?;
         extra.extend(layer.extra.clone());
         files.write(&path, |w| match format {
             MeshFormat::Json => write_mesh_json(&layer.grid, &extra, w),
@@ -126,7 +128,7 @@ fn run_developable(
     let mut extra = Map::new();
     extra.insert("alpha_deg".into(), json!(mesh.alpha_deg));
     let start = Instant::now();
-    write_layers(&args.output, &args.design, format, extra, &layers)?;
+    write_layers(&args.output, format, extra, &layers)?;
     let g = &mesh.grid;
     eprint(&format!(
         "{}: developable circular mesh (§3.3), slope α = {}°: {} rulings × {} cutting planes, \
