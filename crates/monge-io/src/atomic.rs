@@ -158,7 +158,7 @@ impl Outputs {
         if self
             .files
             .iter()
-            .any(|f| f.path == path || (key.is_some() && canonical(&f.path) == key))
+            .any(|f| f.path == path || (key.is_some() && f.canonical == key))
         {
             return Err(IoError::SameOutput {
                 path: path.to_owned(),
@@ -171,6 +171,8 @@ impl Outputs {
 /// A file of [`Outputs`] written and synced beside its path, not yet in place.
 struct Pending {
     path: PathBuf,
+    /// [`canonical`] of `path`, to tell the same file under two names.
+    canonical: Option<PathBuf>,
     dir: PathBuf,
     prefix: String,
     staged: Staged,
@@ -210,6 +212,7 @@ impl Pending {
         staged.file().sync_all().map_err(err)?;
         Ok(Pending {
             path: path.to_owned(),
+            canonical: canonical(path),
             dir: dir.to_owned(),
             prefix,
             staged,

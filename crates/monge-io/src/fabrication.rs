@@ -30,9 +30,10 @@ pub const FABRICATION_FILES: [&str; 9] = [
 
 /// Writes the schedules, drawings and model of a gridshell into `dir` (§6),
 /// creating it if needed, the files as one ([`Outputs`]: after an error none
-/// has changed); returns the paths written, in the order of [`FABRICATION_FILES`]. Beams in the glTF are
-/// swept with a `section.0 × section.1` rectangle (width along the beam plane's
-/// normal, depth in the plane); `schedule.json` holds `json`.
+/// has changed); returns the paths written, in the order of
+/// [`FABRICATION_FILES`]. Beams in the glTF are swept with a
+/// `section.0 × section.1` rectangle (width along the beam plane's normal,
+/// depth in the plane); `schedule.json` holds `json`.
 pub fn write_fabrication(
     dir: &Path,
     f: &Fabrication,
