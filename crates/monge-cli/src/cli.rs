@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand, ValueEnum};
 use monge_core::cyclidic::CyclidicOptions;
-use monge_core::GenerateOptions;
+use monge_core::{BasePoint, GenerateOptions};
 use monge_io::{is_stdio, MeshFormat};
 use monge_render::MAX_SIDE;
 
@@ -504,6 +504,14 @@ pub struct GenerateArgs {
     /// next to OUT as `STEM.offset+D.EXT` (or `-D`), in OUT's format.
     #[arg(long = "offset", value_name = "D", allow_negative_numbers = true, value_parser = parse_finite)]
     pub offsets: Vec<f64>,
+    /// Write coordinates relative to a base point: `start` (the guides' common start point) or
+    /// X,Y,Z. Far from the origin (beyond about 1e3 times the design's size) this keeps the
+    /// mesh exact to 1e-9 of its size, which absolute f64 coordinates cannot. The mesh is
+    /// computed relative to the point, and the file records it: JSON `base_point`, OBJ
+    /// `# base_point x y z`, PLY `comment base_point x y z` (add it to every vertex for the
+    /// true coordinates), glTF the node's translation. Off by default.
+    #[arg(long, value_name = "start|X,Y,Z", allow_hyphen_values = true)]
+    pub base_point: Option<BasePoint>,
 }
 
 /// What kind of mesh `monge check` measures.

@@ -4,9 +4,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
+use glam::DVec3;
 use monge_core::conical::conical_dual;
 use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
-use monge_core::{generate, GenerateOptions, MeshKind};
+use monge_core::{generate, BasePoint, GenerateOptions, MeshKind};
 use monge_io::{check_output, read_design, write_fabrication, ScheduleJson, FABRICATION_FILES};
 
 use crate::generate::generation_warnings;
@@ -59,6 +60,13 @@ pub struct FabricateArgs {
     /// memory about 1.1 kB.
     #[arg(long, value_name = "GB", default_value_t = MAX_OUTPUT_GB, value_parser = parse_gigabytes)]
     pub max_output: f64,
+    /// Write coordinates relative to a base point: `start` (the guides' common start point) or
+    /// X,Y,Z, to keep full precision far from the origin (as `monge generate --base-point`).
+    /// schedule.json records it (`base_point`) and gridshell.glb's nodes are translated by it;
+    /// the CSV coordinates are relative to it; the DXF drawings, laid out in each part's plane,
+    /// do not depend on it.
+    #[arg(long, value_name = "start|X,Y,Z", allow_hyphen_values = true)]
+    pub base_point: Option<BasePoint>,
 }
 
 /// Bytes the fabrication files take per face and layer (measured with `monge bench`'s
@@ -93,7 +101,11 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
             check_output(&args.output.join(name), &[&args.design])?;
         }
     }
-    let design = read_design(&args.design)?;
+    let (design, base_point) = match &args.base_point {
+        Some(b) => b.apply(read_design(&args.design)?),
+        None => (read_design(&args.design)?, None),
+    };
+    let base_point = base_point.map(DVec3::from_array);
     let start = Instant::now();
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
@@ -142,7 +154,7 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         _ => (f.summary.size / 200.0, f.summary.size / 200.0),
     };
     let start = Instant::now();
-    let paths = write_fabrication(&args.output, &f, section, json)?;
+    let paths = write_fabrication(&args.output, &f, section, json, base_point)?;
     eprint(&format!(
         "computed in {} ms, wrote {} files to `{}` in {} ms.\n",
         millis(computed),
@@ -150,6 +162,15 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         args.output.display(),
         millis(start.elapsed().as_secs_f64())
     ));
+    if let Some(b) = base_point {
+        eprint(&format!(
+            "coordinates written relative to the base point ({}, {}, {}), recorded in \
+             schedule.json (`base_point`) and as gridshell.glb's node translation.\n",
+            num(b.x),
+            num(b.y),
+            num(b.z)
+        ));
+    }
     print(&summary(&f.summary, design.mesh))?;
     Ok(Outcome::Success)
 }

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context};
+use glam::DVec3;
 use monge_core::combescure::CombescureReport;
 use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::gauss_map::ThetaRange;
@@ -11,8 +12,7 @@ use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode};
 pub use monge_io::generated::mode_name;
 use monge_io::generated::{json_extras, layers, node_offset, Layer};
 use monge_io::{
-    check_output, is_stdio, read_any_design, write_mesh_json, write_mesh_to, AnyDesign, MeshFormat,
-    Outputs,
+    check_output, is_stdio, read_any_design, write_mesh_at, AnyDesign, MeshFormat, Outputs,
 };
 use serde_json::{json, Map, Value};
 
@@ -41,6 +41,11 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         AnyDesign::Surface(design) => *design,
         AnyDesign::Developable(d) => return run_developable(args, format, &d.developable),
     };
+    let (design, base) = match &args.base_point {
+        Some(b) => b.apply(design),
+        None => (design, None),
+    };
+    let base = base.map(DVec3::from_array);
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
@@ -51,7 +56,7 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
 
     let start = Instant::now();
     let layers = layers(&generated, design.mesh, &args.offsets);
-    write_layers(out, format, json_extras(&generated), &layers)?;
+    write_layers(out, format, json_extras(&generated), &layers, base)?;
     let writing = start.elapsed().as_secs_f64();
 
     eprint(&summary(
@@ -63,6 +68,16 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         writing,
     ));
     eprint(&far_from_origin_warning(&layers[0].grid.vertices).unwrap_or_default());
+    if let Some(b) = base {
+        eprint(&format!(
+            "coordinates written relative to the base point ({}, {}, {}), which the file \
+             records ({}): add it to every vertex for the true coordinates.\n",
+            num(b.x),
+            num(b.y),
+            num(b.z),
+            base_record(format)
+        ));
+    }
     if design.mesh == MeshKind::Conical {
         let g = &layers[0].grid;
         eprint(&format!(
@@ -76,14 +91,27 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
+/// Where a file of `format` records the base point ([`monge_io::write_mesh_at`]).
+fn base_record(format: MeshFormat) -> &'static str {
+    match format {
+        MeshFormat::Json => "key `base_point`",
+        MeshFormat::Obj => "comment `# base_point x y z`",
+        MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
+            "header line `comment base_point x y z`"
+        }
+        MeshFormat::Glb => "the node's `translation`, so a viewer shows it in place",
+    }
+}
+
 /// Writes the layers as one set of files ([`Outputs`]: after an error none has
 /// changed): the first to OUT, each offset next to it, JSON with `extra` and each
-/// layer's own keys.
+/// layer's own keys; coordinates relative to `base`, if any, which every file records.
 fn write_layers(
     out: &Path,
     format: MeshFormat,
     mut extra: Map<String, Value>,
     layers: &[Layer],
+    base: Option<DVec3>,
 ) -> anyhow::Result<()> {
     let mut files = Outputs::new();
     let mut paths = Vec::with_capacity(layers.len());
@@ -94,9 +122,8 @@ fn write_layers(
             offset_path(out, layer.offset)
         };
         extra.extend(layer.extra.clone());
-        files.write(&path, |w| match format {
-            MeshFormat::Json => write_mesh_json(&layer.grid, &extra, w),
-            other => write_mesh_to(&layer.grid, other, w),
+        files.write(&path, |w| {
+            write_mesh_at(&layer.grid, format, base, &extra, w)
         })?;
         paths.push(path);
     }
@@ -118,6 +145,14 @@ fn run_developable(
     format: MeshFormat,
     spec: &DevelopableSpec,
 ) -> anyhow::Result<Outcome> {
+    if args.base_point.is_some() {
+        bail!(
+            "--base-point applies to designs with two guides; {} is a developable design \
+             (§3.3), whose plan and heights are used as given: write them relative to a point \
+             near the design instead",
+            args.design.display()
+        );
+    }
     let start = Instant::now();
     let mesh = developable(spec).with_context(|| args.design.display().to_string())?;
     let generation = start.elapsed().as_secs_f64();
@@ -128,7 +163,7 @@ fn run_developable(
     let mut extra = Map::new();
     extra.insert("alpha_deg".into(), json!(mesh.alpha_deg));
     let start = Instant::now();
-    write_layers(&args.output, format, extra, &layers)?;
+    write_layers(&args.output, format, extra, &layers, None)?;
     let g = &mesh.grid;
     eprint(&format!(
         "{}: developable circular mesh (§3.3), slope α = {}°: {} rulings × {} cutting planes, \

@@ -1328,8 +1328,11 @@ fn designs_too_far_from_the_origin_for_f64_output_are_warned_about() {
     let warning = "times the design's size away from the origin";
     for (name, corner, warned) in [
         ("near", [0.0, 0.0, 0.0], false),
-        // 4e-3 at 1e3: coordinates round to 5e-11 of the size, still fine.
-        ("middle", [1e3, 0.0, 0.0], false),
+        // 4e-3 at 1: about 200 sizes away, coordinates round to 5e-14 of the
+        // size, which faces amplify at most 4096 times: still below 1e-9.
+        ("middle", [1.0, 0.0, 0.0], false),
+        // 4e-3 at 20: about 4e3 sizes away, past 1.1e3, where errors can pass 1e-9.
+        ("beyond", [20.0, 0.0, 0.0], true),
         // 4e-3 at 5e5: 2.5e-8 of the size, which no f64 file can hold to 1e-9.
         ("far", [5e5, 3e5, 1e3], true),
     ] {
@@ -1350,8 +1353,9 @@ fn designs_too_far_from_the_origin_for_f64_output_are_warned_about() {
             let stderr = String::from_utf8_lossy(&run.get_output().stderr).into_owned();
             assert_eq!(stderr.contains(warning), warned, "{name}: {stderr}");
             if warned {
+                assert!(stderr.contains("`--base-point start`"), "{stderr}");
                 assert!(
-                    stderr.contains("Model the design near the origin"),
+                    stderr.contains("model the design near the origin"),
                     "{stderr}"
                 );
             }

@@ -235,3 +235,151 @@ impl GuideSpec {
         }
     }
 }
+
+/// `p − by`, coordinate by coordinate.
+fn minus(p: Xyz, by: Xyz) -> Xyz {
+    [p[0] - by[0], p[1] - by[1], p[2] - by[2]]
+}
+
+impl GuideSpec {
+    /// The guide's first point, known without sampling it: the first point, the
+    /// first control point (a clamped B-spline starts there), or the `start` of
+    /// an arc or a parabola. `None` for a malformed spec (no kind, or no point).
+    pub fn start_point(&self) -> Option<Xyz> {
+        match (&self.points, &self.bspline, &self.arc, &self.parabola) {
+            (Some(p), ..) => p.first().copied(),
+            (_, Some(b), ..) => b.control_points.first().copied(),
+            (_, _, Some(a), _) => Some(a.start),
+            (.., Some(p)) => Some(p.start),
+            _ => None,
+        }
+    }
+
+    /// The same guide moved by `−by`: its points, control points, centres and
+    /// starts, every direction, weight, knot and parameter kept. Each
+    /// coordinate `x − b` is rounded by at most ε |x − b|, so near `by` the
+    /// moved guide is the same curve to rounding of its own size.
+    pub fn translated(&self, by: Xyz) -> GuideSpec {
+        let mut g = self.clone();
+        for p in g.points.iter_mut().flatten() {
+            *p = minus(*p, by);
+        }
+        if let Some(b) = &mut g.bspline {
+            for p in &mut b.control_points {
+                *p = minus(*p, by);
+            }
+        }
+        if let Some(a) = &mut g.arc {
+            a.center = minus(a.center, by);
+            a.start = minus(a.start, by);
+        }
+        if let Some(p) = &mut g.parabola {
+            p.start = minus(p.start, by);
+        }
+        g
+    }
+}
+
+impl Design {
+    /// The same design moved by `−by` (both guides, [`GuideSpec::translated`]).
+    /// The construction commutes with translations (§2.2), so the mesh of the
+    /// moved design is the design's mesh moved by `−by`, computed without the
+    /// rounding of coordinates of magnitude |by| (§5.2).
+    ///
+    /// ```
+    /// use monge_core::{generate, Design, GenerateOptions, GuideSpec};
+    /// let at = |x: f64, y: f64, z: f64| [1e6 + x, 2e6 + y, z];
+    /// let d = Design {
+    ///     mesh: Default::default(),
+    ///     theta_deg: 30.0,
+    ///     guide_u: GuideSpec {
+    ///         tangent: Some([1.0, 0.0, 0.0]),
+    ///         ..GuideSpec::points(vec![at(0.0, 0.0, 0.0), at(1.0, 0.0, 0.2), at(2.0, 0.0, 0.7)])
+    ///     },
+    ///     guide_v: GuideSpec::points(vec![at(0.0, 0.0, 0.0), at(0.0, 1.0, 0.1), at(0.0, 2.0, 0.5)]),
+    ///     tolerance: None,
+    /// };
+    /// let start = d.start_point().unwrap();
+    /// assert_eq!(start, [1e6, 2e6, 0.0]);
+    /// let mesh = generate(&d.translated(start), &GenerateOptions::default()).unwrap().grid;
+    /// assert_eq!(mesh.vertex(2, 0).to_array(), [2.0, 0.0, 0.7]);
+    /// ```
+    pub fn translated(&self, by: Xyz) -> Design {
+        Design {
+            guide_u: self.guide_u.translated(by),
+            guide_v: self.guide_v.translated(by),
+            ..self.clone()
+        }
+    }
+
+    /// The guides' common start point: guide_u's first point
+    /// ([`GuideSpec::start_point`]); `None` for a malformed guide_u.
+    pub fn start_point(&self) -> Option<Xyz> {
+        self.guide_u.start_point()
+    }
+}
+
+/// The point that output coordinates are written relative to (§5.2): the
+/// guides' common start point, or a given point. Far from the origin the mesh
+/// is then computed and written without the rounding of large coordinates, and
+/// the files record the point to add back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BasePoint {
+    /// The guides' common start point ([`Design::start_point`]).
+    Start,
+    /// A given point.
+    At(Xyz),
+}
+
+impl BasePoint {
+    /// The point for `design`: `None` only for [`BasePoint::Start`] of a
+    /// malformed guide_u (which generation then refuses with its own words).
+    pub fn of(&self, design: &Design) -> Option<Xyz> {
+        match self {
+            BasePoint::Start => design.start_point(),
+            BasePoint::At(p) => Some(*p),
+        }
+    }
+}
+
+impl BasePoint {
+    /// `design` moved by −the point ([`Design::translated`]), and the point;
+    /// `design` itself and `None` when there is no point ([`BasePoint::of`]).
+    pub fn apply(&self, design: Design) -> (Design, Option<Xyz>) {
+        match self.of(&design) {
+            Some(p) => (design.translated(p), Some(p)),
+            None => (design, None),
+        }
+    }
+}
+
+impl std::str::FromStr for BasePoint {
+    type Err = String;
+
+    /// `start`, or `X,Y,Z` (three finite numbers).
+    ///
+    /// ```
+    /// use monge_core::design::BasePoint;
+    /// assert_eq!("start".parse(), Ok(BasePoint::Start));
+    /// assert_eq!("1e6,-2,0.5".parse(), Ok(BasePoint::At([1e6, -2.0, 0.5])));
+    /// assert!("1,2".parse::<BasePoint>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s.trim() == "start" {
+            return Ok(BasePoint::Start);
+        }
+        let numbers: Vec<f64> = s
+            .split(',')
+            .map(|x| x.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("`{s}`: {e}; give `start` or X,Y,Z (three numbers)"))?;
+        match numbers[..] {
+            [x, y, z] if numbers.iter().all(|v| v.is_finite()) => Ok(BasePoint::At([x, y, z])),
+            [_, _, _] => Err(format!("`{s}`: give three finite numbers")),
+            _ => Err(format!(
+                "`{s}` has {} number(s): give `start` or X,Y,Z (three numbers)",
+                numbers.len()
+            )),
+        }
+    }
+}

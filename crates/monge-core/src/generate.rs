@@ -107,8 +107,8 @@ pub enum GenerateError {
     /// The guides do not start at the same point.
     #[error(
         "the guides do not start at the same point: guide_u starts at {u:?}, guide_v at {v:?}, \
-         {distance:.3e} apart ({relative:.1e} of the guides' size; tolerance {tolerance:.0e}). \
-         Make their first points equal"
+         {distance:.3e} apart ({relative:.1e} of the guides' size; tolerance {tolerance:.0e}). {}",
+        crate::grid::tolerance_fix(*origin_ratio, *relative, "start", "Make their first points equal")
     )]
     StartPointsDiffer {
         /// First point of guide_u.
@@ -121,12 +121,21 @@ pub enum GenerateError {
         relative: f64,
         /// The tolerance ([`crate::Tolerances::start`]).
         tolerance: f64,
+        /// How far the guides lie from the origin compared with their size
+        /// ([`crate::grid::origin_ratio`] of their samples).
+        origin_ratio: f64,
     },
     /// The start tangents are not orthogonal.
     #[error(
         "the guides must meet at 90°, but their start tangents make {angle_deg:.9}° \
          (off by {off_deg:.3e}°; tolerance {tolerance_deg:.1e}°). Curvature lines cross at right \
-         angles: turn one guide's start tangent (for a B-spline, P1 − P0) to be orthogonal to the other's"
+         angles. {}",
+        crate::grid::tolerance_fix(
+            *origin_ratio,
+            off_deg.to_radians(),
+            "angle",
+            "Turn one guide's start tangent (for a B-spline, P1 − P0) to be orthogonal to the other's"
+        )
     )]
     NotOrthogonal {
         /// Angle between the start tangents, in degrees.
@@ -135,6 +144,9 @@ pub enum GenerateError {
         off_deg: f64,
         /// The tolerance, in degrees.
         tolerance_deg: f64,
+        /// How far the guides lie from the origin compared with their size
+        /// ([`crate::grid::origin_ratio`] of their samples).
+        origin_ratio: f64,
     },
     /// θ is outside the admissible range of this design (§3.2).
     #[error(
@@ -315,6 +327,8 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
             max: MAX_SIZE,
         });
     }
+    let origin_ratio =
+        crate::grid::origin_ratio(&guide_u.points).max(crate::grid::origin_ratio(&guide_v.points));
     let (pu, pv) = (guide_u.points[0], guide_v.points[0]);
     let distance = pu.distance(pv);
     let relative = distance / guide_u.size.max(guide_v.size);
@@ -325,6 +339,7 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
             distance,
             relative,
             tolerance: tol.start,
+            origin_ratio,
         });
     }
     let cos = guide_u.tangent.dot(guide_v.tangent);
@@ -334,6 +349,7 @@ pub fn inspect(design: &Design, options: &GenerateOptions) -> Result<DesignInfo,
             angle_deg,
             off_deg: (angle_deg - 90.0).abs(),
             tolerance_deg: tol.angle.to_degrees(),
+            origin_ratio,
         });
     }
     let frame = StartFrame::new(

@@ -530,16 +530,70 @@ fn bounds(points: &[DVec3]) -> Option<Bounds> {
     })
 }
 
+/// How many times the rounding of its coordinates, ε · [`origin_ratio`] of its
+/// size, the error of a mesh (or the deviation of a guide) can reach (§5.2): a
+/// coordinate is rounded by up to ε times its magnitude, and faces with nearly
+/// collinear corners or nearly parallel diagonals amplify it. Measured by the
+/// sweep of `tests/far_from_origin.rs` (8000 random designs 1e2 to 1e7 sizes
+/// from the origin, faces measured independently, the error the rounding adds
+/// to the same design's error relative to its start): up to 3454 where errors
+/// reach 1e-9 (1e4 sizes and beyond; one design at 3e2 sizes, 16 319, stays
+/// below 1e-9 there). Rounded up to a power of two.
+pub const ROUNDING_GAIN: f64 = 4096.0;
+
 /// Distance from the origin, relative to the size, beyond which f64 coordinates
-/// cannot hold a mesh to 1e-9 of its size (§5.2): `1e-9 / (4 ε)` ≈ 1.1e6, since
-/// writing a coordinate rounds it by up to ε times its magnitude and the measured
-/// error of a mesh reaches a few such roundings (up to 4.6 in the tests).
-pub const FAR_FROM_ORIGIN: f64 = 1e-9 / (4.0 * f64::EPSILON);
+/// can put a mesh's error above 1e-9 of its size (§5.2): `1e-9 / (ROUNDING_GAIN ε)`
+/// ≈ 1.1e3. Errors over 1e-9 were measured from 5.0e3 (the sweep of
+/// `tests/far_from_origin.rs`) and from about 1.5e3 (an independent sweep of
+/// 100 000 designs). Beyond it, write coordinates relative to a base point
+/// near the design (`--base-point start`).
+pub const FAR_FROM_ORIGIN: f64 = 1e-9 / (ROUNDING_GAIN * f64::EPSILON);
+
+/// What a refusal of an input `ratio` times its size from the origin says when
+/// the rounding of its coordinates, ε · ratio of its size, can explain a
+/// deviation of `relative` (to the size, or radians for an angle): when it is
+/// at most [`ROUNDING_GAIN`] such roundings (§5.2). `None` otherwise. The
+/// sentence blames the precision of the coordinates, not the design, and says
+/// what to do; each refusal adds which tolerance would accept it.
+///
+/// ```
+/// use monge_core::grid::precision_cause;
+/// let words = precision_cause(1e5, 3.7e-9).unwrap();
+/// assert!(words.contains("that precision, not the design, is the cause"));
+/// assert!(precision_cause(10.0, 3.7e-9).is_none());
+/// ```
+pub fn precision_cause(ratio: f64, relative: f64) -> Option<String> {
+    let rounding = f64::EPSILON * ratio;
+    (relative <= ROUNDING_GAIN * rounding).then(|| {
+        format!(
+            "The guides lie {ratio:.1e} times their size from the origin, where their \
+             coordinates, as f64 numbers, are rounded by up to {rounding:.1e} of their size: that \
+             precision, not the design, is the cause. Model the design near the origin (e.g. \
+             with the guides' start point at 0) and move the result into place afterwards"
+        )
+    })
+}
+
+/// What to do about an input refused for a deviation `relative` (to its size,
+/// or radians) over `tolerance.NAME`, `ratio` times its size from the origin:
+/// [`precision_cause`] and a tolerance that accepts it (the next power of ten
+/// at or above twice the deviation) when the coordinates' rounding explains
+/// it, `otherwise` followed by raising the tolerance when it does not.
+pub(crate) fn tolerance_fix(ratio: f64, relative: f64, name: &str, otherwise: &str) -> String {
+    match precision_cause(ratio, relative) {
+        Some(cause) => format!(
+            "{cause}, or raise `tolerance.{name}` to {:.0e} (then write the mesh with \
+             `--base-point start` to keep it exact).",
+            10f64.powf((2.0 * relative).log10().ceil())
+        ),
+        None => format!("{otherwise}, or raise `tolerance.{name}`."),
+    }
+}
 
 /// How far `points` lie from the origin compared with their size (§5.2): the
 /// largest |coordinate| divided by the bounding-box diagonal (0 for no points,
 /// infinite for one point away from the origin). Above [`FAR_FROM_ORIGIN`] the
-/// output coordinates themselves cannot hold 1e-9 of the size.
+/// rounding of the coordinates themselves can exceed 1e-9 of the size.
 ///
 /// ```
 /// use glam::DVec3;

@@ -262,7 +262,8 @@ pub enum GuideError {
     },
     /// The samples do not lie in one plane within [`Tolerances::planarity`].
     #[error(
-        "{guide} is not planar: sample {index} is {deviation:.1e} from the best-fit plane ({relative:.1e} of the guide's size; tolerance {tolerance:e}). Put all points of a guide in one plane, or raise `tolerance.planarity`."
+        "{guide} is not planar: sample {index} is {deviation:.1e} from the best-fit plane ({relative:.1e} of the guide's size; tolerance {tolerance:e}). {}",
+        crate::grid::tolerance_fix(*origin_ratio, *relative, "planarity", "Put all points of a guide in one plane")
     )]
     NotPlanar {
         /// The guide.
@@ -275,6 +276,10 @@ pub enum GuideError {
         relative: f64,
         /// [`Tolerances::planarity`].
         tolerance: f64,
+        /// How far the guide lies from the origin compared with its size
+        /// ([`crate::grid::origin_ratio`] of its samples): far away, the
+        /// rounding of the coordinates alone makes it non-planar.
+        origin_ratio: f64,
     },
     /// The start tangent is zero.
     #[error("{guide}: the start tangent {from} is zero. {}.", .from.zero_fix())]
@@ -286,8 +291,8 @@ pub enum GuideError {
     },
     /// The start tangent leaves the guide's plane by more than [`Tolerances::angle`].
     #[error(
-        "{guide}: the start tangent {from} leaves the guide's plane by {angle:.1e} rad (tolerance {tolerance:e} rad). {}, or raise `tolerance.angle`.",
-        .from.plane_fix()
+        "{guide}: the start tangent {from} leaves the guide's plane by {angle:.1e} rad (tolerance {tolerance:e} rad). {}",
+        crate::grid::tolerance_fix(*origin_ratio, *angle, "angle", .from.plane_fix())
     )]
     TangentNotInPlane {
         /// The guide.
@@ -298,6 +303,9 @@ pub enum GuideError {
         angle: f64,
         /// [`Tolerances::angle`].
         tolerance: f64,
+        /// How far the guide lies from the origin compared with its size
+        /// ([`crate::grid::origin_ratio`] of its samples).
+        origin_ratio: f64,
     },
     /// `bspline.degree` is 0.
     #[error(
@@ -1074,6 +1082,7 @@ fn finish(
             deviation: planarity,
             relative: planarity / size,
             tolerance: tol.planarity,
+            origin_ratio: crate::grid::origin_ratio(&points),
         });
     }
     // Offsets at the level of rounding are noise of the fit, not of the input:
@@ -1098,6 +1107,7 @@ fn finish(
         from: source,
         angle,
         tolerance: tol.angle,
+        origin_ratio: crate::grid::origin_ratio(&points),
     };
     if source.may_leave_plane() && !within(angle, tol.angle) {
         return Err(not_in_plane);
@@ -1486,6 +1496,61 @@ mod tests {
     }
 
     #[test]
+    fn far_from_the_origin_a_refusal_blames_the_precision_of_the_coordinates() {
+        // A planar parabola in a tilted plane (a, b orthonormal), of size 4.5,
+        // `corner` from the origin: exact as a design, but its coordinates
+        // round off its plane.
+        let (a, b) = (DVec3::new(0.6, -0.48, 0.64), DVec3::new(0.8, 0.36, -0.48));
+        let at = |corner: DVec3| -> Vec<Xyz> {
+            (0..12)
+                .map(|k| {
+                    let t = k as f64 / 11.0;
+                    (corner + 4.0 * t * a + 2.0 * t * t * b).to_array()
+                })
+                .collect()
+        };
+        let e = err(&GuideSpec::points(at(DVec3::new(1e8, -2e8, 3e7))));
+        let GuideError::NotPlanar {
+            relative,
+            origin_ratio,
+            ..
+        } = e
+        else {
+            panic!("{e:?}")
+        };
+        // Measured here: the distance of each sample from the exact plane is
+        // what rounding to f64 moved it, below ε |coordinate| per axis.
+        assert!(origin_ratio > 4e7, "{origin_ratio:e}");
+        assert!(
+            relative > 1e-9 && relative < 1e3 * f64::EPSILON * origin_ratio,
+            "{relative:e}"
+        );
+        let msg = e.to_string();
+        for words in [
+            "times their size from the origin",
+            "that precision, not the design, is the cause",
+            "Model the design near the origin",
+            "raise `tolerance.planarity` to 1e-7",
+            "`--base-point start`",
+        ] {
+            assert!(msg.contains(words), "{words}: {msg}");
+        }
+        // Accepted with that tolerance.
+        let loose = Tolerances {
+            planarity: 1e-7,
+            ..tol()
+        };
+        Guide::from_spec(
+            &GuideSpec::points(at(DVec3::new(1e8, -2e8, 3e7))),
+            U,
+            &loose,
+        )
+        .unwrap();
+        // Near the origin, the same guide is planar.
+        guide(&GuideSpec::points(at(DVec3::ZERO))).unwrap();
+    }
+
+    #[test]
     fn not_planar() {
         // A planar parabola with sample 6 lifted out of its plane.
         let lifted = |lift: f64| -> Vec<Xyz> {
@@ -1518,6 +1583,7 @@ mod tests {
         );
         assert!(msg.contains("tolerance 1e-9"), "{msg}");
         assert!(msg.contains("raise `tolerance.planarity`"), "{msg}");
+        assert!(!msg.contains("precision"), "{msg}");
         // A larger tolerance accepts it, and the samples are projected.
         let loose = Tolerances {
             planarity: 1e-3,

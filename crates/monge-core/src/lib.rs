@@ -40,7 +40,7 @@ pub mod scan;
 pub mod symmetry;
 pub mod tasks;
 
-pub use design::{Design, GuideSpec, MeshKind, Tolerances};
+pub use design::{BasePoint, Design, GuideSpec, MeshKind, Tolerances};
 pub use generate::{
     generate, inspect, DesignInfo, GenerateError, GenerateOptions, Generated, Mode,
     MIN_NORMAL_TURN, SINGULAR_WINDOW_DEG,

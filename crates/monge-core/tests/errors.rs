@@ -227,6 +227,7 @@ fn start_points_differ() {
             distance,
             relative,
             tolerance,
+            ..
         } => {
             assert_eq!(*u, [0.0, 0.0, 0.0]);
             assert_eq!(*v, [0.0, 0.0, 0.5]);
@@ -275,6 +276,7 @@ fn not_orthogonal() {
             angle_deg,
             off_deg,
             tolerance_deg,
+            ..
         } => {
             assert!((angle_deg - 80.0).abs() < 1e-9, "{angle_deg}");
             assert!((off_deg - 10.0).abs() < 1e-9, "{off_deg}");
@@ -288,7 +290,7 @@ fn not_orthogonal() {
         &[
             "80.000000000°",
             "off by 1.000e1°",
-            "turn one guide's start tangent",
+            "Turn one guide's start tangent",
             "P1 − P0",
         ],
     );

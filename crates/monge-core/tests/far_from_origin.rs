@@ -14,7 +14,11 @@ use glam::DVec3;
 use monge_core::design::BSplineSpec;
 use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::grid::{bbox_diagonal, origin_ratio};
-use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid, Tolerances};
+use monge_core::guide::GuideError;
+use monge_core::{
+    generate, inspect, Design, GenerateError, GenerateOptions, GuideSpec, Mode, QuadGrid,
+    Tolerances,
+};
 use nalgebra::{DMatrix, Vector2};
 
 /// Where every property must hold (relative to the size) when f64 can hold it.
@@ -260,4 +264,294 @@ fn ratio_and_diagonal_over_many_blocks_match_one_plain_pass() {
     assert_eq!(origin_ratio(&points), far / diagonal);
     assert_eq!(bbox_diagonal(&[]), 0.0);
     assert_eq!(origin_ratio(&[]), 0.0);
+}
+
+/// A small deterministic generator (SplitMix64), so that sweeps repeat exactly.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [lo, hi).
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn unit(&mut self) -> DVec3 {
+        loop {
+            let v = DVec3::new(
+                self.uniform(-1.0, 1.0),
+                self.uniform(-1.0, 1.0),
+                self.uniform(-1.0, 1.0),
+            );
+            if (0.1..1.0).contains(&v.length()) {
+                return v.normalize();
+            }
+        }
+    }
+
+    /// A unit vector orthogonal to the unit `t`.
+    fn orthogonal(&mut self, t: DVec3) -> DVec3 {
+        let v = self.unit();
+        (v - v.dot(t) * t).normalize()
+    }
+}
+
+/// Cubic B-spline control points of a planar guide from 0 along `t`, bending
+/// in the plane of `t` and `b`, of size about 1.
+fn random_guide(rng: &mut Rng, t: DVec3, b: DVec3) -> Vec<DVec3> {
+    let mut x = 0.0;
+    (0..5)
+        .map(|k| {
+            if k > 0 {
+                x += rng.uniform(0.15, 0.3);
+            }
+            let y = if k < 2 { 0.0 } else { rng.uniform(-0.3, 0.3) };
+            x * t + y * b
+        })
+        .collect()
+}
+
+/// A random design of size about `size` (both modes, θ admissible), its start
+/// point `offset · size` from the origin in a random direction; its
+/// tolerances admit the rounding of its input coordinates (the guides are then
+/// projected onto their planes), as the table above.
+fn random_design(rng: &mut Rng, size: f64, offset: f64) -> Design {
+    let t_u = rng.unit();
+    let t_v = rng.orthogonal(t_u);
+    let (b_u, b_v) = (rng.orthogonal(t_u), rng.orthogonal(t_v));
+    let corner = offset * size * rng.unit();
+    let (u, v) = (random_guide(rng, t_u, b_u), random_guide(rng, t_v, b_v));
+    let spec = |points: &[DVec3], samples: usize| {
+        GuideSpec::bspline(
+            3,
+            points
+                .iter()
+                .map(|p| (size * *p + corner).to_array())
+                .collect(),
+            samples,
+        )
+    };
+    let slack = (64.0 * f64::EPSILON * offset).max(1e-9);
+    let mut d = Design {
+        mesh: Default::default(),
+        theta_deg: 0.0,
+        guide_u: spec(&u, 6 + (rng.next() % 12) as usize),
+        guide_v: spec(&v, 6 + (rng.next() % 12) as usize),
+        tolerance: Some(Tolerances {
+            planarity: slack,
+            angle: slack,
+            start: slack,
+        }),
+    };
+    let theta = match inspect(&d, &GenerateOptions::default()) {
+        Ok(info) if info.mode == Mode::Characteristic => rng.uniform(-175.0, 85.0),
+        Ok(info) => {
+            let r = info.theta_range;
+            let sign = if rng.next().is_multiple_of(2) {
+                1.0
+            } else {
+                -1.0
+            };
+            sign * rng.uniform(r.min_deg, r.max_deg)
+        }
+        Err(_) => 30.0,
+    };
+    d.theta_deg = theta;
+    d
+}
+
+/// Worst face planarity (the distance between the lines of the two diagonals)
+/// and circularity (the distance of the fourth corner from the circle through
+/// the other three), relative to the mesh's bounding-box diagonal, with
+/// closed forms in each face's own coordinates (relative to its first corner).
+fn face_errors(g: &QuadGrid) -> (f64, f64) {
+    let (mut planarity, mut circularity) = (0.0f64, 0.0f64);
+    for i in 0..g.rows - 1 {
+        for j in 0..g.cols - 1 {
+            let q = g.face(i, j);
+            let [a, b, c, d] = [DVec3::ZERO, q[1] - q[0], q[2] - q[0], q[3] - q[0]];
+            let (d1, d2) = (c - a, d - b);
+            let m = d1.cross(d2);
+            planarity = planarity.max((b - a).dot(m).abs() / m.length());
+            // Circumcentre of a, b, c: c + ((|x|² y − |y|² x) × (x × y)) / (2 |x × y|²).
+            let (x, y) = (a - c, b - c);
+            let n = x.cross(y);
+            let o = c
+                + (x.length_squared() * y - y.length_squared() * x).cross(n)
+                    / (2.0 * n.length_squared());
+            let r = (a - o).length();
+            let w = d - o;
+            let h = w.dot(n.normalize());
+            let in_plane = (w - h * n.normalize()).length();
+            circularity = circularity.max(h.hypot(in_plane - r));
+        }
+    }
+    let size = g.bbox_diagonal();
+    (planarity / size, circularity / size)
+}
+
+/// The mesh of `d` as generated, and relative to its start point (the design
+/// moved by −start first, as `--base-point start` does).
+fn with_and_without_base(d: &Design) -> Option<(QuadGrid, QuadGrid)> {
+    let g = generate(d, &GenerateOptions::default()).ok()?;
+    if g.report.folded_faces > 0 {
+        return None;
+    }
+    let moved = d.translated(d.start_point()?);
+    let r = generate(&moved, &GenerateOptions::default()).ok()?;
+    Some((g.grid, r.grid))
+}
+
+#[test]
+fn a_mesh_written_relative_to_its_start_is_exact_a_million_sizes_away() {
+    let mut rng = Rng(7);
+    let (mut measured, mut worst_before, mut worst_after) = (0, 0.0f64, 0.0f64);
+    while measured < 12 {
+        let d = random_design(&mut rng, 1.0, 1e6);
+        let Some((far, near)) = with_and_without_base(&d) else {
+            continue;
+        };
+        measured += 1;
+        let (p, c) = face_errors(&far);
+        worst_before = worst_before.max(p).max(c);
+        let (p, c) = face_errors(&near);
+        worst_after = worst_after.max(p).max(c);
+        // The same mesh: moved back, it is the far one to the rounding of the far coordinates.
+        let start = DVec3::from_array(d.start_point().unwrap());
+        let moved = far
+            .vertices
+            .iter()
+            .zip(&near.vertices)
+            .map(|(a, b)| (*a - (*b + start)).abs().max_element())
+            .fold(0.0, f64::max);
+        assert!(moved <= 1e-6 * far.bbox_diagonal(), "{moved:e}");
+    }
+    println!("at 1e6 sizes: worst error {worst_before:.1e} as generated, {worst_after:.1e} relative to the start");
+    assert!(worst_after <= TOL, "{worst_after:e}");
+}
+
+/// The sweep that sets [`monge_core::grid::FAR_FROM_ORIGIN`]: random designs at
+/// several distances from the origin, the worst face error with and without
+/// the base point, the largest error that the rounding of the coordinates adds
+/// per rounding ((error − error relative to the start) / (ε · origin ratio)),
+/// and the refusals with the default tolerances. Run with `cargo test -p monge-core --release
+/// --test far_from_origin -- --ignored --nocapture`.
+#[test]
+#[ignore = "a sweep of a few minutes: prints the table behind FAR_FROM_ORIGIN"]
+fn sweep_errors_against_the_distance_from_the_origin() {
+    let mut rng = Rng(2024);
+    let mut gain = 0.0f64;
+    let mut nearest_over = f64::INFINITY;
+    println!(
+        "offset/size  designs  >1e-9   worst(as is)  >1e-9(base) worst(base)  max excess/(ε·ratio)"
+    );
+    for offset in [1e2, 3e2, 1e3, 3e3, 1e4, 1e5, 1e6, 1e7] {
+        let (mut n, mut over, mut over_base) = (0, 0, 0);
+        let (mut worst, mut worst_base, mut g_max) = (0.0f64, 0.0f64, 0.0f64);
+        let mut refused = std::collections::BTreeMap::<String, (usize, usize)>::new();
+        while n < 1000 {
+            let size = rng.uniform(1e-2, 1e2);
+            let d = random_design(&mut rng, size, offset);
+            // With the default tolerances: which refusals, and how many of them blame the precision.
+            let strict = Design {
+                tolerance: None,
+                ..d.clone()
+            };
+            if let Err(e) = generate(&strict, &GenerateOptions::default()) {
+                let text = e.to_string();
+                let kind = format!("{e:?}");
+                let kind = kind
+                    .split(['(', ' ', '{'])
+                    .take(3)
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let entry = refused.entry(kind).or_default();
+                entry.0 += 1;
+                entry.1 += usize::from(text.contains("precision"));
+            }
+            let Some((far, near)) = with_and_without_base(&d) else {
+                continue;
+            };
+            n += 1;
+            let (p, c) = face_errors(&far);
+            let e = p.max(c);
+            let ratio = origin_ratio(&far.vertices);
+            if e > TOL {
+                over += 1;
+                nearest_over = nearest_over.min(ratio);
+            }
+            worst = worst.max(e);
+            let (p, c) = face_errors(&near);
+            let e_near = p.max(c);
+            worst_base = worst_base.max(e_near);
+            over_base += usize::from(e_near > TOL);
+            // What the coordinates' rounding adds to the design's own error, per rounding.
+            g_max = g_max.max((e - e_near) / (f64::EPSILON * ratio));
+        }
+        gain = gain.max(g_max);
+        println!(
+            "{offset:9.0e} {n:8} {:6.2}% {worst:12.2e} {:10.2}% {worst_base:12.2e} {g_max:12.0}",
+            100.0 * over as f64 / n as f64,
+            100.0 * over_base as f64 / n as f64
+        );
+        for (kind, (count, blamed)) in refused {
+            println!("    refused with default tolerances: {count} {kind} ({blamed} blaming the precision)");
+        }
+    }
+    println!("smallest origin ratio with an error over 1e-9: {nearest_over:.3e}");
+    println!(
+        "largest error per rounding: {gain:.0}, so errors can pass 1e-9 from {:.3e}",
+        TOL / (gain * f64::EPSILON)
+    );
+}
+
+#[test]
+fn refusals_far_from_the_origin_blame_the_precision_of_the_coordinates() {
+    // 1e7 sizes from the origin, with the default tolerances of 1e-9: the
+    // rounding of the input coordinates (2.2e-9 of the size) alone puts the
+    // guides off their planes and the start tangents off 90°.
+    let mut rng = Rng(11);
+    let mut seen = std::collections::BTreeSet::new();
+    for _ in 0..400 {
+        let size = rng_size(&mut rng);
+        let d = Design {
+            tolerance: None,
+            ..random_design(&mut rng, size, 1e7)
+        };
+        let Err(e) = generate(&d, &GenerateOptions::default()) else {
+            continue;
+        };
+        let kind = match &e {
+            GenerateError::Guide(GuideError::NotPlanar { .. }) => "planarity",
+            GenerateError::Guide(GuideError::TangentNotInPlane { .. }) => "tangent",
+            GenerateError::NotOrthogonal { .. } => "orthogonal",
+            _ => continue,
+        };
+        let text = e.to_string();
+        for words in [
+            "times their size from the origin",
+            "that precision, not the design, is the cause",
+            "Model the design near the origin",
+            "`--base-point start`",
+        ] {
+            assert!(text.contains(words), "{words}: {text}");
+        }
+        seen.insert(kind);
+        if seen.len() == 3 {
+            break;
+        }
+    }
+    assert_eq!(seen.len(), 3, "{seen:?}");
+}
+
+/// A design size from 1e-2 to 1e2.
+fn rng_size(rng: &mut Rng) -> f64 {
+    10f64.powf(rng.uniform(-2.0, 2.0))
 }

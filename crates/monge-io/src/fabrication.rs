@@ -3,6 +3,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
 use monge_core::fabrication::Fabrication;
 
 use crate::dxf::{write_beams_dxf, write_panels_dxf};
@@ -33,12 +34,17 @@ pub const FABRICATION_FILES: [&str; 9] = [
 /// has changed); returns the paths written, in the order of
 /// [`FABRICATION_FILES`]. Beams in the glTF are swept with a
 /// `section.0 × section.1` rectangle (width along the beam plane's normal,
-/// depth in the plane); `schedule.json` holds `json`.
+/// depth in the plane); `schedule.json` holds `json`. With a `base`, the
+/// fabrication's coordinates are relative to that point, which
+/// `schedule.json` records (`base_point`) and the glTF's nodes are translated
+/// by; the CSV schedules keep the relative coordinates, and the DXF drawings
+/// lay each part out in its own plane, where no base point applies.
 pub fn write_fabrication(
     dir: &Path,
     f: &Fabrication,
     section: (f64, f64),
     json: ScheduleJson,
+    base: Option<DVec3>,
 ) -> Result<Vec<PathBuf>, IoError> {
     std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
         path: dir.to_owned(),
@@ -50,11 +56,11 @@ pub fn write_fabrication(
         Box::new(|w| write_beams_csv(f, w)),
         Box::new(|w| write_segments_csv(f, w)),
         Box::new(|w| write_nodes_csv(f, w)),
-        Box::new(|w| write_schedule_json(f, json, w)),
+        Box::new(|w| write_schedule_json(f, json, base, w)),
         Box::new(|w| write_panels_dxf(f, w)),
         Box::new(|w| write_beams_dxf(f, w)),
         Box::new(|w| write_overview_svg(f, w)),
-        Box::new(|w| write_glb(f, section.0, section.1, w)),
+        Box::new(|w| write_glb(f, section.0, section.1, base, w)),
     ];
     let paths: Vec<PathBuf> = FABRICATION_FILES
         .iter()

@@ -9,7 +9,7 @@ use std::borrow::Cow;
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
 use monge_core::conical::conical_dual;
-use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN};
+use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN, ROUNDING_GAIN};
 use monge_core::measure::{conical_error, measure};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{Generated, MeshKind, Mode, QuadGrid};
@@ -32,8 +32,10 @@ pub fn kind_name(kind: MeshKind) -> &'static str {
 }
 
 /// What every front end says when the coordinates lie so far from the origin,
-/// compared with their size, that f64 numbers cannot hold the mesh to 1e-9 of
-/// its size ([`origin_ratio`] above [`FAR_FROM_ORIGIN`]); `None` otherwise.
+/// compared with their size, that their rounding as f64 numbers can put the
+/// mesh's error above 1e-9 of its size ([`origin_ratio`] above
+/// [`FAR_FROM_ORIGIN`]); `None` otherwise. It suggests the base point
+/// (`--base-point start`, Python `base_point="start"`).
 ///
 /// ```
 /// use glam::DVec3;
@@ -47,10 +49,12 @@ pub fn far_from_origin(points: &[DVec3]) -> Option<String> {
     (ratio > FAR_FROM_ORIGIN).then(|| {
         format!(
             "the coordinates are up to {ratio:.1e} times the design's size away from the origin: \
-             as f64 numbers they are rounded by up to {:.1e} of the size, so no file or array can \
-             hold the mesh to 1e-9 of its size (beyond {FAR_FROM_ORIGIN:.1e} times). Model the \
-             design near the origin (e.g. with the guides' start point at 0) and move it into \
-             place afterwards.",
+             as f64 numbers they are rounded by up to {:.1e} of the size, which faces can amplify \
+             up to {ROUNDING_GAIN} times, past 1e-9 of the size (beyond {FAR_FROM_ORIGIN:.1e} \
+             times). Write the coordinates relative to a point near the design: \
+             `--base-point start` (Python: `base_point=\"start\"`) computes and writes the mesh \
+             relative to the guides' start point and records that point in the file; or model \
+             the design near the origin and move it into place afterwards.",
             ratio * f64::EPSILON
         )
     })

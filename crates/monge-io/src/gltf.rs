@@ -201,12 +201,15 @@ fn accessor(
 
 /// Writes a binary glTF (`.glb`) made by `generator`: one scene `scene`, the
 /// `materials`, and one mesh and node per non-empty part, streaming the binary
-/// chunk (its length is known from a first pass over the parts).
+/// chunk (its length is known from a first pass over the parts). With a
+/// `base`, every node's `translation` is that point, written as exact f64
+/// numbers (glTF's JSON numbers; `gltf-json` would round them to f32).
 fn write_parts<W: Write + ?Sized>(
     generator: &str,
     scene: &str,
     materials: Vec<json::Material>,
     parts: &[Part<'_>],
+    base: Option<DVec3>,
     w: &mut W,
 ) -> io::Result<()> {
     let mut root = json::Root {
@@ -295,7 +298,16 @@ fn write_parts<W: Write + ?Sized>(
         extensions: None,
         extras: Default::default(),
     });
-    let mut text = root.to_vec().map_err(io::Error::other)?;
+    let mut text = match base {
+        None => root.to_vec(),
+        Some(b) => root.to_value().and_then(|mut doc| {
+            for node in doc["nodes"].as_array_mut().into_iter().flatten() {
+                node["translation"] = json::Value::from(b.to_array().to_vec());
+            }
+            serde_json::to_vec(&doc)
+        }),
+    }
+    .map_err(io::Error::other)?;
     while text.len() % 4 != 0 {
         text.push(b' ');
     }
@@ -382,7 +394,15 @@ fn sweep_triangles(base: u32, n: u32, f: &mut dyn FnMut([u32; 3])) {
 /// `layer k panels` (its faces, two triangles each, translucent) and a mesh
 /// `layer k beams` (every row and column swept with a `width × depth`
 /// rectangular section: `width` along the beam plane's normal, `depth` in the plane).
-pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> io::Result<()> {
+/// With a `base`, the coordinates are relative to it and every node is
+/// translated by it (as [`write_mesh_at`](crate::write_mesh_at) does).
+pub fn write_glb(
+    f: &Fabrication,
+    width: f64,
+    depth: f64,
+    base: Option<DVec3>,
+    w: &mut dyn Write,
+) -> io::Result<()> {
     let mut parts = Vec::new();
     for (k, layer) in f.layers.iter().enumerate() {
         parts.push(grid_part(format!("layer {k} panels"), 0, &layer.grid));
@@ -411,7 +431,7 @@ pub fn write_glb(f: &Fabrication, width: f64, depth: f64, w: &mut dyn Write) -> 
         material("glass", [0.55, 0.75, 0.95, 0.4]),
         material("steel", [0.45, 0.45, 0.5, 1.0]),
     ];
-    write_parts("monge fabricate", "gridshell", materials, &parts, w)
+    write_parts("monge fabricate", "gridshell", materials, &parts, base, w)
 }
 
 /// The faces of a quad grid, two triangles each, wound about its node axes.
@@ -469,16 +489,30 @@ pub fn write_quads_glb<W: Write + ?Sized>(
     w: &mut W,
 ) -> io::Result<()> {
     let part = quads_part("surface".to_owned(), 0, vertices, move || quads.clone());
-    surface_glb(part, w)
+    surface_glb(part, None, w)
 }
 
 /// A quad grid as binary glTF (see [`write_quads_glb`]).
 pub fn write_grid_glb<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
-    surface_glb(grid_part("surface".to_owned(), 0, grid), w)
+    write_grid_glb_at(grid, None, w)
+}
+
+/// A quad grid as binary glTF, its coordinates relative to `base` (if any),
+/// which becomes the node's `translation` (see [`crate::write_mesh_at`]).
+pub(crate) fn write_grid_glb_at<W: Write + ?Sized>(
+    grid: &QuadGrid,
+    base: Option<DVec3>,
+    w: &mut W,
+) -> io::Result<()> {
+    surface_glb(grid_part("surface".to_owned(), 0, grid), base, w)
 }
 
 /// One surface as binary glTF.
-fn surface_glb<W: Write + ?Sized>(part: Part<'_>, w: &mut W) -> io::Result<()> {
+fn surface_glb<W: Write + ?Sized>(
+    part: Part<'_>,
+    base: Option<DVec3>,
+    w: &mut W,
+) -> io::Result<()> {
     let materials = vec![material("surface", [0.62, 0.72, 0.85, 1.0])];
-    write_parts("monge", "mesh", materials, &[part], w)
+    write_parts("monge", "mesh", materials, &[part], base, w)
 }

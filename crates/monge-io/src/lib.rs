@@ -60,8 +60,8 @@ pub use iges::{read_iges_surfaces, write_iges, IgesSurface, NurbsColumn, NurbsCo
 pub use kind::FileKind;
 pub use mesh_read::{read_mesh, read_mesh_from};
 pub use mesh_write::{
-    write_mesh, write_mesh_json, write_mesh_to, write_obj, write_ply, write_ply_binary, MeshFormat,
-    MESH_JSON_KEYS,
+    write_mesh, write_mesh_at, write_mesh_json, write_mesh_to, write_obj, write_ply,
+    write_ply_binary, MeshFormat, BASE_POINT, MESH_JSON_KEYS,
 };
 pub use multipatch::{
     parse_multipatch, parse_planes, read_multipatch, read_planes, write_multipatch,

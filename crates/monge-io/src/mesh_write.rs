@@ -25,6 +25,10 @@ const ACCEPTED: &str = "`.obj`, `.ply`, `.json` or `.glb` (glTF, written only)";
 /// Keys of the mesh JSON format that extra keys may not use.
 pub const MESH_JSON_KEYS: [&str; 4] = ["rows", "cols", "vertices", "normals"];
 
+/// The key (JSON) and comment word (OBJ, PLY) that records the point a mesh's
+/// coordinates are relative to ([`write_mesh_at`]).
+pub const BASE_POINT: &str = "base_point";
+
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MeshFormat {
@@ -138,13 +142,53 @@ pub fn write_mesh_to<W: Write + ?Sized>(
     format: MeshFormat,
     w: &mut W,
 ) -> io::Result<()> {
+    write_mesh_at(grid, format, None, &Map::new(), w)
+}
+
+/// Writes a grid to `w` in `format`, JSON with the keys of `extra`. With a
+/// `base`, the grid's coordinates are relative to that point, which the file
+/// records where the format allows: JSON `"base_point": [x, y, z]`, OBJ
+/// `# base_point x y z`, PLY `comment base_point x y z` (the true coordinates
+/// are the written ones plus it), glTF the node's `translation` (so that a
+/// viewer places the mesh at its true place). Without one, the file is that of
+/// [`write_mesh_to`] (JSON: [`write_mesh_json`]), byte for byte.
+///
+/// ```
+/// # use glam::DVec3;
+/// # use monge_core::QuadGrid;
+/// let grid = QuadGrid::new(2, 2, vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::ONE], vec![]);
+/// let base = Some(DVec3::new(1e6, 2e6, 0.5));
+/// let mut out = Vec::new();
+/// monge_io::write_mesh_at(&grid, monge_io::MeshFormat::Obj, base, &Default::default(), &mut out).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// let head = "# monge quad grid rows=2 cols=2\n# base_point 1000000.0 2000000.0 0.5\nv 0.0 0.0 0.0\n";
+/// assert!(text.starts_with(head), "{text}");
+/// ```
+pub fn write_mesh_at<W: Write + ?Sized>(
+    grid: &QuadGrid,
+    format: MeshFormat,
+    base: Option<DVec3>,
+    extra: &Map<String, Value>,
+    w: &mut W,
+) -> io::Result<()> {
     match format {
-        MeshFormat::Obj => write_obj(grid, w),
-        MeshFormat::Ply => write_ply(grid, w),
-        MeshFormat::PlyBinary => write_ply_binary(grid, false, w),
-        MeshFormat::PlyF32 => write_ply_binary(grid, true, w),
-        MeshFormat::Json => write_mesh_json(grid, &Map::new(), w),
-        MeshFormat::Glb => crate::write_grid_glb(grid, w),
+        MeshFormat::Obj => grid_quads(grid, base)?.obj(w),
+        MeshFormat::Ply => grid_quads(grid, base)?.ply(w),
+        MeshFormat::PlyBinary => grid_quads(grid, base)?.ply_binary(false, w),
+        MeshFormat::PlyF32 => {
+            let quads = grid_quads(grid, base)?;
+            check_f32(grid)?;
+            quads.ply_binary(true, w)
+        }
+        MeshFormat::Json => match base {
+            Some(b) => {
+                let mut extra = extra.clone();
+                extra.insert(BASE_POINT.into(), serde_json::json!(b.to_array()));
+                write_mesh_json(grid, &extra, w)
+            }
+            None => write_mesh_json(grid, extra, w),
+        },
+        MeshFormat::Glb => crate::gltf::write_grid_glb_at(grid, base, w),
     }
 }
 
@@ -166,9 +210,7 @@ pub fn write_mesh_to<W: Write + ?Sized>(
 ///     v 0.0 0.0 0.0\nv 0.0 1.0 0.0\nv 1.0 0.0 0.0\nv 1.0 1.0 1.0\nf 1 3 4 2\n");
 /// ```
 pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
-    check_grid(grid)?;
-    let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
-    grid_quads(grid, &comment).obj(w)
+    grid_quads(grid, None)?.obj(w)
 }
 
 /// Writes a grid as ASCII PLY.
@@ -177,9 +219,7 @@ pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
 /// quad faces as `list uchar int vertex_indices` (0-based), and a header
 /// comment `comment monge quad grid rows=R cols=C`. Fails like [`write_obj`].
 pub fn write_ply<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()> {
-    check_grid(grid)?;
-    let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
-    grid_quads(grid, &comment).ply(w)
+    grid_quads(grid, None)?.ply(w)
 }
 
 /// Writes a grid as binary little-endian PLY, with `double` coordinates, or
@@ -204,21 +244,28 @@ pub fn write_ply_binary<W: Write + ?Sized>(
     f32: bool,
     w: &mut W,
 ) -> io::Result<()> {
-    check_grid(grid)?;
-    if f32 {
-        check_f32(grid)?;
-    }
-    let comment = format!("monge quad grid rows={} cols={}", grid.rows, grid.cols);
-    grid_quads(grid, &comment).ply_binary(f32, w)
+    write_mesh_at(
+        grid,
+        if f32 {
+            MeshFormat::PlyF32
+        } else {
+            MeshFormat::PlyBinary
+        },
+        None,
+        &Map::new(),
+        w,
+    )
 }
 
 /// A quad mesh on its way to an OBJ or PLY file: vertices, normals (none,
-/// or one per vertex), faces (0-based, already oriented), a header comment.
+/// or one per vertex), faces (0-based, already oriented), a header comment,
+/// and the point the coordinates are relative to, if any (a second comment).
 pub(crate) struct Quads<'a, F> {
     pub(crate) vertices: &'a [DVec3],
     pub(crate) normals: &'a [DVec3],
     pub(crate) faces: F,
-    pub(crate) comment: &'a str,
+    pub(crate) comment: String,
+    pub(crate) base: Option<DVec3>,
 }
 
 /// Faces that can be gone through in parts, side by side.
@@ -278,20 +325,31 @@ impl Faces for GridFaces<'_> {
 }
 
 /// A grid's vertices, normals and [`QuadGrid::oriented_faces`], with the
-/// comment `monge quad grid rows=R cols=C`.
-fn grid_quads<'a>(grid: &'a QuadGrid, comment: &'a str) -> Quads<'a, GridFaces<'a>> {
-    Quads {
+/// comment `monge quad grid rows=R cols=C`, after [`check_grid`].
+fn grid_quads(grid: &QuadGrid, base: Option<DVec3>) -> io::Result<Quads<'_, GridFaces<'_>>> {
+    check_grid(grid)?;
+    Ok(Quads {
         vertices: &grid.vertices,
         normals: &grid.normals,
         faces: GridFaces::of(grid),
-        comment,
-    }
+        comment: format!("monge quad grid rows={} cols={}", grid.rows, grid.cols),
+        base,
+    })
+}
+
+/// `base_point x y z`: the words of the comment that records a base point
+/// (each coordinate the shortest decimal that reads back to the same f64).
+fn base_comment(b: DVec3) -> String {
+    format!("{BASE_POINT} {:?} {:?} {:?}", b.x, b.y, b.z)
 }
 
 impl<F: Faces> Quads<'_, F> {
     /// OBJ: `# comment`, `v`, `vn`, then `f a//a …` (`f a …` without normals), 1-based.
     pub(crate) fn obj<W: Write + ?Sized>(self, w: &mut W) -> io::Result<()> {
         writeln!(w, "# {}", self.comment)?;
+        if let Some(b) = self.base {
+            writeln!(w, "# {}", base_comment(b))?;
+        }
         let with_normals = !self.normals.is_empty();
         emit(w, |out| {
             for (tag, points) in [("v ", self.vertices), ("vn ", self.normals)] {
@@ -391,12 +449,11 @@ impl<F: Faces> Quads<'_, F> {
         scalar: &str,
         w: &mut W,
     ) -> io::Result<()> {
-        write!(
-            w,
-            "ply\nformat {format} 1.0\ncomment {}\nelement vertex {}\n",
-            self.comment,
-            self.vertices.len()
-        )?;
+        write!(w, "ply\nformat {format} 1.0\ncomment {}\n", self.comment)?;
+        if let Some(b) = self.base {
+            writeln!(w, "comment {}", base_comment(b))?;
+        }
+        writeln!(w, "element vertex {}", self.vertices.len())?;
         let names: &[&str] = if self.normals.is_empty() {
             &["x", "y", "z"]
         } else {

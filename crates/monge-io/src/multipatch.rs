@@ -144,7 +144,8 @@ pub fn write_quad_mesh_to<W: Write + ?Sized>(
         vertices: &mesh.vertices,
         normals: &mesh.normals,
         faces: &mesh.quads[..],
-        comment: &comment,
+        comment,
+        base: None,
     };
     match format {
         MeshFormat::Obj => quads.obj(w),

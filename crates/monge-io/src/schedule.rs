@@ -7,6 +7,7 @@
 
 use std::io::{self, Write};
 
+use glam::DVec3;
 use monge_core::fabrication::{
     Beam, Fabrication, LineFamily, Panel, PlaneFrame, SegmentShape, Summary,
 };
@@ -268,11 +269,13 @@ pub enum ScheduleJson {
 }
 
 /// The fabrication as one JSON document (§6): `summary` and `layers`
-/// (distances), and with [`ScheduleJson::Full`] also `panels`, `beams` (with
-/// `label` and `segments`) and `nodes`.
+/// (distances), `base_point` when the coordinates are relative to one, and
+/// with [`ScheduleJson::Full`] also `panels`, `beams` (with `label` and
+/// `segments`) and `nodes`.
 pub fn write_schedule_json(
     f: &Fabrication,
     content: ScheduleJson,
+    base: Option<DVec3>,
     w: &mut dyn Write,
 ) -> io::Result<()> {
     #[derive(Serialize)]
@@ -297,6 +300,8 @@ pub fn write_schedule_json(
         summary: &'a Summary,
         layers: Vec<f64>,
         #[serde(skip_serializing_if = "Option::is_none")]
+        base_point: Option<[f64; 3]>,
+        #[serde(skip_serializing_if = "Option::is_none")]
         panels: Option<P>,
         #[serde(skip_serializing_if = "Option::is_none")]
         beams: Option<B>,
@@ -307,6 +312,7 @@ pub fn write_schedule_json(
     let doc = Doc {
         summary: &f.summary,
         layers: f.layers.iter().map(|l| l.distance).collect(),
+        base_point: base.map(|b| b.to_array()),
         panels: full.then(|| {
             Seq(f.panels().map(|p| Labelled {
                 label: panel_label(&p),

@@ -50,7 +50,7 @@ fn write(dir: &Path) -> Fabrication {
 
 fn write_with(dir: &Path, json: ScheduleJson) -> Fabrication {
     let f = fabrication();
-    let paths = write_fabrication(dir, &f, (0.05, 0.1), json).unwrap();
+    let paths = write_fabrication(dir, &f, (0.05, 0.1), json, None).unwrap();
     assert_eq!(paths.len(), FABRICATION_FILES.len());
     for p in &paths {
         assert!(p.is_file(), "{} missing", p.display());
@@ -328,7 +328,9 @@ fn files_written_side_by_side_are_those_written_alone() {
         ("panels.dxf", |f, w| monge_io::write_panels_dxf(f, w)),
         ("beams.dxf", |f, w| monge_io::write_beams_dxf(f, w)),
         ("overview.svg", |f, w| monge_io::write_overview_svg(f, w)),
-        ("gridshell.glb", |f, w| monge_io::write_glb(f, 0.05, 0.1, w)),
+        ("gridshell.glb", |f, w| {
+            monge_io::write_glb(f, 0.05, 0.1, None, w)
+        }),
     ];
     for (name, writer) in alone {
         let mut bytes = Vec::new();
