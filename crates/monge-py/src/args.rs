@@ -1,8 +1,9 @@
-//! Whole-number arguments whose errors name the argument: pyo3 turns a negative
-//! int given for a `usize` into a bare `OverflowError: can't convert negative int
-//! to unsigned`, which says neither which argument nor what to give. Each
+//! Arguments whose errors name the argument: pyo3 turns a negative int given
+//! for a `usize` into a bare `OverflowError: can't convert negative int to
+//! unsigned`, which says neither which argument nor what to give. Each
 //! function here is a `from_py_with` extractor of one argument.
 
+use monge_core::BasePoint;
 use pyo3::prelude::*;
 
 use crate::errors::{DesignError, OptimiseError, SmoothError};
@@ -77,6 +78,30 @@ pub fn max_vertices(obj: &Bound<'_, PyAny>) -> PyResult<usize> {
         "give a whole number of vertices (default 25000000)",
         DesignError::new_err,
     )
+}
+
+/// `generate(base_point=…)`: `"start"` (the guides' common start point), a
+/// point `(x, y, z)` of three finite numbers, or None (absolute coordinates).
+pub fn base_point(obj: &Bound<'_, PyAny>) -> PyResult<Option<BasePoint>> {
+    if obj.is_none() {
+        return Ok(None);
+    }
+    let refuse = || {
+        let repr = obj.repr().map(|r| r.to_string()).unwrap_or_default();
+        DesignError::new_err(format!(
+            "base_point = {repr}: give \"start\" (the guides' common start point) or a point \
+             (x, y, z) of three finite numbers"
+        ))
+    };
+    if let Ok(s) = obj.extract::<String>() {
+        return (s == "start")
+            .then_some(Some(BasePoint::Start))
+            .ok_or_else(refuse);
+    }
+    match obj.extract::<[f64; 3]>() {
+        Ok(p) if p.iter().all(|x| x.is_finite()) => Ok(Some(BasePoint::At(p))),
+        _ => Err(refuse()),
+    }
 }
 
 /// `approximate(grid=(U, V))`: faces along guide_u and guide_v.

@@ -76,7 +76,7 @@ create_exception!(
     monge,
     FarFromOriginWarning,
     PyUserWarning,
-    "The coordinates lie so far from the origin, compared with the design's size, that f64 numbers cannot hold the mesh to 1e-9 of its size: model the design near the origin and move it into place afterwards."
+    "The coordinates lie so far from the origin, compared with the design's size, that their rounding as f64 numbers can put the mesh's error above 1e-9 of its size: generate with base_point=\"start\" (coordinates relative to the guides' start point), or model the design near the origin."
 );
 
 /// Registers the exception classes in the module.
@@ -100,8 +100,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// Warns (`FarFromOriginWarning`) when `points` lie so far from the origin,
-/// compared with their size, that f64 coordinates cannot hold them to 1e-9 of
-/// it: the test and words of `monge generate`, `info` and `check`
+/// compared with their size, that the rounding of f64 coordinates can put
+/// their error above 1e-9 of it: the test and words of `monge generate`, `info` and `check`
 /// ([`monge_io::generated::far_from_origin`]). Raises instead if warnings are errors (`-W error`).
 pub fn warn_far_from_origin(py: Python<'_>, points: &[DVec3]) -> PyResult<()> {
     let Some(message) = far_from_origin(points) else {

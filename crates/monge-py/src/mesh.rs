@@ -6,7 +6,7 @@ use monge_core::combescure::CombescureReport;
 use monge_core::conical::{conical_dual, ConicalMesh};
 use monge_core::measure::{conical_error, measure, Measurements, Worst};
 use monge_core::offset::{face_offset, vertex_offset};
-use monge_core::{generate as core_generate, GenerateOptions, MeshKind, Mode, QuadGrid};
+use monge_core::{generate as core_generate, BasePoint, GenerateOptions, MeshKind, Mode, QuadGrid};
 use numpy::ndarray::ArrayView3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
@@ -54,6 +54,8 @@ pub struct Mesh {
     max_error: f64,
     /// The offset distance from the generated mesh (§2.2, §2.3); 0 for it.
     offset: f64,
+    /// The point the coordinates are relative to (`generate(base_point=…)`), if any.
+    base_point: Option<DVec3>,
 }
 
 /// What `monge check --kind KIND` measures (§2.2, §2.3): for a conical mesh the
@@ -101,10 +103,19 @@ fn view<'py>(
 }
 
 impl Mesh {
-    /// The mesh of `kind` (§2.2, §2.3) generated from `design`.
-    fn generate(design: &Design, kind: MeshKind, options: &GenerateOptions) -> PyResult<Mesh> {
-        let g = core_generate(&design.inner, options)
-            .map_err(|e| generate_error(design.context(), &e))?;
+    /// The mesh of `kind` (§2.2, §2.3) generated from `design`, relative to
+    /// `base` if given ([`BasePoint::apply`]).
+    fn generate(
+        design: &Design,
+        kind: MeshKind,
+        options: &GenerateOptions,
+        base: Option<BasePoint>,
+    ) -> PyResult<Mesh> {
+        let (inner, base_point) = match base {
+            Some(b) => b.apply(design.inner.clone()),
+            None => (design.inner.clone(), None),
+        };
+        let g = core_generate(&inner, options).map_err(|e| generate_error(design.context(), &e))?;
         let geometry = match kind {
             MeshKind::Circular => Geometry::Circular(g.grid),
             // Guides have at least 3 samples (2 would be straight), so the
@@ -116,21 +127,22 @@ impl Mesh {
             g.info.theta_deg,
             g.info.mode,
             g.report,
-            0.0,
+            (0.0, base_point.map(DVec3::from_array)),
             false,
         ))
     }
 
-    /// The mesh of `geometry`, measured. `report` is the generation's (§5.2); with
-    /// `measured_folds` (an offset, which the generation did not build) its folded
-    /// faces are replaced by those `check` finds on this mesh. The smallest
-    /// crossing sine is a property of the Gauss map, which an offset shares.
+    /// The mesh of `geometry`, measured, at `(offset distance, base point)`.
+    /// `report` is the generation's (§5.2); with `measured_folds` (an offset,
+    /// which the generation did not build) its folded faces are replaced by
+    /// those `check` finds on this mesh. The smallest crossing sine is a
+    /// property of the Gauss map, which an offset shares.
     fn new(
         geometry: Geometry,
         theta_deg: f64,
         mode: Mode,
         report: CombescureReport,
-        offset: f64,
+        (offset, base_point): (f64, Option<DVec3>),
         measured_folds: bool,
     ) -> Mesh {
         let kind = match geometry {
@@ -154,6 +166,7 @@ impl Mesh {
             report,
             max_error,
             offset,
+            base_point,
         }
     }
 }
@@ -247,6 +260,14 @@ impl Mesh {
         self.offset
     }
 
+    /// The point `(x, y, z)` the coordinates are relative to
+    /// (`generate(design, base_point=…)`): the true coordinates are `vertices`
+    /// plus it. None when they are absolute.
+    #[getter]
+    fn base_point(&self) -> Option<(f64, f64, f64)> {
+        self.base_point.map(|b| b.into())
+    }
+
     /// What the generation found (§5.2): `folded_faces`, `first_fold` ((i, j) or
     /// None), `min_crossing_sine`, `min_crossing_face`, and `max_error`, the
     /// largest error `check(mesh)` measures on this mesh (planarity, circularity
@@ -286,7 +307,7 @@ impl Mesh {
             self.theta_deg,
             self.mode,
             self.report,
-            self.offset + d,
+            (self.offset + d, self.base_point),
             true,
         ))
     }
@@ -341,26 +362,32 @@ fn check_offset(base: &QuadGrid, offset: &QuadGrid, d: f64) -> PyResult<()> {
 /// Generates the mesh of a design (§3): `kind` `"circular"` (§2.2) or
 /// `"conical"` (§2.3), by default the design's own `mesh`. Warns
 /// (`FarFromOriginWarning`) as `monge generate` does when the mesh lies so far
-/// from the origin that f64 coordinates cannot hold it to 1e-9 of its size.
+/// from the origin that the rounding of f64 coordinates can put its error
+/// above 1e-9 of its size.
 ///
 /// `max_vertices` (default 25 000 000, about 1.2 GB of vertices and normals, as
 /// the command's `--max-vertices`) bounds the grid: a design whose guides have
 /// more samples is refused before anything is allocated.
+///
+/// `base_point` (`"start"`, the guides' common start point, or `(x, y, z)`), as
+/// the command's `--base-point`: the mesh is computed and returned relative to
+/// that point (`Mesh.base_point`), which keeps it exact far from the origin.
 #[pyfunction]
 #[pyo3(
-    signature = (design, kind = None, max_vertices = GenerateOptions::default().max_vertices),
-    text_signature = "(design, kind=None, max_vertices=25000000)"
+    signature = (design, kind = None, max_vertices = GenerateOptions::default().max_vertices, base_point = None),
+    text_signature = "(design, kind=None, max_vertices=25000000, base_point=None)"
 )]
 pub fn generate(
     py: Python<'_>,
     design: &Design,
     kind: Option<&str>,
     #[pyo3(from_py_with = args::max_vertices)] max_vertices: usize,
+    #[pyo3(from_py_with = args::base_point)] base_point: Option<BasePoint>,
 ) -> PyResult<Mesh> {
     let kind = parse_kind(kind, design.inner.mesh)?;
     let design = design.clone();
     let options = GenerateOptions { max_vertices };
-    let mesh = py.detach(move || Mesh::generate(&design, kind, &options))?;
+    let mesh = py.detach(move || Mesh::generate(&design, kind, &options, base_point))?;
     warn_far_from_origin(py, &mesh.geometry.grid().vertices)?;
     Ok(mesh)
 }

@@ -493,7 +493,7 @@ pub fn fabricate<'py>(
         core_fabricate(base, &options).map_err(|e| FabricationError::new_err(text(context, e)))
     })?;
     let mut schedule = Vec::new();
-    write_schedule_json(&f, ScheduleJson::Full, &mut schedule)
+    write_schedule_json(&f, ScheduleJson::Full, None, &mut schedule)
         .map_err(|e| FabricationError::new_err(format!("cannot write the schedule: {e}")))?;
     let meshes = PyList::empty(py);
     for layer in &f.layers {

@@ -2,6 +2,7 @@
 independently with numpy (SVD, least-squares circles) to 1e-9 of the model size."""
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -177,3 +178,44 @@ def test_faces_are_wound_as_the_commands_obj_files(name, d, cli, tmp_path):
     assert np.array_equal(off.faces, obj_faces(tmp_path / f"m.offset{d:+}.obj"))
     if name != "fig13-conical.json" and d == -5:
         assert list(off.faces[0]) == [0, 1, mesh.cols + 1, mesh.cols]
+
+
+def far(by):
+    """Figure 13's freeform design with both guides moved by `by` along x, y and z."""
+    d = json.loads(open(example("fig13-freeform.json")).read())
+    for g in ("guide_u", "guide_v"):
+        spec = d[g]["bspline"]
+        spec["control_points"] = [[c + by for c in p] for p in spec["control_points"]]
+    return monge.Design.from_dict(d)
+
+
+def worst(mesh):
+    return max(mnp.face_planarity(mesh.vertices), mnp.circularity(mesh.vertices))
+
+
+def test_base_point_keeps_a_far_mesh_exact():
+    design = far(1e9)  # about 5e7 times the design's size from the origin
+    with pytest.warns(monge.FarFromOriginWarning, match="base_point="):
+        absolute = monge.generate(design)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", monge.FarFromOriginWarning)
+        relative = monge.generate(design, base_point="start")
+    assert absolute.base_point is None
+    assert relative.base_point == (1e9, 1e9, 1e9)
+    # measured with numpy: the relative mesh is exact, the absolute one is not
+    before, after = worst(absolute), worst(relative)
+    assert after <= 1e-9 < before, (before, after)
+    # the same mesh, moved by the base point
+    moved = relative.vertices + np.array(relative.base_point)
+    assert np.abs(moved - absolute.vertices).max() < 1e-5
+    # an offset keeps the base point; a given point works as well
+    assert relative.offset(0.1).base_point == (1e9, 1e9, 1e9)
+    given = monge.generate(design, base_point=(1e9, 1e9 + 1, 1e9))
+    assert given.base_point == (1e9, 1e9 + 1, 1e9)
+    assert np.abs(given.vertices + np.array([0, 1, 0]) - relative.vertices).max() < 1e-9
+
+
+@pytest.mark.parametrize("bad", ["origin", (1.0, 2.0), (0.0, float("nan"), 0.0), "1,2,3"])
+def test_a_base_point_is_start_or_a_point(bad):
+    with pytest.raises(monge.DesignError, match="base_point = .*give \"start\""):
+        monge.generate(far(0.0), base_point=bad)

@@ -129,3 +129,16 @@ def test_errors_leave_no_file(tmp_path):
     with pytest.raises(monge.FileError, match="does not exist"):
         monge.rhino.write_3dm(tmp_path / "no" / "x.3dm", mesh)
     assert os.listdir(tmp_path) == []
+
+
+def test_a_base_point_is_every_objects_user_text(tmp_path):
+    design = monge.Design.from_file(DUPIN)
+    path = tmp_path / "based.3dm"
+    monge.rhino.write_3dm(path, monge.generate(design, base_point=(0.5, -1.0, 0.25)))
+    model = rhino3dm.File3dm.Read(str(path))
+    assert len(model.Objects) > 0
+    for o in model.Objects:
+        assert o.Attributes.GetUserString("monge.base_point") == "0.5 -1.0 0.25"
+    monge.rhino.write_3dm(path, monge.generate(design))
+    for o in rhino3dm.File3dm.Read(str(path)).Objects:
+        assert o.Attributes.UserStringCount == 0

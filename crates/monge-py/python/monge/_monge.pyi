@@ -70,7 +70,7 @@ class OptimiseError(MongeError):
     """θ fitting (§4.7) or panel-size optimisation (§4.8) cannot be run."""
 
 class FarFromOriginWarning(UserWarning):
-    """The coordinates lie so far from the origin, compared with the design's size, that f64 numbers cannot hold the mesh to 1e-9 of its size: model the design near the origin and move it into place afterwards."""
+    """The coordinates lie so far from the origin, compared with the design's size, that their rounding as f64 numbers can put the mesh's error above 1e-9 of its size: generate with base_point="start" (coordinates relative to the guides' start point), or model the design near the origin."""
 
 @final
 class Design:
@@ -125,6 +125,9 @@ class Mesh:
     def offset_distance(self) -> float:
         """Distance from the generated mesh (0 for it)."""
     @property
+    def base_point(self) -> Optional[Tuple[float, float, float]]:
+        """The point the coordinates are relative to (generate's base_point), or None."""
+    @property
     def report(self) -> Dict[str, Any]:
         """folded_faces, first_fold, min_crossing_sine, min_crossing_face (§5.2), max_error (as check).
 
@@ -133,11 +136,19 @@ class Mesh:
     def offset(self, d: float) -> "Mesh":
         """Node offset (circular, §2.2) or face offset (conical, §2.3) at distance d."""
 
-def generate(design: Design, kind: Optional[_Kind] = None, max_vertices: int = 25000000) -> Mesh:
+def generate(
+    design: Design,
+    kind: Optional[_Kind] = None,
+    max_vertices: int = 25000000,
+    base_point: Union[Literal["start"], Tuple[float, float, float], None] = None,
+) -> Mesh:
     """The circular (§2.2) or conical (§2.3) mesh of a design (§3).
 
     A grid of more than ``max_vertices`` vertices (default 25 000 000, about
     1.2 GB) is refused (DesignError) before anything is allocated.
+    With ``base_point`` ("start", the guides' common start point, or (x, y, z))
+    the mesh is computed and returned relative to that point
+    (``Mesh.base_point``), exact far from the origin.
     """
 
 def info(design: Design) -> Dict[str, Any]:

@@ -13,7 +13,10 @@
   ``u<index>`` or ``v<index>`` after its family).
 
 The model's unit system is set (``units``, a name of ``rhino3dm.UnitSystem``,
-default meters). The file is written to a temporary file beside ``path`` and
+default meters). A mesh generated with ``base_point`` (coordinates relative to
+that point, exact far from the origin) keeps its relative coordinates, and the
+point is every object's attribute user text ``monge.base_point``, ``"x y z"``
+(Rhino, too, models best near the origin: move the objects by it if needed). The file is written to a temporary file beside ``path`` and
 renamed, so no half-written file is left. This module only converts arrays
 into openNURBS objects: the geometry is monge's.
 """
@@ -39,6 +42,8 @@ LAYERS = {
     "beams": ("monge beams", (120, 60, 20)),
 }
 GUIDE_COLOURS = {"guide_u": (220, 40, 40), "guide_v": (40, 80, 220)}
+# The objects' attribute user text that records a mesh's base point (``Mesh.base_point``).
+BASE_POINT_KEY = "monge.base_point"
 
 
 def _point(p):
@@ -142,22 +147,30 @@ def write_3dm(path, mesh, smooth=None, panels=True, units="Meters"):
             index[key] = model.Layers.Add(lay)
         return index[key]
 
-    model.Objects.AddMesh(rhino_mesh(mesh), _attributes(layer("mesh"), f"monge {mesh.kind} mesh"))
+    base = None if mesh.base_point is None else " ".join(repr(float(x)) for x in mesh.base_point)
+
+    def attributes(key, name, colour=None):
+        a = _attributes(layer(key), name, colour)
+        if base is not None:
+            a.SetUserString(BASE_POINT_KEY, base)
+        return a
+
+    model.Objects.AddMesh(rhino_mesh(mesh), attributes("mesh", f"monge {mesh.kind} mesh"))
     v = mesh.vertices
     for name, points in (("guide_u", v[:, 0]), ("guide_v", v[0, :])):
-        model.Objects.AddCurve(polyline_nurbs(points), _attributes(layer("guides"), name, GUIDE_COLOURS[name]))
+        model.Objects.AddCurve(polyline_nurbs(points), attributes("guides", name, GUIDE_COLOURS[name]))
     if panels:
         flat = v.reshape(-1, 3)
         for k, face in enumerate(mesh.faces.tolist()):
             i, j = divmod(k, mesh.cols - 1)
             outline = rhino3dm.PolylineCurve([_point(flat[c]) for c in face + face[:1]])
-            model.Objects.AddCurve(outline, _attributes(layer("panels"), f"P{i}.{j}"))
+            model.Objects.AddCurve(outline, attributes("panels", f"P{i}.{j}"))
     if smooth is not None:
-        model.Objects.AddSurface(nurbs_surface(smooth["nurbs"]), _attributes(layer("net"), "cyclidic net"))
+        model.Objects.AddSurface(nurbs_surface(smooth["nurbs"]), attributes("net", "cyclidic net"))
         for line in smooth["lines"]:
             name = f"{line['family']}{line['index']}"
             for arc in line["arcs"]:
-                model.Objects.AddCurve(arc_curve(arc), _attributes(layer("beams"), name))
+                model.Objects.AddCurve(arc_curve(arc), attributes("beams", name))
     directory = os.path.dirname(os.path.abspath(os.fspath(path)))
     if not os.path.isdir(directory):
         raise FileError(f"cannot write `{os.fspath(path)}`: the directory `{directory}` does not exist")
