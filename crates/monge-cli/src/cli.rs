@@ -281,11 +281,14 @@ pub enum Command {
              kept), sample counts, circular/conical switch, offset distance, live metrics and \
              warnings where the mesh folds or θ is not admissible; designs load and save in the \
              design-file format, meshes export as OBJ or JSON.\n\n\
-             The mesh is computed here, by the same code as `monge generate`, for each change \
-             (POST /api/generate). The server listens on 127.0.0.1 unless --host says otherwise, \
-             refuses bodies over 1 MB and grids over --max-vertices. The page is built into this \
-             binary; --web-dir serves one from disk instead (`npm ci && npm run build` in web/ \
-             writes it to web/dist).",
+             The page computes the mesh in the browser (monge-core in WebAssembly, the same code \
+             as `monge generate`); this server only serves the page and the start design \
+             (GET /api/design), and computes nothing. It listens on 127.0.0.1 unless --host says \
+             otherwise (and warns when it listens beyond this machine), answers GET and HEAD \
+             only, and closes a connection whose request has not arrived whole within 10 s or \
+             whose answer has not been taken within 30 s. The page is built into this binary; \
+             --web-dir serves one from disk instead (`npm ci && npm run build` in web/ writes it \
+             to web/dist).",
         after_help = format!(
             "Examples:\n  \
              monge explore\n  \
