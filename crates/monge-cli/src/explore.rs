@@ -172,13 +172,16 @@ fn answer(request: &http::Request, shared: &Shared) -> http::Response {
     let target = &request.target;
     let path = target.split_once('?').map_or(target.as_str(), |(p, _)| p);
     match path {
-        "/api/design" => file("application/json", shared.design.as_bytes().into()),
+        "/api/design" => file(
+            "application/json",
+            http::Body::Bytes(shared.design.as_bytes().into()),
+        ),
         _ => static_file(&shared.page, path),
     }
 }
 
 /// A `200` answer of `body`.
-fn file(content_type: &'static str, body: Cow<'static, [u8]>) -> http::Response {
+fn file(content_type: &'static str, body: http::Body) -> http::Response {
     http::Response {
         status: 200,
         content_type,
@@ -252,8 +255,13 @@ fn static_file(page: &Page, path: &str) -> http::Response {
         _ if !plain => None,
         Page::Embedded => EMBEDDED_PAGE
             .get_file(relative)
-            .map(|f| Cow::Borrowed(f.contents())),
-        Page::Directory(dir) => fs::read(dir.join(relative)).ok().map(Cow::Owned),
+            .map(|f| http::Body::Bytes(Cow::Borrowed(f.contents()))),
+        // Sent as the client takes it, never read whole.
+        Page::Directory(dir) => fs::File::open(dir.join(relative))
+            .and_then(|f| Ok((f.metadata()?, f)))
+            .ok()
+            .filter(|(meta, _)| meta.is_file())
+            .map(|(meta, f)| http::Body::File(f, meta.len())),
     };
     match body {
         Some(body) => file(content_type(relative), body),
@@ -284,6 +292,7 @@ mod tests {
         let dir = std::env::temp_dir().join("monge-explore-static-test");
         fs::create_dir_all(&dir).unwrap();
         fs::write(dir.join("index.html"), "<p>hi</p>").unwrap();
+        fs::create_dir_all(dir.join("sub")).unwrap();
         for page in [Page::Directory(dir), Page::Embedded] {
             let index = static_file(&page, "/");
             assert_eq!(
@@ -292,6 +301,7 @@ mod tests {
             );
             assert_eq!(static_file(&page, "/../Cargo.toml").status, 404);
             assert_eq!(static_file(&page, "/missing.js").status, 404);
+            assert_eq!(static_file(&page, "/sub").status, 404);
         }
     }
 

@@ -10,10 +10,13 @@
 //! sends part of a request (one byte a second, say) gets `408` and is closed.
 //! Every answer must be taken whole within [`Limits::write_timeout`]: the
 //! deadline bounds the whole answer, not each write, so a client that reads a
-//! few bytes now and then is closed too. Headers are at most
-//! [`Limits::max_header`] bytes (`431`). A panicking handler gives `500`.
+//! few bytes now and then is closed too; an answer being sent holds no copy of
+//! bytes that live as long as the server and reads a file a piece at a time
+//! ([`Body`]). Headers are at most [`Limits::max_header`] bytes (`431`). A
+//! panicking handler gives `500`.
 
 use std::borrow::Cow;
+use std::fs::File;
 use std::io::{self, IoSlice, Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -82,9 +85,8 @@ pub struct Response {
     pub content_type: &'static str,
     /// Further headers.
     pub headers: Vec<(&'static str, String)>,
-    /// The body: borrowed when it lives as long as the server (the embedded
-    /// page), so that an answer being sent holds no copy of it.
-    pub body: Cow<'static, [u8]>,
+    /// The body.
+    pub body: Body,
     /// Whether only the headers are sent (an answer to `HEAD`).
     pub head_only: bool,
 }
@@ -96,14 +98,41 @@ impl Response {
             status,
             content_type: "application/json",
             headers: Vec::new(),
-            body: serde_json::json!({ "error": message })
-                .to_string()
-                .into_bytes()
-                .into(),
+            body: Body::Bytes(
+                serde_json::json!({ "error": message })
+                    .to_string()
+                    .into_bytes()
+                    .into(),
+            ),
             head_only: false,
         }
     }
 }
+
+/// The body of an answer: an answer being sent holds at most
+/// [`FILE_CHUNK`] bytes of a file, and no copy of bytes that live as long as
+/// the server.
+#[derive(Debug)]
+pub enum Body {
+    /// Bytes in memory, borrowed when they live as long as the server (the
+    /// embedded page).
+    Bytes(Cow<'static, [u8]>),
+    /// A file of this many bytes, read a piece at a time as the client takes it.
+    File(File, u64),
+}
+
+impl Body {
+    /// The body's length in bytes.
+    fn len(&self) -> u64 {
+        match self {
+            Body::Bytes(bytes) => bytes.len() as u64,
+            Body::File(_, len) => *len,
+        }
+    }
+}
+
+/// The piece of a file read and sent at a time.
+const FILE_CHUNK: usize = 64 << 10;
 
 /// Time to write the `503` of a connection beyond [`Limits::max_connections`]
 /// (the accepting thread writes it: a few hundred bytes, which the socket's
@@ -360,8 +389,8 @@ fn is_timeout(e: &io::Error) -> bool {
     )
 }
 
-/// Writes `response` whole before `deadline`, headers and body in one piece
-/// (no delayed-ACK wait between them), or fails.
+/// Writes `response` whole before `deadline`, the headers in one piece with
+/// the body's first bytes (no delayed-ACK wait between them), or fails.
 fn write_response(
     stream: &mut TcpStream,
     response: &Response,
@@ -382,12 +411,27 @@ fn write_response(
         head.push_str("Connection: close\r\n");
     }
     head.push_str("\r\n");
-    let body: &[u8] = if response.head_only {
-        &[]
-    } else {
-        &response.body
-    };
-    write_before(stream, [head.as_bytes(), body], deadline)?;
+    match &response.body {
+        _ if response.head_only => write_before(stream, [head.as_bytes(), &[]], deadline)?,
+        Body::Bytes(bytes) => write_before(stream, [head.as_bytes(), bytes], deadline)?,
+        Body::File(file, len) => {
+            let mut chunk = vec![0; FILE_CHUNK];
+            let (mut head, mut left) = (head.as_bytes(), *len);
+            while left > 0 {
+                let want = usize::try_from(left).map_or(FILE_CHUNK, |l| l.min(FILE_CHUNK));
+                let n = match (&*file).read(&mut chunk[..want]) {
+                    // The file shrank since the answer's length was taken.
+                    Ok(0) => return Err(io::ErrorKind::UnexpectedEof.into()),
+                    Ok(n) => n,
+                    Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+                    Err(e) => return Err(e),
+                };
+                write_before(stream, [head, &chunk[..n]], deadline)?;
+                head = &[];
+                left -= n as u64;
+            }
+        }
+    }
     if !keep_alive {
         // Let the client read the answer before the close (no reset).
         let _ = stream.shutdown(std::net::Shutdown::Write);

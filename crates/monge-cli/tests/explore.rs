@@ -384,7 +384,7 @@ fn a_slow_reader_is_let_go_within_the_write_timeout() {
     let big = vec![7u8; 64 << 20];
     let server = Server::start(&[]);
     std::fs::write(server.dir.path().join("big.bin"), &big).unwrap();
-    let idle = server.threads();
+    let (idle, rss) = (server.threads(), server.rss_kb());
     let mut stream = TcpStream::connect(&server.address).unwrap();
     write!(
         stream,
@@ -399,7 +399,7 @@ fn a_slow_reader_is_let_go_within_the_write_timeout() {
     let start = Instant::now();
     let mut received = 0;
     let mut chunk = vec![0u8; 16 << 10];
-    let mut held = true;
+    let (mut held, mut peak) = (true, rss);
     while held && start.elapsed() < Duration::from_secs(90) {
         match stream.read(&mut chunk) {
             Ok(n) if n > 0 => received += n,
@@ -407,9 +407,15 @@ fn a_slow_reader_is_let_go_within_the_write_timeout() {
         }
         std::thread::sleep(Duration::from_millis(100));
         held = server.threads() > idle;
+        peak = peak.max(server.rss_kb());
     }
     let elapsed = start.elapsed();
-    eprintln!("slow reader: let go after {elapsed:?}, {received} bytes received");
+    eprintln!(
+        "slow reader: let go after {elapsed:?}, {received} bytes received; \
+         server RSS {rss} kB, at most {peak} kB meanwhile"
+    );
+    // The file is read a piece at a time, never whole (64 MB).
+    assert!(peak < rss + 16 * 1024, "RSS {rss} kB → {peak} kB");
     assert!(
         !held,
         "still held after {elapsed:?}, {received} bytes received"
