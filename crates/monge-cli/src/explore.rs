@@ -22,7 +22,7 @@
 
 use std::borrow::Cow;
 use std::fs;
-use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener};
+use std::net::{IpAddr, Ipv4Addr, Ipv6Addr, SocketAddr, TcpListener};
 use std::path::{Component, Path, PathBuf};
 use std::time::Duration;
 
@@ -123,12 +123,28 @@ pub fn run(args: &ExploreArgs) -> anyhow::Result<Outcome> {
         eprint(&warning);
     }
     print(&format!(
-        "monge explore: open http://{address}/ (Ctrl-C to stop)\n"
+        "monge explore: open http://{}/ (Ctrl-C to stop)\n",
+        local_address(address)
     ))?;
     let shared = Shared { design, page };
     http::serve(listener, LIMITS, move |request| answer(request, &shared))
         .with_context(|| format!("the server on {address} stopped"))?;
     Ok(Outcome::Success)
+}
+
+/// The address to open on this machine: `address`, or its family's loopback
+/// address when it listens on every interface (0.0.0.0 or ::), which is no
+/// address a browser reaches (the server answers only the address reached).
+fn local_address(address: SocketAddr) -> SocketAddr {
+    match address.ip() {
+        IpAddr::V4(ip) if ip.is_unspecified() => {
+            SocketAddr::new(Ipv4Addr::LOCALHOST.into(), address.port())
+        }
+        IpAddr::V6(ip) if ip.is_unspecified() => {
+            SocketAddr::new(Ipv6Addr::LOCALHOST.into(), address.port())
+        }
+        _ => address,
+    }
 }
 
 /// The warning printed when the server listens beyond this machine (any
@@ -331,6 +347,23 @@ mod tests {
             ("evil.example:8642", loopback),
         ] {
             assert!(!names_this_server(host, served), "{host} is not {served}");
+        }
+    }
+
+    #[test]
+    fn the_address_to_open_is_one_a_browser_reaches() {
+        for (listening, open) in [
+            ("0.0.0.0:8642", "127.0.0.1:8642"),
+            ("[::]:8642", "[::1]:8642"),
+            ("127.0.0.1:8642", "127.0.0.1:8642"),
+            ("192.168.1.5:8642", "192.168.1.5:8642"),
+        ] {
+            let open: SocketAddr = open.parse().unwrap();
+            assert_eq!(
+                local_address(listening.parse().unwrap()),
+                open,
+                "{listening}"
+            );
         }
     }
 

@@ -23,6 +23,8 @@ struct Server {
     child: Child,
     /// `127.0.0.1:PORT`.
     address: String,
+    /// The line it printed first.
+    printed: String,
     /// What it wrote on stderr.
     stderr: NamedTempFile,
     /// Its web directory (holds a tiny page), or the binary's copy.
@@ -65,6 +67,7 @@ impl Server {
             child,
             // Reached through the loopback interface, whatever address it listens on.
             address: format!("127.0.0.1:{port}"),
+            printed: line.clone(),
             stderr,
             dir,
         }
@@ -282,6 +285,14 @@ fn listening_beyond_this_machine_is_warned_of() {
             "warning: listening on 0.0.0.0:{port}, beyond this machine"
         )) && stderr.contains("anyone who can reach it on the network"),
         "{stderr}"
+    );
+    // The address to open is one a browser reaches: 127.0.0.1, not 0.0.0.0.
+    assert!(
+        server
+            .printed
+            .contains(&format!("open http://127.0.0.1:{port}/ ")),
+        "{}",
+        server.printed
     );
     // Reached through 127.0.0.1, it answers requests naming 127.0.0.1 (or
     // localhost), not another of the machine's names.
