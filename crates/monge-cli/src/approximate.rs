@@ -26,7 +26,7 @@ use crate::Outcome;
 /// Arguments of `monge approximate`.
 #[derive(Debug, clap::Args)]
 pub struct ApproximateArgs {
-    /// The target: a mesh or point cloud (`.obj`, ASCII `.ply`, or `.json` with `vertices` or
+    /// The target: a mesh or point cloud (`.obj`, `.ply` ASCII or binary, or `.json` with `vertices` or
     /// `points`), or NURBS surfaces (`.igs`/`.iges`, entity 128, sampled at about 4000 points).
     #[arg(value_name = "TARGET")]
     pub target: PathBuf,

@@ -2,6 +2,7 @@
 //! written by this crate, and OBJ/PLY quad grids from elsewhere whose vertices
 //! are in row-major order.
 
+use std::fs::File;
 use std::io::{self, BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
@@ -37,12 +38,30 @@ pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
     if format == MeshFormat::Glb {
         return Err(not_readable(&path_name(path)));
     }
-    let file = std::fs::File::open(path).map_err(|source| crate::read_error(path, source))?;
-    parse_mesh(
-        BufReader::with_capacity(READ_BUFFER, file),
-        format,
-        &path_name(path),
-    )
+    let (reader, size) = open(path)?;
+    parse_mesh(reader, format, size, &path_name(path))
+}
+
+/// The file `path`, buffered, and its length if it is a regular file.
+fn open(path: &Path) -> Result<(BufReader<File>, Option<u64>), IoError> {
+    let file = File::open(path).map_err(|source| crate::read_error(path, source))?;
+    let meta = file
+        .metadata()
+        .map_err(|source| crate::read_error(path, source))?;
+    let size = meta.is_file().then_some(meta.len());
+    Ok((BufReader::with_capacity(READ_BUFFER, file), size))
+}
+
+/// The vertices of an OBJ or PLY file (`format`), whatever its faces: the
+/// points of a target of `monge approximate`.
+pub(crate) fn read_vertices(path: &Path, format: MeshFormat) -> Result<Vec<DVec3>, IoError> {
+    let (reader, size) = open(path)?;
+    let file = path_name(path);
+    let raw = match format {
+        MeshFormat::Obj => parse_obj(reader, &file, Keep::Points)?,
+        _ => parse_ply(reader, &file, size, Keep::Points)?,
+    };
+    Ok(raw.vertices)
 }
 
 /// Reads a quad grid in `format` from a reader such as standard input (see [`read_mesh`]).
@@ -59,6 +78,7 @@ pub fn read_mesh_from(reader: impl Read, format: MeshFormat) -> Result<QuadGrid,
     parse_mesh(
         BufReader::with_capacity(READ_BUFFER, reader),
         format,
+        None,
         "<stdin>",
     )
 }
@@ -74,7 +94,13 @@ fn read_failed(file: &str, source: io::Error) -> IoError {
     }
 }
 
-fn parse_mesh(mut r: impl BufRead, format: MeshFormat, file: &str) -> Result<QuadGrid, IoError> {
+/// Reads a quad grid in `format` from `r` (`size` bytes long, when known).
+fn parse_mesh(
+    mut r: impl BufRead,
+    format: MeshFormat,
+    size: Option<u64>,
+    file: &str,
+) -> Result<QuadGrid, IoError> {
     match format {
         MeshFormat::Json => {
             let mut bytes = Vec::new();
@@ -84,9 +110,9 @@ fn parse_mesh(mut r: impl BufRead, format: MeshFormat, file: &str) -> Result<Qua
                 .map_err(|e| read_failed(file, io::Error::new(io::ErrorKind::InvalidData, e)))?;
             parse_json(text, file)
         }
-        MeshFormat::Obj => parse_obj(r, file)?.into_grid(file),
+        MeshFormat::Obj => parse_obj(r, file, Keep::Grid)?.into_grid(file),
         MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
-            parse_ply(r, file)?.into_grid(file)
+            parse_ply(r, file, size, Keep::Grid)?.into_grid(file)
         }
         MeshFormat::Glb => Err(not_readable(file)),
     }
@@ -345,7 +371,7 @@ fn parse_shape(
 }
 
 /// A finite `f64`.
-pub(crate) fn parse_f64(token: &str) -> Result<f64, String> {
+fn parse_f64(token: &str) -> Result<f64, String> {
     match token.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(_) => Err(format!("`{token}` is not a finite number")),
@@ -354,7 +380,7 @@ pub(crate) fn parse_f64(token: &str) -> Result<f64, String> {
 }
 
 /// `x y z` from the first three of `tokens`.
-pub(crate) fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<DVec3, String> {
+fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<DVec3, String> {
     let mut p = [0.0; 3];
     for x in &mut p {
         *x = parse_f64(tokens.next().ok_or("expected three coordinates x y z")?)?;
@@ -362,7 +388,7 @@ pub(crate) fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Resul
     Ok(DVec3::from_array(p))
 }
 
-fn parse_obj(reader: impl BufRead, file: &str) -> Result<RawMesh, IoError> {
+fn parse_obj(reader: impl BufRead, file: &str, keep: Keep) -> Result<RawMesh, IoError> {
     let mut raw = RawMesh::default();
     let mut lines = Lines::new(reader, file);
     while let Some((number, bytes)) = lines.next_line()? {
@@ -386,7 +412,7 @@ fn parse_obj(reader: impl BufRead, file: &str) -> Result<RawMesh, IoError> {
         match tokens.next() {
             Some("v") => raw.vertices.push(parse_xyz(&mut tokens).map_err(syntax)?),
             Some("vn") => raw.normals.push(parse_xyz(&mut tokens).map_err(syntax)?),
-            Some("f") => {
+            Some("f") if keep == Keep::Grid => {
                 let mut face = [0; 4];
                 let mut corners = 0;
                 for corner in tokens {
@@ -491,6 +517,8 @@ struct Property {
     name: String,
     list: Option<Scalar>,
     scalar: Scalar,
+    /// The 1-based header line declaring it.
+    line: usize,
 }
 
 /// A PLY element declared in the header.
@@ -498,6 +526,25 @@ struct Element {
     name: String,
     count: usize,
     properties: Vec<Property>,
+    /// The 1-based header line declaring it.
+    line: usize,
+}
+
+impl Element {
+    /// The fewest bytes one record of this element takes in `encoding`: in
+    /// ASCII a value and a separator per property (a list at least its
+    /// length), at least a line break; in binary the scalars' sizes (a
+    /// list at least its length).
+    fn min_record_bytes(&self, encoding: Encoding) -> u64 {
+        match encoding {
+            Encoding::Ascii => (2 * self.properties.len() as u64).max(1),
+            Encoding::BinaryLittleEndian => self
+                .properties
+                .iter()
+                .map(|p| p.list.unwrap_or(p.scalar).size() as u64)
+                .sum(),
+        }
+    }
 }
 
 /// The body encodings of PLY that can be read.
@@ -577,6 +624,7 @@ fn parse_ply_header(lines: &mut Lines<'_, impl BufRead>, file: &str) -> Result<P
                     name,
                     count,
                     properties: Vec::new(),
+                    line: number,
                 });
             }
             Some("property") => {
@@ -597,13 +645,24 @@ fn parse_ply_header(lines: &mut Lines<'_, impl BufRead>, file: &str) -> Result<P
                 let property = match words.as_slice() {
                     ["list", len, item, name] => Property {
                         name: (*name).to_owned(),
-                        list: Some(scalar(len)?),
+                        list: Some(match scalar(len)? {
+                            Scalar::F32 | Scalar::F64 => {
+                                return Err(syntax(format!(
+                                    "a list's length is a whole number, not `{len}`, in `{}`: \
+                                     declare it as e.g. `property list uchar {item} {name}`",
+                                    line.trim()
+                                )))
+                            }
+                            t => t,
+                        }),
                         scalar: scalar(item)?,
+                        line: number,
                     },
                     [t, name] => Property {
                         name: (*name).to_owned(),
                         list: None,
                         scalar: scalar(t)?,
+                        line: number,
                     },
                     _ => return Err(syntax(format!("cannot read `{}`", line.trim()))),
                 };
@@ -619,35 +678,104 @@ fn parse_ply_header(lines: &mut Lines<'_, impl BufRead>, file: &str) -> Result<P
     }
 }
 
-/// Where the vertex coordinates, normals and face corners are among an element's properties.
-struct Slots {
-    xyz: Option<[usize; 3]>,
-    normal: Option<[usize; 3]>,
-    indices: Option<usize>,
+/// What a PLY element's records give: where their values are among its properties.
+enum Slots {
+    /// The `vertex` element: where `x y z` are, and `nx ny nz` if given.
+    Vertex {
+        xyz: [usize; 3],
+        normal: Option<[usize; 3]>,
+    },
+    /// The `face` element of a mesh: where its corner list is.
+    Face { indices: usize },
+    /// Any other element, or the faces of a point cloud: read past.
+    Other,
 }
 
 impl Slots {
-    fn of(element: &Element) -> Slots {
+    /// Where `element`'s values are, checked before any record is read: a
+    /// `vertex` element needs `x`, `y` and `z`, and they (and `nx ny nz`)
+    /// must be single numbers; the `face` element of a mesh needs the list
+    /// `vertex_indices` (or `vertex_index`).
+    fn of(element: &Element, keep: Keep, file: &str) -> Result<Slots, IoError> {
+        let syntax = |line: usize, message: String| IoError::Syntax {
+            file: file.to_owned(),
+            line,
+            message,
+        };
         let find = |name: &str| element.properties.iter().position(|p| p.name == name);
-        let three = |a, b, c| Some([find(a)?, find(b)?, find(c)?]);
-        Slots {
-            xyz: three("x", "y", "z"),
-            normal: three("nx", "ny", "nz"),
-            indices: find("vertex_indices").or_else(|| find("vertex_index")),
+        let scalar = |k: usize| {
+            let p = &element.properties[k];
+            match p.list {
+                None => Ok(k),
+                Some(_) => Err(syntax(
+                    p.line,
+                    format!(
+                        "the `{}` property `{}` is a list; coordinates and normals are one \
+                         number each: declare it as `property double {}` (or float)",
+                        element.name, p.name, p.name
+                    ),
+                )),
+            }
+        };
+        let three = |names: [&str; 3]| -> Result<Option<[usize; 3]>, IoError> {
+            match names.map(find) {
+                [Some(a), Some(b), Some(c)] => Ok(Some([scalar(a)?, scalar(b)?, scalar(c)?])),
+                _ => Ok(None),
+            }
+        };
+        if element.count == 0 {
+            return Ok(Slots::Other);
+        }
+        match element.name.as_str() {
+            "vertex" => {
+                let Some(xyz) = three(["x", "y", "z"])? else {
+                    let missing = ["x", "y", "z"].into_iter().find(|n| find(n).is_none());
+                    return Err(syntax(
+                        element.line,
+                        format!(
+                            "the `vertex` element has no property `{}`; vertices need `x`, `y` and `z`",
+                            missing.unwrap_or("x")
+                        ),
+                    ));
+                };
+                let normal = three(["nx", "ny", "nz"])?;
+                Ok(Slots::Vertex { xyz, normal })
+            }
+            "face" if keep == Keep::Grid => {
+                let Some(k) = find("vertex_indices").or_else(|| find("vertex_index")) else {
+                    return Err(syntax(
+                        element.line,
+                        "the `face` element has no property `vertex_indices`".to_owned(),
+                    ));
+                };
+                let p = &element.properties[k];
+                if p.list.is_none() {
+                    return Err(syntax(
+                        p.line,
+                        format!(
+                            "the `face` property `{}` is a single number; a face's corners are \
+                             a list: `property list uchar int {}`",
+                            p.name, p.name
+                        ),
+                    ));
+                }
+                Ok(Slots::Face { indices: k })
+            }
+            _ => Ok(Slots::Other),
         }
     }
 
-    /// Adds one `element` record to `raw`: property `k`'s values (a list's
-    /// items after its length) are `values[ranges[k].0..ranges[k].1]`.
+    /// Adds one record to `raw`: property `k`'s values (a list's items after
+    /// its length) are `values[ranges[k].0..ranges[k].1]`.
     fn add(
         &self,
-        element: &Element,
         values: &[f64],
         ranges: &[(usize, usize)],
         raw: &mut RawMesh,
     ) -> Result<(), String> {
-        let values = |k: usize| &values[ranges[k].0..ranges[k].1];
-        let finite = |x: f64| {
+        // Every slot is a single number (checked by `Slots::of`).
+        let value = |k: usize| {
+            let x = values[ranges[k].0];
             if x.is_finite() {
                 Ok(x)
             } else {
@@ -655,55 +783,107 @@ impl Slots {
             }
         };
         let point = |[a, b, c]: [usize; 3]| -> Result<DVec3, String> {
-            Ok(DVec3::new(
-                finite(values(a)[0])?,
-                finite(values(b)[0])?,
-                finite(values(c)[0])?,
-            ))
+            Ok(DVec3::new(value(a)?, value(b)?, value(c)?))
         };
-        if element.name == "vertex" {
-            let xyz = self
-                .xyz
-                .ok_or_else(|| "the vertex element has no x, y and z".to_owned())?;
-            raw.vertices.push(point(xyz)?);
-            if let Some(normal) = self.normal {
-                raw.normals.push(point(normal)?);
-            }
-        } else if element.name == "face" {
-            let k = self
-                .indices
-                .ok_or_else(|| "the face element has no vertex_indices".to_owned())?;
-            let corners = values(k);
-            if corners.len() != 4 {
-                return Err(format!(
-                    "a face with {} corners; a quad grid has faces with 4",
-                    corners.len()
-                ));
-            }
-            let mut face = [0; 4];
-            for (slot, &c) in face.iter_mut().zip(corners) {
-                if c < 0.0 || c.fract() != 0.0 {
-                    return Err(format!("expected a vertex index, found `{c}`"));
+        match *self {
+            Slots::Vertex { xyz, normal } => {
+                raw.vertices.push(point(xyz)?);
+                if let Some(normal) = normal {
+                    raw.normals.push(point(normal)?);
                 }
-                *slot = c as usize;
             }
-            raw.faces.push(face);
+            Slots::Face { indices } => {
+                let corners = &values[ranges[indices].0..ranges[indices].1];
+                if corners.len() != 4 {
+                    return Err(format!(
+                        "a face with {} corners; a quad grid has faces with 4",
+                        corners.len()
+                    ));
+                }
+                let mut face = [0; 4];
+                for (slot, &c) in face.iter_mut().zip(corners) {
+                    if c < 0.0 || c.fract() != 0.0 {
+                        return Err(format!("expected a vertex index, found `{c}`"));
+                    }
+                    *slot = c as usize;
+                }
+                raw.faces.push(face);
+            }
+            Slots::Other => {}
         }
         Ok(())
     }
 }
 
-fn parse_ply(reader: impl BufRead, file: &str) -> Result<RawMesh, IoError> {
+/// What a reader keeps of an OBJ or PLY file.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Keep {
+    /// The quad grid: vertices, normals and faces (checked to be quads).
+    Grid,
+    /// The points only (`monge approximate`'s targets): faces of any shape are read past.
+    Points,
+}
+
+/// Refuses a PLY header whose element counts need more bytes than the
+/// `remaining` ones after it, before any record is read (so that no count
+/// drives the work or the memory beyond what the file holds).
+fn check_counts(header: &PlyHeader, remaining: u64, file: &str) -> Result<(), IoError> {
+    // An ASCII file's last line may lack its line break.
+    let slack = u128::from(header.encoding == Encoding::Ascii);
+    let mut needed: u128 = 0;
+    for (k, e) in header.elements.iter().enumerate() {
+        let min = e.min_record_bytes(header.encoding);
+        needed += e.count as u128 * u128::from(min);
+        if needed > u128::from(remaining) + slack {
+            let before = if k == 0 {
+                ""
+            } else {
+                " with the records declared before them"
+            };
+            let encoding = match header.encoding {
+                Encoding::Ascii => "in ASCII",
+                Encoding::BinaryLittleEndian => "in binary",
+            };
+            return Err(IoError::Syntax {
+                file: file.to_owned(),
+                line: e.line,
+                message: format!(
+                    "`element {} {}` does not fit in the file: {} records of at least {min} bytes \
+                     each ({encoding}){before} need more than the {remaining} bytes after the \
+                     header; the count is wrong or the file is cut short",
+                    e.name, e.count, e.count
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Reads the PLY file from `reader` (`size` bytes long, when known).
+fn parse_ply(
+    reader: impl BufRead,
+    file: &str,
+    size: Option<u64>,
+    keep: Keep,
+) -> Result<RawMesh, IoError> {
     let mut lines = Lines::new(reader, file);
     let header = parse_ply_header(&mut lines, file)?;
+    if let Some(size) = size {
+        check_counts(&header, size.saturating_sub(header.bytes as u64), file)?;
+    }
+    let slots = header
+        .elements
+        .iter()
+        .map(|e| Slots::of(e, keep, file))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut raw = RawMesh {
         shape: header.shape,
         ..RawMesh::default()
     };
     match header.encoding {
-        Encoding::Ascii => parse_ply_ascii(&mut lines, &header, file, &mut raw)?,
+        Encoding::Ascii => parse_ply_ascii(&mut lines, &header, &slots, file, &mut raw)?,
         Encoding::BinaryLittleEndian => {
-            parse_ply_binary(&mut lines.reader, &header, file, &mut raw)?
+            parse_ply_binary(&mut lines.reader, &header, &slots, file, &mut raw)?
         }
     }
     Ok(raw)
@@ -712,13 +892,13 @@ fn parse_ply(reader: impl BufRead, file: &str) -> Result<RawMesh, IoError> {
 fn parse_ply_ascii(
     lines: &mut Lines<'_, impl BufRead>,
     header: &PlyHeader,
+    slots: &[Slots],
     file: &str,
     raw: &mut RawMesh,
 ) -> Result<(), IoError> {
     let mut values: Vec<f64> = Vec::new();
     let mut ranges: Vec<(usize, usize)> = Vec::new();
-    for element in &header.elements {
-        let slots = Slots::of(element);
+    for (element, slots) in header.elements.iter().zip(slots) {
         for _ in 0..element.count {
             let last = lines.number;
             let syntax = |line: usize, message: String| IoError::Syntax {
@@ -739,9 +919,7 @@ fn parse_ply_ascii(
                 .map_err(|e| syntax(n, format!("an ASCII PLY body that is not text: {e}")))?;
             ply_values(line, &element.properties, &mut values, &mut ranges)
                 .map_err(|m| syntax(n, m))?;
-            slots
-                .add(element, &values, &ranges, raw)
-                .map_err(|m| syntax(n, m))?;
+            slots.add(&values, &ranges, raw).map_err(|m| syntax(n, m))?;
         }
     }
     Ok(())
@@ -791,6 +969,7 @@ fn parse_number(token: &str) -> Result<f64, String> {
 fn parse_ply_binary(
     body: &mut impl Read,
     header: &PlyHeader,
+    slots: &[Slots],
     file: &str,
     raw: &mut RawMesh,
 ) -> Result<(), IoError> {
@@ -803,8 +982,10 @@ fn parse_ply_binary(
     let mut values: Vec<f64> = Vec::new();
     let mut ranges: Vec<(usize, usize)> = Vec::new();
     let mut scratch = [0u8; 8];
-    for element in &header.elements {
-        let slots = Slots::of(element);
+    for (element, slots) in header.elements.iter().zip(slots) {
+        if element.properties.is_empty() {
+            continue; // records of no bytes: nothing to read, however many
+        }
         for record in 0..element.count {
             let start = at;
             let mut read = |scalar: Scalar, at: &mut usize| -> Result<f64, IoError> {
@@ -844,7 +1025,7 @@ fn parse_ply_binary(
                 ranges.push((first, values.len()));
             }
             slots
-                .add(element, &values, &ranges, raw)
+                .add(&values, &ranges, raw)
                 .map_err(|message| error(start, message))?;
         }
     }

@@ -1,5 +1,6 @@
-//! Target readers for `monge approximate`: the points of any OBJ, ASCII PLY or JSON
-//! mesh or point cloud, whatever its faces (triangles, quads, none).
+//! Target readers for `monge approximate`: the points of any OBJ, PLY (ASCII or
+//! binary little-endian) or JSON mesh or point cloud, whatever its faces
+//! (triangles, quads, none).
 
 use std::path::Path;
 
@@ -8,12 +9,13 @@ use serde::Deserialize;
 
 use crate::design::{parse_as, DesignFormat};
 use crate::error::IoError;
-use crate::mesh_read::{parse_f64, parse_xyz};
+use crate::mesh_read::read_vertices;
 use crate::mesh_write::MeshFormat;
 use crate::{path_name, read_to_string};
 
 /// Reads the points of a target: the vertices of an OBJ (`v` lines; faces, if any, are
-/// ignored), of an ASCII PLY (`x`, `y`, `z` of the `vertex` element), or of a JSON file
+/// ignored), of a PLY, ASCII or binary little-endian (`x`, `y`, `z` of the `vertex`
+/// element, read by the mesh reader's PLY code), or of a JSON file
 /// with `vertices` (a monge mesh) or `points`, each `[x, y, z]`; or points sampled on
 /// the rational B-spline surfaces of an IGES file (`.igs`, `.iges`: every entity 128, on
 /// a grid of its parameter range, [`IGES_TARGET_POINTS`] points in all; trimming curves
@@ -43,11 +45,9 @@ pub fn read_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
             accepted: "`.obj`, `.ply` or `.json`",
         });
     }
-    let text = read_to_string(path)?;
     let points = match format {
-        MeshFormat::Obj => obj_points(&text, &file)?,
-        MeshFormat::Ply => ply_points(&text, &file)?,
-        _ => json_points(&text, &file)?,
+        MeshFormat::Json => json_points(&read_to_string(path)?, &file)?,
+        _ => read_vertices(path, format)?,
     };
     if points.is_empty() {
         return Err(IoError::Syntax {
@@ -98,87 +98,6 @@ fn syntax(file: &str, line: usize, message: String) -> IoError {
         line,
         message,
     }
-}
-
-fn obj_points(text: &str, file: &str) -> Result<Vec<DVec3>, IoError> {
-    let mut points = Vec::new();
-    for (number, line) in text.lines().enumerate() {
-        let mut tokens = line.split_whitespace();
-        if tokens.next() == Some("v") {
-            points.push(parse_xyz(&mut tokens).map_err(|m| syntax(file, number + 1, m))?);
-        }
-    }
-    Ok(points)
-}
-
-fn ply_points(text: &str, file: &str) -> Result<Vec<DVec3>, IoError> {
-    let mut lines = text.lines().enumerate();
-    let (mut count, mut in_vertex, mut properties) = (None, false, Vec::new());
-    for (number, line) in lines.by_ref() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        match words.as_slice() {
-            ["format", f, ..] if *f != "ascii" => {
-                return Err(syntax(file, number + 1, format!("PLY format `{f}`: only ASCII PLY is read; save the target as ASCII PLY or OBJ")));
-            }
-            ["element", name, n] => {
-                in_vertex = *name == "vertex";
-                if in_vertex {
-                    count = Some(n.parse::<usize>().map_err(|_| {
-                        syntax(
-                            file,
-                            number + 1,
-                            format!("expected a vertex count, found `{n}`"),
-                        )
-                    })?);
-                }
-            }
-            ["property", .., name] if in_vertex => properties.push(name.to_string()),
-            ["end_header"] => break,
-            _ => {}
-        }
-    }
-    let column = |axis: &str| {
-        properties.iter().position(|p| p == axis).ok_or_else(|| {
-            syntax(
-                file,
-                1,
-                format!("the `vertex` element has no property `{axis}`"),
-            )
-        })
-    };
-    let (x, y, z) = (column("x")?, column("y")?, column("z")?);
-    let count =
-        count.ok_or_else(|| syntax(file, 1, "no `element vertex` in the header".to_owned()))?;
-    let mut points = Vec::with_capacity(count);
-    for (number, line) in lines.take(count) {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        let value = |k: usize| -> Result<f64, IoError> {
-            let word = words.get(k).ok_or_else(|| {
-                syntax(
-                    file,
-                    number + 1,
-                    format!(
-                        "expected {} properties, found {}",
-                        properties.len(),
-                        words.len()
-                    ),
-                )
-            })?;
-            parse_f64(word).map_err(|m| syntax(file, number + 1, m))
-        };
-        points.push(DVec3::new(value(x)?, value(y)?, value(z)?));
-    }
-    if points.len() < count {
-        return Err(syntax(
-            file,
-            text.lines().count(),
-            format!(
-                "the header declares {count} vertices, the file has {}",
-                points.len()
-            ),
-        ));
-    }
-    Ok(points)
 }
 
 #[derive(Deserialize)]

@@ -519,3 +519,118 @@ fn crlf_lines_read_and_bad_text_names_its_line() {
         "{err}"
     );
 }
+
+/// `path` in a fresh directory holding `bytes`, read as a mesh (its size known).
+fn read_file(name: &str, bytes: &[u8]) -> Result<monge_core::QuadGrid, IoError> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    read_mesh(&path)
+}
+
+/// Found by a mutation fuzzer: `x` declared as a list (of none, of one, of
+/// two) indexed an empty list (a panic), or quietly took its first item.
+#[test]
+fn a_coordinate_declared_as_a_list_is_refused_at_its_line() {
+    let header = |body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty list uchar float x\n\
+             property float y\nproperty float z\nelement face 1\n\
+             property list uchar int vertex_indices\nend_header\n{body}"
+        )
+    };
+    for items in ["0", "1 0", "2 0 0"] {
+        let body: String =
+            (0..4).map(|_| format!("{items} 0 0\n")).collect::<String>() + "4 0 2 3 1\n";
+        let err = ply(&header(&body)).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "<stdin>:4: the `vertex` property `x` is a list; coordinates and normals are one \
+             number each: declare it as `property double x` (or float)"
+        );
+    }
+    // Binary alike, and a normal as a list.
+    let err = binary_ply(
+        "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n\
+         property list uchar float nx\nproperty float ny\nproperty float nz\n",
+        &[0; 21],
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("<stdin>:7: the `vertex` property `nx` is a list"),
+        "{err}"
+    );
+    // Face corners as one number, a list counted by a float.
+    let err =
+        ply("ply\nformat ascii 1.0\nelement face 1\nproperty int vertex_indices\nend_header\n0\n")
+            .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("<stdin>:4: the `face` property `vertex_indices` is a single number"),
+        "{err}"
+    );
+    let err = ply("ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\nend_header\n")
+        .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("<stdin>:4: a list's length is a whole number, not `float`"),
+        "{err}"
+    );
+}
+
+/// Found by a mutation fuzzer (in the points reader): a huge `element vertex`
+/// count reserved memory for it (capacity overflow, or an abort at 1e11).
+/// Every count is now weighed against the bytes after the header before
+/// anything is read or reserved.
+#[test]
+fn counts_that_cannot_fit_in_the_file_are_refused_before_any_record() {
+    let ascii = |count: &str, body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex {count}\nproperty float x\nproperty float y\n\
+             property float z\nend_header\n{body}"
+        )
+    };
+    for count in ["100000000000", "1000000000000000", &usize::MAX.to_string()] {
+        let err = read_file("c.ply", ascii(count, "0 0 0\n").as_bytes()).unwrap_err();
+        assert_eq!(
+            err.to_string().split(": ").nth(1).unwrap(),
+            format!("`element vertex {count}` does not fit in the file")
+        );
+        assert!(
+            err.to_string().ends_with(&format!(
+                "{count} records of at least 6 bytes each (in ASCII) need more than the 6 bytes \
+                 after the header; the count is wrong or the file is cut short"
+            )),
+            "{err}"
+        );
+        // From a stream of unknown length: the records run out, nothing is reserved.
+        let err = ply(&ascii(count, "0 0 0\n")).unwrap_err();
+        assert!(
+            err.to_string().contains("the file ends before all"),
+            "{err}"
+        );
+    }
+    // The smallest records fit: "0 0 0" three times, the last line without its break.
+    let fits = ascii("3", "0 0 0\n0 0 0\n0 0 0");
+    let err = read_file("c.ply", fits.as_bytes()).unwrap_err();
+    assert!(matches!(err, IoError::NotAGrid { .. }), "{err}");
+    // Binary: 12 bytes a vertex, and records of no bytes however many.
+    let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\n\
+        property float y\nproperty float z\nelement nothing 18446744073709551615\nend_header\n"
+        .to_vec();
+    bytes.extend([0; 23]);
+    let err = read_file("b.ply", &bytes).unwrap_err();
+    assert!(
+        err.to_string().contains(
+            "`element vertex 2` does not fit in the file: 2 records of at least 12 bytes each \
+             (in binary) need more than the 23 bytes after the header"
+        ),
+        "{err}"
+    );
+    bytes.push(0);
+    let err = read_file("b.ply", &bytes).unwrap_err();
+    assert!(matches!(err, IoError::NotAGrid { .. }), "{err}");
+    let err = read_mesh_from(bytes.as_slice(), MeshFormat::Ply).unwrap_err();
+    assert!(matches!(err, IoError::NotAGrid { .. }), "{err}");
+}
