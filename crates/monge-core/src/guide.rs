@@ -315,6 +315,22 @@ pub enum GuideError {
         /// The guide.
         guide: GuideName,
     },
+    /// `bspline.degree` is above [`MAX_DEGREE`].
+    #[error(
+        "{guide}: `bspline.degree` is {degree}, above the largest accepted, {max}: a sample of a \
+         B-spline costs about degree² operations (degree {degree}: {} per sample), and CAD \
+         systems stop far below (Rhino at 11; guides are usually of degree 2 or 3). Lower the \
+         degree: a curve of many control points is given as well at degree 3.",
+        .degree.saturating_mul(*.degree)
+    )]
+    DegreeTooHigh {
+        /// The guide.
+        guide: GuideName,
+        /// The degree given.
+        degree: usize,
+        /// [`MAX_DEGREE`].
+        max: usize,
+    },
     /// Fewer than `degree + 1` control points.
     #[error(
         "{guide}: a B-spline of degree {degree} needs more than {degree} control points; `bspline.control_points` has {count}. Add control points or lower the degree."
@@ -734,6 +750,12 @@ fn check_knots(
     Ok(())
 }
 
+/// The largest B-spline degree accepted, for guides and for the IGES surfaces
+/// read as targets: a point costs about degree² operations (a guide of degree
+/// 4000 and 500 samples took 20 s to validate), and no designer needs more
+/// (Rhino stops at 11; guides are usually of degree 2 or 3).
+pub const MAX_DEGREE: usize = 32;
+
 /// Clamped uniform knots on `[0, 1]` for `count` control points of `degree`.
 pub(crate) fn clamped_uniform_knots(count: usize, degree: usize) -> Vec<f64> {
     let spans = count - degree;
@@ -815,6 +837,13 @@ fn sample_bspline(
     let degree = b.degree;
     if degree == 0 {
         return Err(GuideError::ZeroDegree { guide: name });
+    }
+    if degree > MAX_DEGREE {
+        return Err(GuideError::DegreeTooHigh {
+            guide: name,
+            degree,
+            max: MAX_DEGREE,
+        });
     }
     let count = b.control_points.len();
     if count <= degree {
@@ -1684,11 +1713,42 @@ mod tests {
             e.to_string().contains("needs more than 4 control points"),
             "{e}"
         );
-        // A huge degree does not overflow.
-        assert!(matches!(
-            err(&bspline_spec(bspline(bent(), usize::MAX, 5))),
-            GuideError::TooFewControlPoints { .. }
-        ));
+    }
+
+    #[test]
+    fn degree_above_the_limit_is_refused_before_sampling() {
+        // A Bézier curve of degree MAX_DEGREE in the plane y = 0 is read: its
+        // midpoint is the Bernstein sum Σ C(n, k) / 2ⁿ · P_k, here of
+        // P_k = (k, 0, k²): (n/2, 0, n(n+1)/4).
+        let n = MAX_DEGREE;
+        let points: Vec<Xyz> = (0..=n).map(|k| [k as f64, 0.0, (k * k) as f64]).collect();
+        let g = guide(&bspline_spec(bspline(points.clone(), n, 3))).unwrap();
+        let expected = [n as f64 / 2.0, 0.0, (n * (n + 1)) as f64 / 4.0];
+        assert!(
+            (g.points[1] - DVec3::from(expected)).length() < 1e-9 * n as f64,
+            "{:?}",
+            g.points[1]
+        );
+        // One more is refused, whatever the control points: a huge degree too,
+        // without overflow.
+        for degree in [n + 1, 4000, usize::MAX] {
+            let e = err(&bspline_spec(bspline(points.clone(), degree, 5)));
+            assert_eq!(
+                e,
+                GuideError::DegreeTooHigh {
+                    guide: U,
+                    degree,
+                    max: MAX_DEGREE
+                }
+            );
+        }
+        let e = err(&bspline_spec(bspline(points, 4000, 500)));
+        assert!(
+            e.to_string()
+                .contains("`bspline.degree` is 4000, above the largest accepted, 32")
+                && e.to_string().contains("Lower the degree"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -16,6 +16,7 @@ use std::io::{self, Write};
 
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, NurbsSurface, NURBS_DEGREE};
+use monge_core::guide::MAX_DEGREE;
 
 use crate::error::IoError;
 use crate::text::{emit, Out};
@@ -678,12 +679,12 @@ impl IgesSurface {
     /// If the fields are inconsistent (lengths as documented), which never
     /// happens for a surface returned by [`read_iges_surfaces`].
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
-        let nu = basis(&self.knots_u, self.degree_u, self.count_u, u);
-        let nv = basis(&self.knots_v, self.degree_v, self.count_v, v);
+        let (first_u, nu) = basis(&self.knots_u, self.degree_u, self.count_u, u);
+        let (first_v, nv) = basis(&self.knots_v, self.degree_v, self.count_v, v);
         let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
         for (a, &na) in nu.iter().enumerate().filter(|(_, &n)| n != 0.0) {
             for (b, &nb) in nv.iter().enumerate().filter(|(_, &n)| n != 0.0) {
-                let k = a * self.count_v + b;
+                let k = (first_u + a) * self.count_v + first_v + b;
                 let w = self.weights[k] * na * nb;
                 sum += self.control_points[k] * w;
                 weight += w;
@@ -693,26 +694,34 @@ impl IgesSurface {
     }
 }
 
-/// All `count` B-spline basis functions of `degree` on `knots` at `t` (clamped
-/// to the domain), from the degree-0 indicator of the span holding `t` (the
-/// last non-empty span at the end of the domain) raised one degree at a time.
-fn basis(knots: &[f64], degree: usize, count: usize, t: f64) -> Vec<f64> {
+/// The `degree + 1` B-spline basis functions of `degree` on `knots` (for
+/// `count` control points) that can be non-zero at `t` (clamped to the
+/// domain), and the index of the first: from the degree-0 indicator of the
+/// span holding `t` (the last non-empty span at the end of the domain) raised
+/// one degree at a time, in `degree²` operations whatever the number of knots.
+fn basis(knots: &[f64], degree: usize, count: usize, t: f64) -> (usize, Vec<f64>) {
     let t = t.clamp(knots[degree], knots[count]);
-    let span = (degree..count)
-        .rev()
-        .find(|&i| knots[i] <= t && knots[i] < knots[i + 1])
-        .unwrap_or(degree);
+    let span = if t.is_nan() {
+        degree
+    } else if t < knots[count] {
+        knots.partition_point(|&k| k <= t) - 1
+    } else {
+        knots.partition_point(|&k| k < t) - 1
+    };
+    let first = span - degree;
     let ratio = |num: f64, den: f64| if den == 0.0 { 0.0 } else { num / den };
-    let mut n = vec![0.0; knots.len() - 1];
-    n[span] = if t.is_nan() { f64::NAN } else { 1.0 };
+    // n[i - first] is basis function i; one more, always 0, past the span.
+    let mut n = vec![0.0; degree + 2];
+    n[degree] = if t.is_nan() { f64::NAN } else { 1.0 };
     for p in 1..=degree {
-        for i in 0..knots.len() - 1 - p {
-            n[i] = ratio(t - knots[i], knots[i + p] - knots[i]) * n[i]
-                + ratio(knots[i + p + 1] - t, knots[i + p + 1] - knots[i + 1]) * n[i + 1];
+        for i in first..=span {
+            let j = i - first;
+            n[j] = ratio(t - knots[i], knots[i + p] - knots[i]) * n[j]
+                + ratio(knots[i + p + 1] - t, knots[i + p + 1] - knots[i + 1]) * n[j + 1];
         }
     }
-    n.truncate(count);
-    n
+    n.truncate(degree + 1);
+    (first, n)
 }
 
 /// Every rational B-spline surface (entity 128) of an IGES 5.3 fixed-format
@@ -1047,6 +1056,16 @@ impl<'a> Sections<'a> {
         }
         let header_line = params[0].line;
         for (k, m, name) in [(k1, m1, "first"), (k2, m2, "second")] {
+            if m > MAX_DEGREE {
+                return Err(syntax(
+                    header_line,
+                    format!(
+                        "entity 128 at DE {de}: degree {m} in the {name} direction, above the \
+                         largest read, {MAX_DEGREE} (a point costs about degree² operations; CAD \
+                         systems stop far below): rebuild the surface at a lower degree"
+                    ),
+                ));
+            }
             if m == 0 || k < m {
                 return Err(syntax(
                     header_line,

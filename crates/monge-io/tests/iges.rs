@@ -401,6 +401,14 @@ fn error_degrees() {
         5,
         "degree 2 with 2 control points in the second",
     );
+    // A degree above monge_core's MAX_DEGREE is refused before anything is
+    // evaluated (a point costs about degree² operations).
+    lines[0] = "128,40,1,33,1,0,0,1,0,0,";
+    syntax_error(
+        &bilinear_with(&lines),
+        5,
+        "degree 33 in the first direction, above the largest read, 32",
+    );
 }
 
 #[test]
