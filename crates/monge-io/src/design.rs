@@ -63,14 +63,59 @@ pub(crate) fn unknown_extension(path: &Path, accepted: &'static str) -> IoError 
     }
 }
 
+/// The largest design file read, of any kind (a design, a developable or
+/// multi-patch design, a planes file), in bytes: 16 MiB. A design is a few kB;
+/// reading one costs a few times its size in memory (up to about 20 times in
+/// TOML), so that a larger file is refused before it is read.
+pub const MAX_DESIGN_BYTES: u64 = 16 << 20;
+
+/// [`IoError::DesignTooLarge`] if a design file of `size` bytes is over [`MAX_DESIGN_BYTES`].
+fn check_design_size(size: u64, file: &str) -> Result<(), IoError> {
+    if size > MAX_DESIGN_BYTES {
+        return Err(IoError::DesignTooLarge {
+            file: file.to_owned(),
+            size,
+            limit: MAX_DESIGN_BYTES,
+        });
+    }
+    Ok(())
+}
+
+/// The text of the design file `path` (of any kind): one over
+/// [`MAX_DESIGN_BYTES`] is refused by its length before it is read (a stream,
+/// once more has been read).
+pub(crate) fn read_design_text(path: &Path) -> Result<String, IoError> {
+    let file = std::fs::File::open(path).map_err(|source| crate::read_error(path, source))?;
+    let opened = file
+        .metadata()
+        .map_err(|source| crate::read_error(path, source))?;
+    check_design_size(opened.len(), &path_name(path))?;
+    let bytes = crate::read_unchanged(path, file, &opened, MAX_DESIGN_BYTES + 1)?;
+    check_design_size(bytes.len() as u64, &path_name(path))?;
+    crate::utf8(path, bytes)
+}
+
+/// The kind of the design text `text` (of any kind) if recognisable, after
+/// checking its size ([`MAX_DESIGN_BYTES`]) and that it is one of `expected`
+/// (see [`expect_kind`]): what every design parser checks first.
+pub(crate) fn expect_design(
+    text: &str,
+    format: DesignFormat,
+    file: &str,
+    expected: &[FileKind],
+) -> Result<Option<FileKind>, IoError> {
+    check_design_size(text.len() as u64, file)?;
+    expect_kind(text, format, file, expected)
+}
+
 /// Reads a design file, JSON or TOML by its extension.
 ///
 /// Errors: [`IoError::UnknownExtension`], [`IoError::NotFound`],
-/// [`IoError::Read`], [`IoError::Parse`] (with line, column and what was
+/// [`IoError::Read`], [`IoError::DesignTooLarge`], [`IoError::Parse`] (with line, column and what was
 /// expected) and [`IoError::NonFinite`].
 pub fn read_design(path: &Path) -> Result<Design, IoError> {
     let format = DesignFormat::from_path(path)?;
-    let text = crate::read_to_string(path)?;
+    let text = read_design_text(path)?;
     parse_design_named(&text, format, &path_name(path))
 }
 
@@ -95,7 +140,7 @@ pub fn parse_design(text: &str, format: DesignFormat) -> Result<Design, IoError>
 /// [`parse_design`] of the contents of `file` (named in the messages, e.g.
 /// `design.json:3:7: …`).
 pub fn parse_design_named(text: &str, format: DesignFormat, file: &str) -> Result<Design, IoError> {
-    expect_kind(text, format, file, &[FileKind::Design])?;
+    expect_design(text, format, file, &[FileKind::Design])?;
     parse_as(text, format, file)
 }
 
@@ -127,12 +172,16 @@ pub(crate) fn parse_as<T: DeserializeOwned>(
                 let message = e.message().trim_end().to_owned();
                 toml_error(&e, message)
             };
-            let value: toml::Value = toml::from_str(text).map_err(plain)?;
-            if let Some(key) = non_finite(&value, String::new()) {
-                return Err(IoError::NonFinite {
-                    file: file.to_owned(),
-                    key,
-                });
+            // TOML's non-finite numbers are `nan` and `inf` (signed or not):
+            // a text without them needs no tree of values to find them in.
+            if text.contains("nan") || text.contains("inf") {
+                let value: toml::Value = toml::from_str(text).map_err(plain)?;
+                if let Some(key) = non_finite(&value, String::new()) {
+                    return Err(IoError::NonFinite {
+                        file: file.to_owned(),
+                        key,
+                    });
+                }
             }
             let de = toml::Deserializer::parse(text).map_err(plain)?;
             serde_path_to_error::deserialize(de).map_err(|e| {
@@ -226,7 +275,7 @@ pub enum AnyDesign {
 /// ```
 pub fn read_any_design(path: &Path) -> Result<AnyDesign, IoError> {
     let format = DesignFormat::from_path(path)?;
-    let text = crate::read_to_string(path)?;
+    let text = read_design_text(path)?;
     parse_any_design_named(&text, format, &path_name(path))
 }
 
@@ -248,16 +297,11 @@ fn parse_any_design_named(
     format: DesignFormat,
     file: &str,
 ) -> Result<AnyDesign, IoError> {
-    expect_kind(
-        text,
-        format,
-        file,
-        &[FileKind::Design, FileKind::Developable],
-    )?;
-    if FileKind::of_text(text, format) == Some(FileKind::Developable) {
+    let kinds = [FileKind::Design, FileKind::Developable];
+    if expect_design(text, format, file, &kinds)? == Some(FileKind::Developable) {
         parse_as(text, format, file).map(AnyDesign::Developable)
     } else {
-        parse_design_named(text, format, file).map(|d| AnyDesign::Surface(Box::new(d)))
+        parse_as(text, format, file).map(|d| AnyDesign::Surface(Box::new(d)))
     }
 }
 

@@ -118,6 +118,21 @@ pub enum IoError {
         expected: FileKind,
     },
 
+    /// A design file (of any kind) is larger than [`MAX_DESIGN_BYTES`](crate::MAX_DESIGN_BYTES).
+    #[error(
+        "{file} has {size} bytes, more than a design file may have: {limit} bytes (16 MiB). A \
+         design is a few kB (two guides and θ): give a long guide as a B-spline of a few \
+         control points rather than as its points, or check that this is the design file meant"
+    )]
+    DesignTooLarge {
+        /// The file name.
+        file: String,
+        /// Its size in bytes (read so far, for a stream).
+        size: u64,
+        /// [`MAX_DESIGN_BYTES`](crate::MAX_DESIGN_BYTES).
+        limit: u64,
+    },
+
     /// The file format cannot be told from the path's extension.
     #[error("`{}`: unsupported {found}; expected {accepted}", path.display())]
     UnknownExtension {

@@ -52,19 +52,15 @@ impl FileKind {
     /// assert_eq!(FileKind::of_text("theta_deg = 3", DesignFormat::Toml), Some(FileKind::Design));
     /// ```
     pub fn of_text(text: &str, format: DesignFormat) -> Option<FileKind> {
-        let keys: Vec<String> = match format {
-            DesignFormat::Json => serde_json::from_str::<serde_json::Map<_, _>>(text)
-                .ok()?
-                .into_iter()
-                .map(|(k, _)| k)
-                .collect(),
-            DesignFormat::Toml => toml::from_str::<toml::Table>(text)
-                .ok()?
-                .into_iter()
-                .map(|(k, _)| k)
-                .collect(),
+        // The keys only: the values are read past, not built (a design's
+        // points as a tree of values took 16 times the file's size).
+        type Keys = std::collections::BTreeMap<String, serde::de::IgnoredAny>;
+        let keys: Keys = match format {
+            DesignFormat::Json => serde_json::from_str(text).ok()?,
+            DesignFormat::Toml => toml::from_str(text).ok()?,
         };
-        FileKind::from_keys(&keys.iter().map(String::as_str).collect::<Vec<_>>())
+        let keys: Vec<&str> = keys.keys().map(String::as_str).collect();
+        FileKind::from_keys(&keys)
     }
 
     /// The commands that read this kind of file, for error messages.
@@ -97,18 +93,19 @@ impl fmt::Display for FileKind {
 /// [`IoError::WrongKind`] if `text` is recognisably a kind of file other than
 /// `expected` (the first of which names what was expected); a text of no
 /// recognisable kind is left to the parser, which says what is wrong with it.
+/// Returns the kind found.
 pub(crate) fn expect_kind(
     text: &str,
     format: DesignFormat,
     file: &str,
     expected: &[FileKind],
-) -> Result<(), IoError> {
+) -> Result<Option<FileKind>, IoError> {
     match FileKind::of_text(text, format) {
         Some(found) if !expected.contains(&found) => Err(IoError::WrongKind {
             file: file.to_owned(),
             found,
             expected: expected[0],
         }),
-        _ => Ok(()),
+        found => Ok(found),
     }
 }

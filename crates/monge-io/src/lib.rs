@@ -50,7 +50,7 @@ use std::path::Path;
 pub use atomic::{check_output, is_stdio, write_atomic, write_output, Outputs, STALE};
 pub use design::{
     parse_any_design, parse_design, parse_design_named, read_any_design, read_design, write_design,
-    write_design_into, write_design_to, AnyDesign, DesignFormat,
+    write_design_into, write_design_to, AnyDesign, DesignFormat, MAX_DESIGN_BYTES,
 };
 pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
@@ -77,7 +77,12 @@ pub use svg::write_overview_svg;
 
 /// The whole file as text (see [`read_file`]); invalid UTF-8 is [`IoError::Read`].
 fn read_to_string(path: &Path) -> Result<String, IoError> {
-    String::from_utf8(read_file(path)?).map_err(|e| IoError::Read {
+    utf8(path, read_file(path)?)
+}
+
+/// `bytes` of the file `path` as text; invalid UTF-8 is [`IoError::Read`].
+fn utf8(path: &Path, bytes: Vec<u8>) -> Result<String, IoError> {
+    String::from_utf8(bytes).map_err(|e| IoError::Read {
         path: path.to_owned(),
         source: io::Error::new(io::ErrorKind::InvalidData, e.utf8_error()),
     })
@@ -93,15 +98,20 @@ fn read_to_string(path: &Path) -> Result<String, IoError> {
 fn read_file(path: &Path) -> Result<Vec<u8>, IoError> {
     let file = File::open(path).map_err(|source| read_error(path, source))?;
     let opened = file.metadata().map_err(|source| read_error(path, source))?;
-    read_unchanged(path, file, &opened)
+    read_unchanged(path, file, &opened, u64::MAX)
 }
 
-/// Reads `file` (the file `path` as it was `opened`) to its end, checking that
-/// it did not change meanwhile (see [`read_file`]).
-fn read_unchanged(path: &Path, mut file: File, opened: &Metadata) -> Result<Vec<u8>, IoError> {
+/// Reads `file` (the file `path` as it was `opened`) to its end, or its first
+/// `limit` bytes, checking that it did not change meanwhile (see [`read_file`]).
+fn read_unchanged(
+    path: &Path,
+    file: File,
+    opened: &Metadata,
+    limit: u64,
+) -> Result<Vec<u8>, IoError> {
     let err = |source| read_error(path, source);
     let mut bytes = Vec::new();
-    file.read_to_end(&mut bytes).map_err(err)?;
+    (&file).take(limit).read_to_end(&mut bytes).map_err(err)?;
     let now = file.metadata().map_err(err)?;
     let read = bytes.len() as u64;
     let same = read == opened.len()
@@ -168,7 +178,7 @@ mod tests {
         let (path, file, meta) = opened(&dir);
         let other = std::fs::OpenOptions::new().write(true).open(&path).unwrap();
         other.set_len(10).unwrap();
-        let (opened, read, now, message) = changed(read_unchanged(&path, file, &meta));
+        let (opened, read, now, message) = changed(read_unchanged(&path, file, &meta, u64::MAX));
         assert_eq!((opened, read, now), (1000, 10, 10));
         assert!(
             message.contains("d.json` changed while it was being read"),
@@ -189,7 +199,7 @@ mod tests {
             .open(&path)
             .unwrap();
         other.write_all(&[b' '; 24]).unwrap();
-        let (opened, read, now, _) = changed(read_unchanged(&path, file, &meta));
+        let (opened, read, now, _) = changed(read_unchanged(&path, file, &meta, u64::MAX));
         assert_eq!((opened, read, now), (1000, 1024, 1024));
     }
 
@@ -203,7 +213,7 @@ mod tests {
         // the clock's granularity).
         let later = meta.modified().unwrap() + Duration::from_secs(1);
         other.set_modified(later).unwrap();
-        let (opened, read, now, _) = changed(read_unchanged(&path, file, &meta));
+        let (opened, read, now, _) = changed(read_unchanged(&path, file, &meta, u64::MAX));
         assert_eq!((opened, read, now), (1000, 1000, 1000));
     }
 
@@ -212,7 +222,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let (path, file, meta) = opened(&dir);
         std::fs::remove_file(&path).unwrap();
-        let bytes = read_unchanged(&path, file, &meta).unwrap();
+        let bytes = read_unchanged(&path, file, &meta, u64::MAX).unwrap();
         assert_eq!(bytes, [b' '; 1000]);
     }
 }

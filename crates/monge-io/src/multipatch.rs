@@ -8,9 +8,9 @@ use monge_core::multipatch::MultiPatchDesign;
 use monge_core::symmetry::QuadMesh;
 
 use crate::atomic::{write_output, Outputs};
-use crate::design::{parse_as, write_pretty, DesignFormat};
+use crate::design::{expect_design, parse_as, write_pretty, DesignFormat};
 use crate::error::IoError;
-use crate::kind::{expect_kind, FileKind};
+use crate::kind::FileKind;
 use crate::mesh_write::{MeshFormat, Quads};
 use crate::path_name;
 
@@ -23,7 +23,7 @@ use crate::path_name;
 /// errors with line and column, non-finite numbers (TOML's `nan`, `inf`).
 pub fn read_multipatch(path: &Path) -> Result<MultiPatchDesign, IoError> {
     let format = DesignFormat::from_path(path)?;
-    let text = crate::read_to_string(path)?;
+    let text = crate::design::read_design_text(path)?;
     parse_multipatch_named(&text, format, &path_name(path))
 }
 
@@ -47,7 +47,7 @@ fn parse_multipatch_named(
     format: DesignFormat,
     file: &str,
 ) -> Result<MultiPatchDesign, IoError> {
-    expect_kind(text, format, file, &[FileKind::MultiPatch])?;
+    expect_design(text, format, file, &[FileKind::MultiPatch])?;
     parse_as(text, format, file)
 }
 
@@ -55,7 +55,7 @@ fn parse_multipatch_named(
 /// TOML by its extension, with the errors of [`read_multipatch`].
 pub fn read_planes(path: &Path) -> Result<BoundarySpec, IoError> {
     let format = DesignFormat::from_path(path)?;
-    let text = crate::read_to_string(path)?;
+    let text = crate::design::read_design_text(path)?;
     parse_planes_named(&text, format, &path_name(path))
 }
 
@@ -70,7 +70,7 @@ fn parse_planes_named(
     format: DesignFormat,
     file: &str,
 ) -> Result<BoundarySpec, IoError> {
-    expect_kind(text, format, file, &[FileKind::Planes])?;
+    expect_design(text, format, file, &[FileKind::Planes])?;
     parse_as(text, format, file)
 }
 

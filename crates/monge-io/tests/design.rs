@@ -4,8 +4,8 @@ use std::path::Path;
 
 use monge_core::design::{ArcSpec, BSplineSpec, Design, GuideSpec, ParabolaSpec, Tolerances};
 use monge_io::{
-    parse_design, read_any_design, read_design, read_mesh, read_multipatch, read_planes,
-    write_design, DesignFormat, FileKind, IoError,
+    parse_any_design, parse_design, read_any_design, read_design, read_mesh, read_multipatch,
+    read_planes, write_design, DesignFormat, FileKind, IoError, MAX_DESIGN_BYTES,
 };
 
 const JSON: &str = r#"{ "theta_deg": 30.0, "guide_u": { "points": [[0,0,0],[1,0,0.2],[2,0,0.7]] }, "guide_v": { "bspline": { "degree": 3, "control_points": [[0,0,0],[0,1,0],[0,2,0.5],[0,3,1.5]], "samples": 41 } } }"#;
@@ -405,4 +405,57 @@ fn wrong_extension_names_it_and_the_accepted_ones() {
         "`design`: unsupported file name without extension; expected `.json` or `.toml`"
     );
     assert!(write_design(&expected(), Path::new("out.txt")).is_err());
+}
+
+/// A design file may have at most `MAX_DESIGN_BYTES` (16 MiB), of whatever
+/// kind: one byte more is refused by its length, before it is read or parsed;
+/// a text of that length given to a parser likewise.
+#[test]
+fn design_files_over_the_size_limit_are_refused_before_parsing() {
+    let limit = MAX_DESIGN_BYTES as usize;
+    assert_eq!(limit, 16 * 1024 * 1024);
+    let design = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/fig12-torus.json"),
+    )
+    .unwrap();
+    // The design padded with blanks to exactly the limit is read.
+    let padded = |len: usize| format!("{design}{}", " ".repeat(len - design.len()));
+    let dir = tempfile::tempdir().unwrap();
+    let at_limit = dir.path().join("at-limit.json");
+    std::fs::write(&at_limit, padded(limit)).unwrap();
+    assert!(read_design(&at_limit).is_ok());
+    let over = padded(limit + 1);
+    for name in ["d.json", "d.patches.json", "d.planes.json"] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, &over).unwrap();
+        let errors = [
+            read_design(&path).unwrap_err(),
+            read_any_design(&path).unwrap_err(),
+            read_multipatch(&path).unwrap_err(),
+            read_planes(&path).unwrap_err(),
+        ];
+        for e in errors {
+            assert!(
+                matches!(e, IoError::DesignTooLarge { size, limit: l, .. }
+                    if size == limit as u64 + 1 && l == MAX_DESIGN_BYTES),
+                "{e:?}"
+            );
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "{} has 16777217 bytes, more than a design file may have: 16777216 bytes \
+                     (16 MiB). A design is a few kB (two guides and θ): give a long guide as a \
+                     B-spline of a few control points rather than as its points, or check that \
+                     this is the design file meant",
+                    path.display()
+                )
+            );
+        }
+    }
+    for format in [DesignFormat::Json, DesignFormat::Toml] {
+        let e = parse_design(&over, format).unwrap_err();
+        assert!(matches!(e, IoError::DesignTooLarge { .. }), "{e:?}");
+        let e = parse_any_design(&over, format).unwrap_err();
+        assert!(matches!(e, IoError::DesignTooLarge { .. }), "{e:?}");
+    }
 }

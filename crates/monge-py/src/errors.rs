@@ -168,7 +168,8 @@ pub fn io_error(e: IoError) -> PyErr {
         | IoError::NeedFormat { .. }
         | IoError::Parse { .. }
         | IoError::NonFinite { .. }
-        | IoError::WrongKind { .. } => DesignError::new_err(message),
+        | IoError::WrongKind { .. }
+        | IoError::DesignTooLarge { .. } => DesignError::new_err(message),
     }
 }
 

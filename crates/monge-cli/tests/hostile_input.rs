@@ -1,0 +1,180 @@
+//! Hostile and careless input files: a clear error and exit status 2, never a
+//! panic (101) or an abort (134), and a cost bounded by what the file holds.
+//! Each input here crashed or ran away before (found by a mutation fuzzer).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{example, monge};
+use predicates::prelude::*;
+
+/// `text` as `name` in `dir`.
+fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A PLY whose `x` is declared as a list (of no items): `check` and `smooth
+/// --mesh` indexed the empty list.
+const LIST_X: &str = "ply\nformat ascii 1.0\nelement vertex 4\nproperty list uchar float x\n\
+    property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+    end_header\n0 0 0\n0 1 0\n0 0 1\n0 1 1\n4 0 2 3 1\n";
+
+/// A point cloud declaring 1e15 vertices and holding one: `approximate` and
+/// `render --deviation` reserved memory for them (capacity overflow; 1e11 aborted).
+const HUGE_COUNT: &str = "ply\nformat ascii 1.0\nelement vertex 1000000000000000\n\
+    property float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
+
+#[test]
+fn a_coordinate_declared_as_a_list_is_an_error_in_check_and_smooth() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = file(dir.path(), "list-x.ply", LIST_X);
+    let said = || {
+        predicate::str::contains(
+            "list-x.ply:4: the `vertex` property `x` is a list; coordinates and normals are one \
+             number each: declare it as `property double x` (or float)",
+        )
+        .and(predicate::str::contains("panicked").not())
+    };
+    monge()
+        .arg("check")
+        .arg(&ply)
+        .assert()
+        .code(2)
+        .stderr(said());
+    monge()
+        .args(["smooth", "--mesh"])
+        .arg(&ply)
+        .arg("-o")
+        .arg(dir.path().join("net.json"))
+        .assert()
+        .code(2)
+        .stderr(said());
+    assert!(!dir.path().join("net.json").exists());
+}
+
+#[test]
+fn a_count_the_file_cannot_hold_is_an_error_in_approximate_and_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = file(dir.path(), "huge.ply", HUGE_COUNT);
+    let said = || {
+        predicate::str::contains(
+            "huge.ply:3: `element vertex 1000000000000000` does not fit in the file",
+        )
+        .and(predicate::str::contains(
+            "the count is wrong or the file is cut short",
+        ))
+    };
+    monge()
+        .arg("approximate")
+        .arg(&ply)
+        .arg("-o")
+        .arg(dir.path().join("d.json"))
+        .assert()
+        .code(2)
+        .stderr(said());
+    monge()
+        .arg("render")
+        .arg(example("fig12-torus.json"))
+        .arg("--deviation")
+        .arg(&ply)
+        .arg("-o")
+        .arg(dir.path().join("d.png"))
+        .assert()
+        .code(2)
+        .stderr(said());
+    assert!(!dir.path().join("d.json").exists() && !dir.path().join("d.png").exists());
+}
+
+/// `generate --format ply-binary` writes binary PLY; the target readers said
+/// "invalid utf-8 sequence" of it.
+#[test]
+fn a_binary_ply_that_generate_writes_is_a_target() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = dir.path().join("torus.ply");
+    monge()
+        .arg("generate")
+        .arg(example("fig12-torus.json"))
+        .args(["--format", "ply-binary", "-o"])
+        .arg(&ply)
+        .assert()
+        .success();
+    assert!(std::fs::read(&ply)
+        .unwrap()
+        .starts_with(b"ply\nformat binary_little_endian"));
+    // The torus against its own mesh: on it everywhere.
+    monge()
+        .arg("render")
+        .arg(example("fig12-torus.json"))
+        .arg("--deviation")
+        .arg(&ply)
+        .arg("-o")
+        .arg(dir.path().join("d.png"))
+        .assert()
+        .success();
+}
+
+/// A B-spline guide of degree 4000 (a 120 kB design) took 20 s in `monge
+/// info` (samples × degree²): refused at once, saying the limit and why.
+#[test]
+fn a_guide_of_too_high_a_degree_is_refused_with_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 4000;
+    let points: Vec<String> = (0..=n)
+        .map(|k| {
+            format!(
+                "[{}, 0, {}]",
+                k as f64 / n as f64,
+                (k * k) as f64 / (n * n) as f64
+            )
+        })
+        .collect();
+    let design = format!(
+        r#"{{"theta_deg": 30, "guide_u": {{"bspline": {{"degree": {n}, "control_points": [{}], "samples": 500}}}},
+            "guide_v": {{"arc": {{"center": [0, 0, -1], "start": [0, 0, 0], "normal": [-1, 0, 0], "angle_deg": 60, "samples": 11}}}}}}"#,
+        points.join(", ")
+    );
+    let path = file(dir.path(), "degree.json", &design);
+    for command in ["info", "generate"] {
+        let mut cmd = monge();
+        cmd.arg(command).arg(&path);
+        if command == "generate" {
+            cmd.arg("-o").arg(dir.path().join("m.obj"));
+        }
+        cmd.assert().code(2).stderr(predicate::str::contains(
+            "guide_u: `bspline.degree` is 4000, above the largest accepted, 32",
+        ));
+    }
+    // Degree 3 of the same control points is read.
+    let cubic = design.replace(&format!("\"degree\": {n}"), "\"degree\": 3");
+    let path = file(dir.path(), "cubic.json", &cubic);
+    monge().arg("info").arg(&path).assert().success();
+}
+
+/// A design file used 25–45 times its size in memory (20 MB → 880 MB): a
+/// design file over 16 MiB is refused by its length before it is read.
+#[test]
+fn a_design_file_over_16_mib_is_refused_before_it_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = std::fs::read_to_string(example("fig12-torus.json")).unwrap();
+    let path = dir.path().join("big.json");
+    std::fs::write(&path, &design).unwrap();
+    // 17 MiB: the design, then zeros (a sparse file: nothing written).
+    let f = std::fs::OpenOptions::new().write(true).open(&path).unwrap();
+    f.set_len(17 << 20).unwrap();
+    for command in ["info", "generate", "patches", "align"] {
+        let mut cmd = monge();
+        cmd.arg(command).arg(&path);
+        if command != "info" {
+            cmd.arg("-o").arg(dir.path().join("out.json"));
+        }
+        cmd.assert()
+            .code(2)
+            .stderr(predicate::str::contains(format!(
+                "{} has 17825792 bytes, more than a design file may have: 16777216 bytes (16 MiB)",
+                path.display()
+            )));
+    }
+}
