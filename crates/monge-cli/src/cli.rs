@@ -88,8 +88,9 @@ pub enum Command {
              `lines` (per mesh line: family `u` or `v`, index, and its arcs: center, radius, \
              normal, start, end). OUT `.igs`: the whole net as one exact NURBS surface (IGES \
              entity 128, rational, degree 2 × 2), which Rhino and other CAD tools open. OUT `.obj` \
-             or `.ply`: the dense mesh of the whole net. Folded \
-             faces (crossed quads, arcs over 180°) are refused unless --allow-folded."
+             or `.ply`: the dense mesh of the whole net. A mesh \
+             with folded faces (§5.2: crossed or non-convex, or turned over against the others; \
+             the faces `monge check` counts) is refused unless --allow-folded, naming the first."
         ),
         after_help = format!(
             "Examples:\n  \
@@ -587,7 +588,7 @@ pub struct SmoothArgs {
     /// them: about 60 bytes a sample point in `.json`, 190 a dense vertex in `.obj`.
     #[arg(long, value_name = "GB", default_value_t = crate::output::MAX_OUTPUT_GB, value_parser = crate::output::parse_gigabytes)]
     pub max_output: f64,
-    /// Build folded faces instead of refusing the design.
+    /// Build the net over folded faces (those `monge check` counts) instead of refusing the mesh.
     #[arg(long)]
     pub allow_folded: bool,
     /// Largest accepted non-circularity of a face: |Im q| / |q| for the cross-ratio q of

@@ -1388,3 +1388,68 @@ fn an_offsets_report_counts_its_own_folds() {
     assert_eq!(report(&offset)["folded_faces"], folds["value"], "{checked}");
     assert_eq!(report(&offset)["folded_faces"], 288);
 }
+
+/// A design of the Dupin family whose guides are polylines sampled from two
+/// circular arcs (radius 1, 120° and 300°), θ = 30°, 25 × 21 vertices: folded
+/// (§5.2) in 144 faces, 48 of them bow-ties.
+fn sampled_dupin_design() -> String {
+    let arc = |n: usize, angle_deg: f64, v: bool| -> Vec<[f64; 3]> {
+        (0..n)
+            .map(|k| {
+                let t = (angle_deg * k as f64 / (n - 1) as f64).to_radians();
+                let (s, c) = (t.sin(), t.cos() - 1.0);
+                if v {
+                    [0.0, s, c]
+                } else {
+                    [s, 0.0, c]
+                }
+            })
+            .collect()
+    };
+    serde_json::json!({
+        "theta_deg": 30,
+        "guide_u": { "points": arc(25, 120.0, false) },
+        "guide_v": { "points": arc(21, 300.0, true) },
+    })
+    .to_string()
+}
+
+#[test]
+fn smooth_refuses_the_folded_mesh_that_check_finds_folded() {
+    let dir = TempDir::new().unwrap();
+    let design = write(&dir, "dupin.json", &sampled_dupin_design());
+    let mesh = dir.path().join("m.obj");
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&mesh)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "in 144 faces, first at face (0, 0)",
+        ));
+    // Measured on the file, as any mesh.
+    monge()
+        .arg("check")
+        .arg(&mesh)
+        .assert()
+        .code(1)
+        .stdout(predicate::str::is_match(r"folded faces +144 +at first face \(0, 0\)").unwrap());
+    for (input, mesh_flag) in [(&design, false), (&mesh, true)] {
+        let out = dir.path().join("net.json");
+        let mut cmd = monge();
+        cmd.arg("smooth").arg(input).arg("-o").arg(&out);
+        if mesh_flag {
+            cmd.arg("--mesh");
+        }
+        cmd.assert()
+            .code(2)
+            .stderr(predicate::str::contains("face (0, 0) is folded"))
+            .stderr(predicate::str::contains("--allow-folded"));
+        assert!(!out.exists(), "{} was written", out.display());
+        cmd.arg("--allow-folded").assert().success();
+        assert!(out.is_file());
+        fs::remove_file(&out).unwrap();
+    }
+}

@@ -18,7 +18,7 @@ use std::ops::{Add, Mul, Neg, Sub};
 
 use glam::DVec3;
 
-use crate::grid::{bbox_diagonal, face_corners, QuadGrid};
+use crate::grid::{bbox_diagonal, face_corners, quad_turn_alone, QuadGrid, Turn};
 
 /// An orthonormal frame at a mesh vertex (§4.4): `t1` along the u-arc, `t2`
 /// along the v-arc, `n = t1 × t2`.
@@ -105,12 +105,18 @@ impl fmt::Display for Family {
     }
 }
 
-/// Why a quad is folded (§4.4, §5.2).
+/// Why a quad is folded (§4.4, §5.2). In a net, whether a face is folded is
+/// decided as for every mesh, by [`QuadGrid::folds`] (crossed or turned over);
+/// the arc and weight reasons are those of a patch whose frame, not its face,
+/// turns it over.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FoldReason {
-    /// The corners are not in the order A, B, C, D on their circle: the quad is
-    /// crossed (σ = −1 in the cross-ratio sign).
+    /// The corners do not all turn the same way ([`Turn::Crossed`]): the quad is
+    /// a bow-tie (two of its edges cross) or is not convex.
     Crossed,
+    /// The face turns the other way than most faces of its mesh about their
+    /// node axes: the mesh folds back over itself there ([`QuadGrid::folds`]).
+    TurnedOver,
     /// The arc of an edge turns by 180° or more: the frame tangent at the
     /// edge's start points away from the edge (`tangent · edge = cos(half arc)` ≤ 0).
     ArcOver180 {
@@ -130,7 +136,12 @@ impl fmt::Display for FoldReason {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             FoldReason::Crossed => f.write_str(
-                "its corners are crossed on their circle (cross-ratio sign σ = −1), the quad is a bow-tie",
+                "its corners do not all turn the same way (two of its edges cross like a bow-tie, or it \
+                 is not convex)",
+            ),
+            FoldReason::TurnedOver => f.write_str(
+                "it turns the other way than most faces about their node axes (the mesh folds back \
+                 over itself there)",
             ),
             FoldReason::ArcOver180 { edge, cos_half } => write!(
                 f,
@@ -237,8 +248,9 @@ pub enum CyclidicError {
     },
     /// A face is folded.
     #[error(
-        "face ({}, {}) is folded: {reason}. Its Dupin cyclide patch would cross itself; this happens for \
-         some θ with tight curvature (§5.2). Change θ or the guides, or build it anyway \
+        "face ({}, {}) is folded (§5.2, the fold `monge generate` and `monge check` count): {reason}. \
+         A Dupin cyclide patch on it would cross itself or its neighbours; this happens for some θ with \
+         tight curvature. Change θ or the guides, or build it anyway \
          (`monge smooth --allow-folded`, Python `allow_folded=True`, `CyclidicOptions::allow_folded`)",
         face.0, face.1
     )]
@@ -481,12 +493,18 @@ impl QuadFrame {
         ]
     }
 
-    /// The first fold of this quad, if any (§4.4): crossed corners, an arc of
-    /// 180° or more, a non-positive centre weight.
+    /// The first fold of this quad alone, if any (§4.4): crossed corners
+    /// ([`quad_turn_alone`]), then [`QuadFrame::arc_fold`].
     fn fold(&self, bez: &RationalBezier) -> Option<FoldReason> {
-        if self.sigma < 0.0 {
+        if quad_turn_alone(&self.corners) == Turn::Crossed {
             return Some(FoldReason::Crossed);
         }
+        self.arc_fold(bez)
+    }
+
+    /// How the frame turns the patch over, if it does (§4.4): an arc of 180°
+    /// or more, or a non-positive centre weight.
+    fn arc_fold(&self, bez: &RationalBezier) -> Option<FoldReason> {
         let wt = bez.weights;
         // A rational quadratic arc with weights w0, w1, w2 turns by 2·acos(w1 / √(w0 w2)).
         let cos = |w0: f64, w1: f64, w2: f64| w1 / (w0 * w2).sqrt();
@@ -970,6 +988,24 @@ impl CyclidicNet {
             let e = unit_from(grid.vertex(0, j - 1), grid.vertex(0, j));
             w[j] = -(p(e) * p(frames[j - 1].t2)) * w[j - 1];
         }
+        // Whether a face is folded: the one test of every mesh (§5.2), on the
+        // mesh as given (its node axes, or without them its faces alone).
+        let folds = grid.folds();
+        let face_fold = |i: usize, j: usize| {
+            let turn = grid.face_turn(i, j);
+            folds.is_folded(turn).then_some(if turn == Turn::Crossed {
+                FoldReason::Crossed
+            } else {
+                FoldReason::TurnedOver
+            })
+        };
+        if let (Some((i, j)), false) = (folds.first(), options.allow_folded) {
+            let reason = face_fold(i, j).unwrap_or(FoldReason::Crossed);
+            return Err(CyclidicError::Folded {
+                face: (i, j),
+                reason,
+            });
+        }
         let mut folded = Vec::new();
         for i in 0..rows - 1 {
             for j in 0..cols - 1 {
@@ -989,7 +1025,11 @@ impl CyclidicNet {
                 let mu = (w[d] * inv).dot(local[3]);
                 w[c] = local[2] * (lambda * mu) * w[a];
                 let qb = face_weights(&w, ids);
-                if let Some(reason) = quad.fold(&bezier_of(corners, qb)) {
+                let fold = (folds.count() > 0)
+                    .then(|| face_fold(i, j))
+                    .flatten()
+                    .or_else(|| quad.arc_fold(&bezier_of(corners, qb)));
+                if let Some(reason) = fold {
                     if !options.allow_folded {
                         return Err(CyclidicError::Folded {
                             face: (i, j),

@@ -929,7 +929,7 @@ fn errors() {
         }
     );
     assert!(
-        e.to_string().contains("face (0, 0) is folded") && e.to_string().contains("σ = −1"),
+        e.to_string().contains("face (0, 0) is folded") && e.to_string().contains("bow-tie"),
         "{e}"
     );
     let backwards = Frame::new(-DVec3::X, DVec3::Y);
@@ -1044,4 +1044,96 @@ fn arc_points_turn_from_start_to_end_on_the_circle() {
             assert!((p - at(t * sweep)).length() < 1e-14, "sweep {sweep}, t {t}");
         }
     }
+}
+
+/// A design of the Dupin family whose guides are polylines sampled from two
+/// circular arcs (radius 1, 120° and 300°), θ = 30°, 25 × 21 vertices: the
+/// mesh folds (§5.2) in two columns of bow-ties and a band turned over.
+fn sampled_dupin() -> Design {
+    let points = |n: usize, angle_deg: f64, along: fn(f64) -> [f64; 3]| {
+        let t = |k: usize| (angle_deg * k as f64 / (n - 1) as f64).to_radians();
+        GuideSpec::points((0..n).map(|k| along(t(k))).collect())
+    };
+    design(
+        30.0,
+        points(25, 120.0, |t| [t.sin(), 0.0, t.cos() - 1.0]),
+        points(21, 300.0, |t| [0.0, t.sin(), t.cos() - 1.0]),
+    )
+}
+
+/// Faces `(i, j)` of a grid.
+type Faces = Vec<(usize, usize)>;
+
+/// Folded faces of `g` found independently of `QuadGrid::folds`: each face is
+/// projected on the plane orthogonal to the sum of its node axes; it is crossed
+/// when two opposite edges intersect there (segment tests), and otherwise
+/// turns by the sign of its shoelace area. Returns the crossed faces and the
+/// faces turning the way fewer faces turn.
+fn folds_by_hand(g: &QuadGrid) -> [Faces; 2] {
+    let (mut crossed, mut ways) = (Vec::new(), [Vec::new(), Vec::new()]);
+    for i in 0..g.rows - 1 {
+        for j in 0..g.cols - 1 {
+            let ids = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let axis: DVec3 = ids.iter().map(|&(a, b)| g.normals[g.index(a, b)]).sum();
+            let e1 = axis.any_orthonormal_vector();
+            let e2 = axis.normalize().cross(e1);
+            let p: Vec<[f64; 2]> = ids
+                .iter()
+                .map(|&(a, b)| g.vertex(a, b))
+                .map(|v| [v.dot(e1), v.dot(e2)])
+                .collect();
+            let side = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+                ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).signum()
+            };
+            let cross = |a, b, c, d| {
+                side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0
+            };
+            if cross(p[0], p[1], p[2], p[3]) || cross(p[1], p[2], p[3], p[0]) {
+                crossed.push((i, j));
+                continue;
+            }
+            let area: f64 = (0..4)
+                .map(|k| p[k][0] * p[(k + 1) % 4][1] - p[(k + 1) % 4][0] * p[k][1])
+                .sum();
+            ways[usize::from(area < 0.0)].push((i, j));
+        }
+    }
+    ways.sort_by_key(Vec::len);
+    let [fewer, _] = ways;
+    [crossed, fewer]
+}
+
+#[test]
+fn a_folded_mesh_is_refused_by_the_same_fold_test_as_every_mesh() {
+    // Once built without a word: the cross-ratio sign saw only the bow-ties
+    // whose edges AB and CD cross, and no face turned over.
+    let g = mesh(&sampled_dupin());
+    let [crossed, turned] = folds_by_hand(&g);
+    assert_eq!((crossed.len(), turned.len()), (48, 96));
+    let first = *crossed.iter().chain(&turned).min().unwrap();
+    let e = CyclidicNet::from_normals(&g, &CyclidicOptions::default()).unwrap_err();
+    assert_eq!(
+        e,
+        CyclidicError::Folded {
+            face: first,
+            reason: FoldReason::TurnedOver
+        }
+    );
+    assert!(e.to_string().starts_with("face (0, 0) is folded"), "{e}");
+    let allow = CyclidicOptions {
+        allow_folded: true,
+        ..CyclidicOptions::default()
+    };
+    let net = CyclidicNet::from_normals(&g, &allow).unwrap();
+    let folded = net.folded();
+    let named = |reason| -> Vec<(usize, usize)> {
+        folded
+            .iter()
+            .filter(|f| f.1 == reason)
+            .map(|f| f.0)
+            .collect()
+    };
+    assert_eq!(named(FoldReason::Crossed), crossed);
+    assert_eq!(named(FoldReason::TurnedOver), turned);
+    assert_eq!(folded.len(), g.folds().count());
 }

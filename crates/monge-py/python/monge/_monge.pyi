@@ -170,7 +170,8 @@ def smooth(
     """The cyclidic net (§4.4): patches, curvature lines as arcs, one NURBS surface.
 
     Refused (SmoothError) for a design that asks for a conical mesh (as ``monge
-    smooth``), and before anything is built if the result would take more than
+    smooth``), for a mesh with folded faces (those ``check`` counts, §5.2; the
+    first is named) unless ``allow_folded=True``, and before anything is built if the result would take more than
     ``max_bytes`` of memory (default 8e9, 8 GB).
     """
 
