@@ -548,12 +548,21 @@ impl Columns<'_> {
             let zero_edge = f.a11.is_nan()
                 || f.a22.is_nan()
                 || f.a11.min(f.a22) < ZERO_GAUSS_EDGE * ZERO_GAUSS_EDGE;
-            let worst2 = sine2.min(plane2);
-            let parallel = g.is_nan() || plane2.is_nan() || worst2 <= MIN_CROSSING2;
+            // NaN if either is (`f64::min` would drop it and print the other).
+            let worst2 = if sine2.is_nan() || plane2.is_nan() {
+                f64::NAN
+            } else {
+                sine2.min(plane2)
+            };
+            let parallel = worst2.is_nan() || worst2 <= MIN_CROSSING2;
             if (zero_edge || parallel) && seen.error.is_none() {
                 seen.error = Some(ParallelLines {
                     face,
-                    sine: worst2.max(0.0).sqrt(),
+                    sine: if worst2.is_nan() {
+                        worst2
+                    } else {
+                        worst2.max(0.0).sqrt()
+                    },
                     zero_edge,
                 });
             }

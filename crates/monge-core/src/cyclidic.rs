@@ -189,8 +189,10 @@ pub enum CyclidicError {
     },
     /// The Gauss points of a line are (nearly) collinear, so its plane is unknown.
     #[error(
-        "the Gauss map of {family} {index} does not span a plane (normals of its first, middle and last \
-         vertices are collinear, sine {sine:.1e}): the line is straight or its normals do not turn. \
+        "the Gauss map of {family} {index} does not span a plane: the normals of its first, middle and \
+         last vertices are (nearly) collinear points, the sine of the angle at the first between the \
+         other two being {sine:.1e} (below 1e-12; NaN if two coincide). The line is straight or its \
+         normals do not turn. \
          Give one frame instead (`monge smooth --frame`, `CyclidicNet::from_frame`)"
     )]
     GaussLineDegenerate {
@@ -198,7 +200,8 @@ pub enum CyclidicError {
         family: Family,
         /// Its index (`j` for a u-line, `i` for a v-line).
         index: usize,
-        /// Sine of the angle at the middle Gauss point.
+        /// Sine of the angle at the first Gauss point between the chords to the
+        /// middle and the last (0 when the three are collinear; NaN if two coincide).
         sine: f64,
     },
     /// The two Gauss circles through a vertex are not orthogonal: the mesh is not

@@ -4,7 +4,9 @@ use std::fmt;
 
 use glam::DVec3;
 
-use crate::combescure::{combescure, CombescureReport, ParallelLines};
+use crate::combescure::{
+    combescure, CombescureReport, ParallelLines, MIN_CROSSING_SINE, ZERO_GAUSS_EDGE,
+};
 use crate::design::Design;
 use crate::gauss_map::{
     guide_normals, normalize_theta_deg, pencil_axes, GaussRows, PencilAxes, StartFrame, ThetaRange,
@@ -196,18 +198,42 @@ pub enum GenerateError {
     },
     /// The Gauss map degenerates at a face, so the mesh cannot be continued (§5.2).
     #[error(
-        "the mesh cannot be built past face ({i}, {j}): its Gauss quad is degenerate (the two edges that \
-         fix vertex ({i1}, {j1}) are parallel, sine {sine:.1e}). {hint}",
-        i1 = face.0 + 1, j1 = face.1 + 1, i = face.0, j = face.1
+        "the mesh cannot be built past face ({i}, {j}): its Gauss quad is degenerate ({why}). {hint}",
+        i = face.0, j = face.1,
+        why = degenerate_cause(*face, *sine, *zero_edge)
     )]
     Degenerate {
         /// The face.
         face: (usize, usize),
-        /// Sine of the angle between the two lines.
+        /// Sine of the angle between the two Gauss edges that fix vertex
+        /// `(i+1, j+1)` or, where smaller, between the second and the plane of
+        /// its row ([`ParallelLines::sine`]); NaN if either is NaN.
         sine: f64,
+        /// One of the two Gauss edges has (nearly) zero length
+        /// ([`ParallelLines::zero_edge`]): then the sine means nothing.
+        zero_edge: bool,
         /// What usually causes it.
         hint: &'static str,
     },
+}
+
+/// What [`GenerateError::Degenerate`] says of the Gauss quad of `face`: an
+/// edge of (nearly) zero length, or two lines (nearly) parallel and the sine
+/// of their angle.
+fn degenerate_cause(face: (usize, usize), sine: f64, zero_edge: bool) -> String {
+    let vertex = (face.0 + 1, face.1 + 1);
+    if zero_edge {
+        format!(
+            "one of the two Gauss edges that fix vertex {vertex:?} has (nearly) zero length, below \
+             {ZERO_GAUSS_EDGE:.0e} on the unit sphere"
+        )
+    } else {
+        format!(
+            "the two lines that fix vertex {vertex:?} are (nearly) parallel: the sine of the angle \
+             between its two Gauss edges, or between the second and the plane of its row, is \
+             {sine:.1e}, below {MIN_CROSSING_SINE:.0e}"
+        )
+    }
 }
 
 /// Smallest accepted design size (the larger guide's bounding-box diagonal).
@@ -464,6 +490,7 @@ pub fn generate(design: &Design, options: &GenerateOptions) -> Result<Generated,
         |ParallelLines { face, sine, zero_edge }| GenerateError::Degenerate {
             face,
             sine,
+            zero_edge,
             hint: if zero_edge {
                 "The normal does not turn along that edge: the surface has zero curvature there along a \
                  curvature line (a straight piece of a guide, or a sample exactly on a parabolic line \

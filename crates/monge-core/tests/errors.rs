@@ -404,10 +404,15 @@ fn degenerate_on_the_top_circle_of_a_torus() {
         &[
             "face (0, 17)",
             "vertex (1, 18)",
+            "has (nearly) zero length",
             "top circle",
             "no sample falls exactly",
         ],
     );
+    // Once "the two edges that fix vertex (1, 18) are parallel, sine 4.7e-1": an
+    // edge of zero length has no direction, and a sine of 0.47 is not parallel.
+    assert!(!e.to_string().contains("parallel"), "{e}");
+    assert!(!e.to_string().contains("sine"), "{e}");
     // 30 samples (150/29 ° steps) miss the top circle: accepted.
     let mut ok = d.clone();
     ok.guide_v = arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 150.0, 30);
@@ -525,7 +530,11 @@ fn straight_run(rotation: DQuat) -> Design {
 fn expect_straight_run_refused(d: &Design) {
     match generate(d, &opts()) {
         Err(e @ GenerateError::Degenerate { .. }) => {
-            assert_mentions(&e.to_string(), &["straight piece of a guide"]);
+            assert_mentions(
+                &e.to_string(),
+                &["straight piece of a guide", "zero length"],
+            );
+            assert!(!e.to_string().contains("parallel"), "{e}");
         }
         Err(e) => panic!("{e}"),
         Ok(g) => {
@@ -1054,4 +1063,25 @@ fn scale_out_of_range_is_refused_with_the_limits() {
             other => panic!("scale {s:e}: {other:?}"),
         }
     }
+}
+
+#[test]
+fn nearly_parallel_lines_are_worded_with_the_sine_of_their_angle() {
+    // The words of the other degenerate Gauss quad: two lines that cross at
+    // an angle whose sine is 3e-12 (near 0 for parallel lines).
+    let e = GenerateError::Degenerate {
+        face: (4, 7),
+        sine: 3e-12,
+        zero_edge: false,
+        hint: "The mesh pinches to a point there (§5.2). Change θ or the guides",
+    };
+    assert_mentions(
+        &e.to_string(),
+        &[
+            "face (4, 7)",
+            "the two lines that fix vertex (5, 8) are (nearly) parallel",
+            "the sine of the angle between its two Gauss edges",
+            "is 3.0e-12, below 1e-9",
+        ],
+    );
 }
