@@ -3,6 +3,7 @@
 use std::io;
 
 use anyhow::{bail, Context};
+use monge_core::conical::conical_folds;
 use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
 use monge_core::QuadGrid;
 use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
@@ -30,9 +31,14 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         path.display().to_string()
     };
     measurable(&grid).with_context(|| name.clone())?;
-    let m = measure(&grid);
+    let mut m = measure(&grid);
     let conical = match args.kind {
-        KindArg::Conical => conical_error(&grid),
+        KindArg::Conical => {
+            // A conical mesh's folds: its faces turned over against the vertex cones.
+            let folds = conical_folds(&grid, None);
+            (m.folded_faces, m.first_fold) = (folds.count(), folds.first());
+            conical_error(&grid)
+        }
         KindArg::Circular => None,
     };
     let mut metrics = metrics(&m, args.kind, conical);

@@ -5,9 +5,10 @@ use std::time::Instant;
 
 use anyhow::Context;
 use glam::DVec3;
-use monge_core::conical::conical_dual;
+use monge_core::conical::{conical_dual, conical_folds};
 use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, BasePoint, GenerateOptions, MeshKind};
+use monge_io::generated::with_folds;
 use monge_io::{check_output, read_design, write_fabrication, ScheduleJson, FABRICATION_FILES};
 
 use crate::generate::generation_warnings;
@@ -112,10 +113,18 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
     };
     let generated =
         generate(&design, &options).with_context(|| args.design.display().to_string())?;
+    let grid = &generated.grid;
+    let conical = (design.mesh == MeshKind::Conical).then(|| conical_dual(grid));
     // As `monge generate` warns: a folded or near-singular mesh makes panels and
     // beams that cross each other.
-    eprint(&generation_warnings(&generated));
-    let grid = generated.grid;
+    let report = match &conical {
+        Some(c) => with_folds(
+            &generated.report,
+            &conical_folds(&c.grid, Some(&c.face_normals)),
+        ),
+        None => generated.report,
+    };
+    eprint(&generation_warnings(generated.info.theta_deg, &report));
     let faces = grid.rows.saturating_sub(1) * grid.cols.saturating_sub(1);
     let (json, per_face) = if args.full_json {
         (
@@ -136,10 +145,9 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         ),
         "use fewer guide samples or fewer --layers",
     )?;
-    let conical = (design.mesh == MeshKind::Conical).then(|| conical_dual(&grid));
     let base = match &conical {
         Some(c) => BaseMesh::Conical(c),
-        None => BaseMesh::Circular(&grid),
+        None => BaseMesh::Circular(grid),
     };
     let fab_options = FabricationOptions {
         layers: args.layers.clone(),

@@ -64,9 +64,10 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         out,
         format,
         &generated,
-        generation,
-        writing,
+        (generation, writing),
     ));
+    let report = layers[0].report.unwrap_or(generated.report);
+    eprint(&generation_warnings(generated.info.theta_deg, &report));
     eprint(&far_from_origin_warning(&layers[0].grid.vertices).unwrap_or_default());
     if let Some(b) = base {
         eprint(&format!(
@@ -244,8 +245,7 @@ fn summary(
     out: &Path,
     format: MeshFormat,
     g: &Generated,
-    generation: f64,
-    writing: f64,
+    (generation, writing): (f64, f64),
 ) -> String {
     let grid = &g.grid;
     let target = if is_stdio(out) {
@@ -253,7 +253,7 @@ fn summary(
     } else {
         format!("`{}`", out.display())
     };
-    let mut s = format!(
+    format!(
         "{}: {} × {} vertices, {} faces; mode {}; θ = {}°, admissible: {}. \
          Generated in {} ms; wrote {} to {} in {} ms.\n",
         design.display(),
@@ -267,15 +267,14 @@ fn summary(
         format.extension().to_uppercase(),
         target,
         millis(writing),
-    );
-    s.push_str(&generation_warnings(g));
-    s
+    )
 }
 
-/// The warnings of a generation (near-singular θ, folds and pinches, §5.2), one
-/// line each, for every command that builds on a generated mesh.
-pub fn generation_warnings(g: &Generated) -> String {
-    warnings(g.info.theta_deg, &Pinching::from(&g.report)).concat()
+/// The warnings of a generation at `theta_deg` (near-singular θ, folds and
+/// pinches, §5.2) whose mesh `report` describes (for a conical mesh, its own
+/// folds), one line each, for every command that builds on a generated mesh.
+pub fn generation_warnings(theta_deg: f64, report: &CombescureReport) -> String {
+    warnings(theta_deg, &Pinching::from(report)).concat()
 }
 
 /// The singular θ (§3.1): every Gauss circle passes through the corner normal.

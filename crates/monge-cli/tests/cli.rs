@@ -1453,3 +1453,97 @@ fn smooth_refuses_the_folded_mesh_that_check_finds_folded() {
         fs::remove_file(&out).unwrap();
     }
 }
+
+/// Faces of an OBJ whose own normal (the cross product of its diagonals, from
+/// the file's corners) points against the face normal the JSON of the same mesh
+/// gives (the circular mesh's node axis, §2.3): faces turned over.
+fn faces_turned_over(obj: &Path, json: &Value) -> usize {
+    let normals = json["face_normals"].as_array().unwrap();
+    let faces = common::obj_faces(obj);
+    assert_eq!(faces.len(), normals.len());
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    faces
+        .iter()
+        .zip(normals)
+        .filter(|(f, n)| {
+            let (d1, d2) = (sub(f[2], f[0]), sub(f[3], f[1]));
+            let own = [
+                d1[1] * d2[2] - d1[2] * d2[1],
+                d1[2] * d2[0] - d1[0] * d2[2],
+                d1[0] * d2[1] - d1[1] * d2[0],
+            ];
+            (0..3).map(|c| own[c] * n[c].as_f64().unwrap()).sum::<f64>() < 0.0
+        })
+        .count()
+}
+
+#[test]
+fn a_conical_mesh_turned_over_is_reported_folded_everywhere() {
+    // Found by a sweep of random designs: the circular mesh is not folded, but
+    // faces of its conical dual are turned over (the conical error is 2.0); the
+    // report said 0 folded faces and generate said nothing.
+    let dir = TempDir::new().unwrap();
+    let design = write(
+        &dir,
+        "turned.json",
+        r#"{"theta_deg": -161.88466388622183, "mesh": "conical",
+ "guide_u": {"bspline": {"degree": 3, "samples": 7, "control_points": [[0,0,0],[1,0,0],
+   [2.2330790589699796,0,-0.5541680285794847],[2.8675485424895477,0,-2.155466699292466],[3.4849537934883603,0,1.7232772800102358]]}},
+ "guide_v": {"bspline": {"degree": 3, "samples": 11, "control_points": [[0,0,0],[0,1,0],
+   [-0.007441484123705624,1.9927520724723893,-0.0996294952040866],[6.193939782998956e-5,3.0061583164315824,0.0008292688442872063]]}}}"#,
+    );
+    let circular = write(
+        &dir,
+        "circular.json",
+        &fs::read_to_string(&design)
+            .unwrap()
+            .replace("\"conical\"", "\"circular\""),
+    );
+    for (input, kind, turned) in [
+        (&design, "conical", true),
+        (&example("fig13-conical.json"), "conical", false),
+        (&circular, "circular", false),
+    ] {
+        let (obj, json) = (dir.path().join("m.obj"), dir.path().join("m.json"));
+        for out in [&obj, &json] {
+            monge()
+                .arg("generate")
+                .arg(input)
+                .arg("-o")
+                .arg(out)
+                .assert()
+                .success();
+        }
+        let mesh: Value = serde_json::from_str(&fs::read_to_string(&json).unwrap()).unwrap();
+        let reported = mesh["report"]["folded_faces"].as_u64().unwrap() as usize;
+        let check = monge()
+            .arg("check")
+            .arg(&obj)
+            .args(["--kind", kind, "--json"])
+            .output()
+            .unwrap();
+        let check: Value = serde_json::from_slice(&check.stdout).unwrap();
+        let checked = check["metrics"]["folded_faces"]["value"].as_f64().unwrap() as usize;
+        if kind == "conical" {
+            let reversed = faces_turned_over(&obj, &mesh);
+            assert_eq!(reversed > 0, turned, "{}", input.display());
+            assert!(reported >= reversed, "{reported} < {reversed}");
+        }
+        if turned {
+            assert_eq!((reported, checked), (4, 4));
+            assert_eq!(mesh["report"]["first_fold"], serde_json::json!([3, 0]));
+        } else if kind == "conical" {
+            assert_eq!((reported, checked), (0, 0));
+        } else {
+            // The circular mesh itself is not folded.
+            assert_eq!(reported, 0);
+        }
+    }
+    monge()
+        .arg("generate")
+        .arg(&design)
+        .arg("-o")
+        .arg(dir.path().join("m.obj"))
+        .assert()
+        .stderr(predicate::str::contains("in 4 faces, first at face (3, 0)"));
+}

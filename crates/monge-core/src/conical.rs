@@ -14,7 +14,7 @@
 
 use glam::DVec3;
 
-use crate::grid::QuadGrid;
+use crate::grid::{quad_turn, Folds, QuadGrid, Turn};
 
 /// A conical mesh and what its face offsets need (§2.3).
 #[derive(Clone, Debug, PartialEq)]
@@ -110,4 +110,103 @@ fn tangent_apex(n: DVec3, u: DVec3, v: DVec3, eu: DVec3, ev: DVec3) -> DVec3 {
     let (bu, bv) = (0.5 * eu.dot(uh), 0.5 * ev.dot(vh));
     // Z = (0·(uh × vh) + bu·(vh × n) + bv·(n × uh)) / det(n, uh, vh)
     (bu * vh.cross(n) + bv * n.cross(uh)) / n.dot(uh.cross(vh))
+}
+
+/// Folded faces of a conical mesh (§2.3, §5.2), counted by [`Folds`]: each
+/// face's [`quad_turn`] about its normal. A face is folded when it is crossed
+/// or not convex, or turns the other way than most faces: its normal is
+/// reversed against its neighbours', on the wrong side of the vertex cones at
+/// its corners.
+///
+/// With `face_normals` (one per face, row-major, as [`ConicalMesh::face_normals`]:
+/// the node axes of the circular mesh, oriented alike everywhere) each face
+/// turns about its own normal. Without them (a mesh read from a file), about
+/// the axes of the vertex cones at its four corners: a conical mesh's faces
+/// around a vertex are tangent to one cone of revolution, their normals on one
+/// side of its axis, which is taken as the sum of the unit normals
+/// `(C − A) × (D − B)` of the faces around the vertex. (Neighbouring normals
+/// may differ by more than 90° on a coarse mesh without any fold: the axes,
+/// summed over the faces around the corners, keep the face's own side.) As
+/// [`QuadGrid::folds`] without node axes, this finds fewer faces turned over.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::conical::conical_folds;
+/// use monge_core::QuadGrid;
+/// // A strip of three unit squares along x, flat; then the middle one folded
+/// // back (x = 0, 2, 1, 3: it turns the other way and overlaps the others).
+/// let strip = |x: [f64; 4]| {
+///     let v = (0..8).map(|k| DVec3::new(x[k / 2], (k % 2) as f64, 0.0)).collect();
+///     QuadGrid::new(4, 2, v, vec![])
+/// };
+/// assert_eq!(conical_folds(&strip([0.0, 1.0, 2.0, 3.0]), None).count(), 0);
+/// let folded = strip([0.0, 2.0, 1.0, 3.0]);
+/// for normals in [None, Some(&[DVec3::Z; 3][..])] {
+///     let f = conical_folds(&folded, normals);
+///     assert_eq!((f.count(), f.first()), (1, Some((1, 0))));
+/// }
+/// ```
+///
+/// # Panics
+/// If `face_normals` is given with another length than the number of faces.
+pub fn conical_folds(grid: &QuadGrid, face_normals: Option<&[DVec3]>) -> Folds {
+    let (cols, turns) = (
+        grid.cols.saturating_sub(1),
+        conical_turns(grid, face_normals),
+    );
+    let mut folds = Folds::default();
+    for (k, turn) in turns.into_iter().enumerate() {
+        folds.add((k / cols, k % cols), turn);
+    }
+    folds
+}
+
+/// Which faces of a conical mesh are folded (§2.3, §5.2), row-major: the faces
+/// [`conical_folds`] counts.
+///
+/// # Panics
+/// As [`conical_folds`].
+pub fn conical_folded_faces(grid: &QuadGrid, face_normals: Option<&[DVec3]>) -> Vec<bool> {
+    let folds = conical_folds(grid, face_normals);
+    let turns = conical_turns(grid, face_normals);
+    turns.into_iter().map(|t| folds.is_folded(t)).collect()
+}
+
+/// How each face of a conical mesh turns (§5.2), row-major: see [`conical_folds`].
+fn conical_turns(grid: &QuadGrid, face_normals: Option<&[DVec3]>) -> Vec<Turn> {
+    let (fr, fc) = (grid.rows.saturating_sub(1), grid.cols.saturating_sub(1));
+    let own: Vec<DVec3>;
+    let axes = match face_normals {
+        Some(n) => {
+            assert_eq!(n.len(), fr * fc, "one normal per face");
+            n
+        }
+        None => {
+            let normal = |k: usize| {
+                let [a, b, c, d] = grid.face(k / fc, k % fc);
+                (c - a).cross(d - b).normalize_or_zero()
+            };
+            let normals: Vec<DVec3> = (0..fr * fc).map(normal).collect();
+            let normals = &normals;
+            // The cone axis at vertex (i, j): the faces (i − 1 or i, j − 1 or j) that exist.
+            let cone = |i: usize, j: usize| -> DVec3 {
+                let (r0, c0) = (i.saturating_sub(1), j.saturating_sub(1));
+                let (r1, c1) = (i.min(fr - 1), j.min(fc - 1));
+                (r0..=r1)
+                    .flat_map(|a| (c0..=c1).map(move |b| normals[a * fc + b]))
+                    .sum()
+            };
+            own = (0..fr * fc)
+                .map(|k| {
+                    let (i, j) = (k / fc, k % fc);
+                    cone(i, j) + cone(i + 1, j) + cone(i + 1, j + 1) + cone(i, j + 1)
+                })
+                .collect();
+            &own
+        }
+    };
+    axes.iter()
+        .enumerate()
+        .map(|(k, axis)| quad_turn(&grid.face(k / fc, k % fc), *axis))
+        .collect()
 }

@@ -9,6 +9,7 @@
 //! others, and collected in order: the result does not depend on the number of
 //! threads. [`to_csv`] and [`plot_svg`] turn a scan into a table and a picture.
 
+use std::borrow::Cow;
 use std::fmt::Write as _;
 
 #[cfg(feature = "parallel")]
@@ -16,10 +17,12 @@ use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
 
+use crate::conical::{conical_dual, conical_folds};
 use crate::design::Design;
+use crate::design::MeshKind;
 use crate::generate::{generate, GenerateError, GenerateOptions};
 use crate::grid::QuadGrid;
-use crate::measure::measure;
+use crate::measure::{conical_error, measure};
 
 /// Largest number of values a scan accepts (a typo such as `0:360:1e-6` would
 /// otherwise try to build hundreds of millions of meshes).
@@ -305,15 +308,17 @@ pub struct ScanRow {
     pub status: Status,
     /// The generator's message when there is no mesh.
     pub error: Option<String>,
-    /// Folded faces (§5.2); 0 without a mesh.
+    /// Folded faces (§5.2) of the mesh the design asks for (a conical
+    /// mesh's: [`conical_folds`]); 0 without a mesh.
     pub folded_faces: usize,
     /// Smallest sine of the angle between the two lines that defined a vertex (§5.2):
     /// near 0, the mesh pinches. NaN without a mesh.
     pub min_crossing_sine: f64,
-    /// Panel statistics; `None` without a mesh.
+    /// Panel statistics of the mesh the design asks for; `None` without a mesh.
     pub panels: Option<PanelStats>,
-    /// The measured largest error (`measure(..).max_error()`, relative to the
-    /// model size); NaN without a mesh.
+    /// The measured largest error of that mesh (`measure(..).max_error()`, or
+    /// `max_error_conical` for a conical mesh, relative to the model size);
+    /// NaN without a mesh.
     pub max_error: f64,
 }
 
@@ -366,7 +371,19 @@ fn evaluate(design: &Design, value: f64, options: &GenerateOptions) -> ScanRow {
     };
     match generate(design, options) {
         Ok(g) => {
-            let folded = g.report.folded_faces;
+            // The mesh the design asks for: a conical mesh folds on its own (§2.3).
+            let (folded, mesh, max_error) = match design.mesh {
+                MeshKind::Circular => {
+                    let max_error = measure(&g.grid).max_error();
+                    (g.report.folded_faces, Cow::Borrowed(&g.grid), max_error)
+                }
+                MeshKind::Conical => {
+                    let c = conical_dual(&g.grid);
+                    let folds = conical_folds(&c.grid, Some(&c.face_normals));
+                    let max_error = measure(&c.grid).max_error_conical(conical_error(&c.grid));
+                    (folds.count(), Cow::Owned(c.grid), max_error)
+                }
+            };
             ScanRow {
                 value,
                 status: if folded > 0 {
@@ -377,8 +394,8 @@ fn evaluate(design: &Design, value: f64, options: &GenerateOptions) -> ScanRow {
                 error: None,
                 folded_faces: folded,
                 min_crossing_sine: g.report.min_crossing.sine,
-                panels: (g.grid.face_count() > 0).then(|| panel_stats(&g.grid)),
-                max_error: measure(&g.grid).max_error(),
+                panels: (mesh.face_count() > 0).then(|| panel_stats(&mesh)),
+                max_error,
             }
         }
         Err(e) => {

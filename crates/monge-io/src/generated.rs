@@ -8,8 +8,8 @@ use std::borrow::Cow;
 
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
-use monge_core::conical::conical_dual;
-use monge_core::grid::{origin_ratio, FAR_FROM_ORIGIN, ROUNDING_GAIN};
+use monge_core::conical::{conical_dual, conical_folded_faces, conical_folds};
+use monge_core::grid::{origin_ratio, Folds, FAR_FROM_ORIGIN, ROUNDING_GAIN};
 use monge_core::measure::{conical_error, measure};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{Generated, MeshKind, Mode, QuadGrid};
@@ -80,6 +80,16 @@ pub fn json_extras(g: &Generated) -> Map<String, Value> {
     extra
 }
 
+/// The generation's report (§5.2) with the folded faces of the mesh written,
+/// `folds`: an offset or a conical dual folds where the circular mesh need not.
+pub fn with_folds(report: &CombescureReport, folds: &Folds) -> CombescureReport {
+    CombescureReport {
+        folded_faces: folds.count(),
+        first_fold: folds.first(),
+        ..*report
+    }
+}
+
 /// One mesh to write: the design's mesh or one of its offsets (§2.2, §2.3).
 #[derive(Clone, Debug)]
 pub struct Layer<'a> {
@@ -91,6 +101,12 @@ pub struct Layer<'a> {
     /// Keys of the JSON output that describe this layer: `kind`, `offset`, and
     /// `face_normals` (the Gauss vertices) for a conical mesh.
     pub extra: Map<String, Value>,
+    /// The face normals of a conical mesh (§2.3), `None` for a circular one.
+    pub face_normals: Option<Vec<DVec3>>,
+    /// What the JSON `report` says of this mesh (§5.2), [`layers`]: the
+    /// generation's, with the folded faces of this mesh ([`Layer::folds`]) for
+    /// an offset or a conical mesh. `None` without a generation (developable).
+    pub report: Option<CombescureReport>,
 }
 
 impl<'a> Layer<'a> {
@@ -104,8 +120,28 @@ impl<'a> Layer<'a> {
     ) -> Layer<'a> {
         Layer {
             offset,
-            grid,
             extra: layer_extras(offset, kind, face_normals),
+            face_normals: face_normals.map(<[DVec3]>::to_vec),
+            report: None,
+            grid,
+        }
+    }
+
+    /// The folded faces of this mesh (§5.2): [`QuadGrid::folds`] of a circular
+    /// mesh, [`conical_folds`] (about its face normals) of a conical one.
+    pub fn folds(&self) -> Folds {
+        match &self.face_normals {
+            Some(n) => conical_folds(&self.grid, Some(n)),
+            None => self.grid.folds(),
+        }
+    }
+
+    /// Whether each face of this mesh is folded (§5.2), row-major: the faces
+    /// [`Layer::folds`] counts.
+    pub fn folded_faces(&self) -> Vec<bool> {
+        match &self.face_normals {
+            Some(n) => conical_folded_faces(&self.grid, Some(n)),
+            None => self.grid.folded_faces(),
         }
     }
 }
@@ -128,7 +164,9 @@ pub fn layer_extras(offset: f64, kind: &str, face_normals: Option<&[DVec3]>) -> 
 /// (§2.3; the circular mesh has at least 3 × 3 vertices, as every curved guide
 /// has at least 3 samples). An offset's JSON `report` counts the folds of the
 /// offset itself (an offset through a focal surface folds where the mesh does
-/// not); its crossing sine is the generation's, whose normals it shares.
+/// not), and a conical mesh's those of the conical mesh ([`conical_folds`]:
+/// its faces may turn over where the circular mesh does not); the crossing
+/// sine is the generation's, whose normals they share.
 pub fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Layer<'a>> {
     let distances = std::iter::once(0.0).chain(offsets.iter().copied());
     let layers: Vec<Layer<'a>> = match kind {
@@ -153,15 +191,14 @@ pub fn layers<'a>(g: &'a Generated, kind: MeshKind, offsets: &[f64]) -> Vec<Laye
     layers
         .into_iter()
         .map(|mut layer| {
-            if layer.offset != 0.0 {
-                let folds = layer.grid.folds();
-                let report = CombescureReport {
-                    folded_faces: folds.count(),
-                    first_fold: folds.first(),
-                    ..g.report
-                };
+            let report = if layer.offset != 0.0 || kind == MeshKind::Conical {
+                let report = with_folds(&g.report, &layer.folds());
                 layer.extra.insert("report".into(), report_json(&report));
-            }
+                report
+            } else {
+                g.report
+            };
+            layer.report = Some(report);
             layer
         })
         .collect()
@@ -178,8 +215,9 @@ pub fn node_offset(grid: &QuadGrid, d: f64) -> Cow<'_, QuadGrid> {
 }
 
 /// The explorer's metrics of a mesh of `kind` (§2.2, §2.3): [`measure`], plus
-/// `conical` (the conical error of a conical mesh), `max_error`, `faces`,
-/// `panel_area` and `edge_length` (`min`, `max`).
+/// `conical` (the conical error of a conical mesh, whose `folded_faces` and
+/// `first_fold` are [`conical_folds`] as `monge check --kind conical` finds
+/// them), `max_error`, `faces`, `panel_area` and `edge_length` (`min`, `max`).
 pub fn metrics_json(mesh: &QuadGrid, kind: MeshKind) -> Value {
     let measured = measure(mesh);
     let mut metrics = serde_json::to_value(&measured).unwrap_or(Value::Null);
@@ -189,6 +227,9 @@ pub fn metrics_json(mesh: &QuadGrid, kind: MeshKind) -> Value {
         let conical = conical_error(mesh);
         m["max_error"] = json!(measured.max_error_conical(conical));
         m["conical"] = json!(conical);
+        let folds = conical_folds(mesh, None);
+        m["folded_faces"] = json!(folds.count());
+        m["first_fold"] = json!(folds.first());
     }
     m["faces"] = json!(mesh.face_count());
     let (area, edge) = panel_stats(mesh);

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
-use monge_core::conical::{conical_dual, ConicalMesh};
+use monge_core::conical::{conical_dual, conical_folds, ConicalMesh};
 use monge_core::measure::{conical_error, measure, Measurements, Worst};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{generate as core_generate, BasePoint, GenerateOptions, MeshKind, Mode, QuadGrid};
@@ -11,6 +11,8 @@ use numpy::ndarray::ArrayView3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+use monge_io::generated::with_folds;
 
 use crate::args;
 use crate::design::{kind_name, parse_kind, Design};
@@ -62,13 +64,16 @@ pub struct Mesh {
 /// conical condition takes the place of `circularity`, which such a mesh need
 /// not satisfy. Returns the measurements and their `max_error`, the largest of
 /// the metrics the kind requires ([`Measurements::max_error_conical`] for a
-/// conical mesh), as `monge check --json` reports it.
+/// conical mesh), as `monge check --json` reports it; a conical mesh's folds
+/// are those `monge check --kind conical` finds ([`conical_folds`]).
 pub fn measurements(grid: &QuadGrid, kind: MeshKind) -> (Measurements, f64) {
     let mut m = measure(grid);
     if kind != MeshKind::Conical {
         let max_error = m.max_error();
         return (m, max_error);
     }
+    let folds = conical_folds(grid, None);
+    (m.folded_faces, m.first_fold) = (folds.count(), folds.first());
     let conical = conical_error(grid);
     let max_error = m.max_error_conical(conical);
     m.circularity = conical.unwrap_or(Worst {
@@ -135,8 +140,10 @@ impl Mesh {
     /// The mesh of `geometry`, measured, at `(offset distance, base point)`.
     /// `report` is the generation's (§5.2); with `measured_folds` (an offset,
     /// which the generation did not build) its folded faces are replaced by
-    /// those `check` finds on this mesh. The smallest crossing sine is a
-    /// property of the Gauss map, which an offset shares.
+    /// those `check` finds on this mesh, and for a conical mesh by its own
+    /// ([`conical_folds`] about its face normals, as `monge generate` reports
+    /// them). The smallest crossing sine is a property of the Gauss map, which
+    /// an offset or a conical dual shares.
     fn new(
         geometry: Geometry,
         theta_deg: f64,
@@ -150,7 +157,9 @@ impl Mesh {
             Geometry::Conical(_) => MeshKind::Conical,
         };
         let (m, max_error) = measurements(geometry.grid(), kind);
-        let report = if measured_folds {
+        let report = if let Geometry::Conical(c) = &geometry {
+            with_folds(&report, &conical_folds(&c.grid, Some(&c.face_normals)))
+        } else if measured_folds {
             CombescureReport {
                 folded_faces: m.folded_faces,
                 first_fold: m.first_fold,

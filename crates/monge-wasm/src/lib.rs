@@ -16,6 +16,7 @@
 
 use glam::DVec3;
 use js_sys::{Float32Array, Float64Array};
+use monge_core::combescure::CombescureReport;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::projective::Line;
 use monge_core::{generate as generate_mesh, inspect, Design, GenerateOptions, Generated};
@@ -66,6 +67,10 @@ pub struct Mesh {
     grid: QuadGrid,
     /// Its JSON keys beyond `json_extras` (kind, offset, face normals).
     extra: serde_json::Map<String, serde_json::Value>,
+    /// Its report (§5.2): its own folds, as `monge generate` writes it.
+    report: CombescureReport,
+    /// Which of its faces are folded, row-major.
+    folded: Vec<bool>,
     /// `grid`'s vertices, flat `x, y, z, x, …`.
     vertices: Vec<f64>,
     /// The same in f32, for drawing.
@@ -136,6 +141,8 @@ impl Mesh {
             .ok_or("no mesh was generated")?;
         let info = &generated.info;
         Ok(Mesh {
+            report: layer.report.unwrap_or(generated.report),
+            folded: layer.folded_faces(),
             vertices: flat(&layer.grid.vertices),
             positions: flat32(&layer.grid.vertices),
             normals: flat32(&generated.grid.normals),
@@ -217,7 +224,7 @@ impl Mesh {
             "theta_deg": g.info.theta_deg,
             "mode": mode_name(g.info.mode),
             "theta_range": { "min_deg": g.info.theta_range.min_deg, "max_deg": g.info.theta_range.max_deg },
-            "report": report_json(&g.report),
+            "report": report_json(&self.report),
             "axes": { "l1": axis_json(&g.axes.l1), "l2": axis_json(&g.axes.l2) },
         })
     }
@@ -300,7 +307,7 @@ impl Mesh {
     /// order of [`Mesh::face_areas`]. A copy.
     #[wasm_bindgen(js_name = foldedFaces)]
     pub fn folded_faces(&self) -> Vec<u8> {
-        self.grid.folded_faces().into_iter().map(u8::from).collect()
+        self.folded.iter().map(|&f| u8::from(f)).collect()
     }
 
     /// The metrics as JSON text (§2.2, §2.3): planarity, circularity or the
