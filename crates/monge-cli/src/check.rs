@@ -6,7 +6,7 @@ use anyhow::{bail, Context};
 use monge_core::conical::conical_folds;
 use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
 use monge_core::QuadGrid;
-use monge_io::{is_stdio, read_mesh, read_mesh_from, MeshFormat};
+use monge_io::{is_stdio, read_face_normals, read_mesh, read_mesh_from, MeshFormat};
 use serde_json::{json, Map, Value};
 
 use crate::cli::{CheckArgs, KindArg};
@@ -34,8 +34,14 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let mut m = measure(&grid);
     let conical = match args.kind {
         KindArg::Conical => {
-            // A conical mesh's folds: its faces turned over against the vertex cones.
-            let folds = conical_folds(&grid, None);
+            // A conical mesh's folds: its faces turned over against their
+            // normals when the file gives them, else against the vertex cones.
+            let normals = if is_stdio(path) {
+                None
+            } else {
+                read_face_normals(path, &grid)?
+            };
+            let folds = conical_folds(&grid, normals.as_deref());
             (m.folded_faces, m.first_fold) = (folds.count(), folds.first());
             conical_error(&grid)
         }

@@ -8,12 +8,12 @@ use glam::DVec3;
 use monge_core::conical::{conical_dual, conical_folds};
 use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, BasePoint, GenerateOptions, MeshKind};
-use monge_io::generated::with_folds;
+use monge_io::generated::{max_error, with_folds};
 use monge_io::{check_output, read_design, write_fabrication, ScheduleJson, FABRICATION_FILES};
 
 use crate::generate::generation_warnings;
 use crate::output::{
-    check_output_size, eprint, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
+    check_output_size, eprint, inexact_warning, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
 };
 use crate::Outcome;
 
@@ -125,6 +125,15 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         None => generated.report,
     };
     eprint(&generation_warnings(generated.info.theta_deg, &report));
+    let mesh = conical.as_ref().map_or(grid, |c| &c.grid);
+    eprint(&inexact_warning(
+        &format!("the mesh of `{}`", args.design.display()),
+        max_error(mesh, design.mesh),
+        design.tolerance.unwrap_or_default().planarity,
+        &mesh.vertices,
+        report.folded_faces,
+        Some(generated.info.theta_deg),
+    ));
     let faces = grid.rows.saturating_sub(1) * grid.cols.saturating_sub(1);
     let (json, per_face) = if args.full_json {
         (

@@ -9,15 +9,15 @@ use monge_core::combescure::CombescureReport;
 use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::gauss_map::ThetaRange;
 use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode};
-pub use monge_io::generated::mode_name;
-use monge_io::generated::{json_extras, layers, node_offset, Layer};
+use monge_io::generated::{json_extras, layers, max_error, node_offset, Layer};
+pub use monge_io::generated::{mode_name, near_singular, SINGULAR_DEG};
 use monge_io::{
     check_output, is_stdio, read_any_design, write_mesh_at, AnyDesign, MeshFormat, Outputs,
 };
 use serde_json::{json, Map, Value};
 
 use crate::cli::{output_format, GenerateArgs};
-use crate::output::{eprint, far_from_origin_warning, millis, num};
+use crate::output::{eprint, far_from_origin_warning, inexact_warning, millis, num};
 use crate::Outcome;
 
 /// Below this smallest crossing sine the summary warns that the mesh nearly pinches (§5.2).
@@ -68,6 +68,24 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
     ));
     let report = layers[0].report.unwrap_or(generated.report);
     eprint(&generation_warnings(generated.info.theta_deg, &report));
+    // What was written, measured as `monge check` measures it.
+    let tolerance = design.tolerance.unwrap_or_default().planarity;
+    for (k, layer) in layers.iter().enumerate() {
+        let what = if k == 0 {
+            format!("the mesh written to `{}`", out.display())
+        } else {
+            format!("the offset at {}", num(layer.offset))
+        };
+        let folds = layer.report.map_or(0, |r| r.folded_faces);
+        eprint(&inexact_warning(
+            &what,
+            max_error(&layer.grid, design.mesh),
+            tolerance,
+            &layer.grid.vertices,
+            folds,
+            Some(generated.info.theta_deg),
+        ));
+    }
     eprint(&far_from_origin_warning(&layers[0].grid.vertices).unwrap_or_default());
     if let Some(b) = base {
         eprint(&format!(
@@ -275,14 +293,6 @@ fn summary(
 /// folds), one line each, for every command that builds on a generated mesh.
 pub fn generation_warnings(theta_deg: f64, report: &CombescureReport) -> String {
     warnings(theta_deg, &Pinching::from(report)).concat()
-}
-
-/// The singular θ (§3.1): every Gauss circle passes through the corner normal.
-pub const SINGULAR_DEG: f64 = 90.0;
-
-/// Whether θ is the singular +90° (within 1°, as the generator's own hint has it).
-pub fn near_singular(theta_deg: f64) -> bool {
-    (theta_deg - SINGULAR_DEG).abs() < 1.0
 }
 
 /// Warnings about the singular θ and about folds and pinches (§5.2), one line each.

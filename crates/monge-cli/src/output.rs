@@ -28,6 +28,22 @@ pub fn far_from_origin_warning(points: &[DVec3]) -> Option<String> {
     far_from_origin(points).map(|m| format!("warning: {m}\n"))
 }
 
+/// The warning line of a mesh whose measured error exceeds the tolerance
+/// ([`monge_io::generated::inexact`]: the error and its likely cause), or an
+/// empty string.
+pub fn inexact_warning(
+    what: &str,
+    max_error: f64,
+    tolerance: f64,
+    points: &[DVec3],
+    folded_faces: usize,
+    theta_deg: Option<f64>,
+) -> String {
+    monge_io::generated::inexact(what, max_error, tolerance, points, folded_faces, theta_deg)
+        .map(|m| format!("warning: {m}\n"))
+        .unwrap_or_default()
+}
+
 /// A point or vector as `(x, y, z)` with 6 significant digits.
 pub fn xyz(p: Xyz) -> String {
     format!("({}, {}, {})", num(p[0]), num(p[1]), num(p[2]))

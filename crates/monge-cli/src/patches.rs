@@ -14,7 +14,7 @@ use monge_io::{
 use serde_json::{json, Map, Value};
 
 use crate::cli::{output_format, FitArgs, PatchesArgs};
-use crate::output::{eprint, num, print};
+use crate::output::{eprint, inexact_warning, num, print};
 use crate::Outcome;
 
 /// Runs `monge patches`.
@@ -68,7 +68,28 @@ pub fn run_patches(args: &PatchesArgs) -> anyhow::Result<Outcome> {
         write_quad_mesh(&a.mesh, &args.output, Some(format))?;
     }
     eprint(&summary);
+    eprint(&patch_warnings(&mp));
     Ok(Outcome::Success)
+}
+
+/// A warning for each patch whose measured error exceeds its design's
+/// tolerance, with the likely cause ([`inexact_warning`]).
+fn patch_warnings(mp: &MultiPatch) -> String {
+    mp.patches
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let grid = mp.patch_grid(k);
+            inexact_warning(
+                &format!("patch {k}"),
+                measure(&grid).max_error(),
+                p.design.tolerance.unwrap_or_default().planarity,
+                &grid.vertices,
+                p.folded_faces,
+                Some(p.design.theta_deg),
+            )
+        })
+        .collect()
 }
 
 /// One line per patch: where it lies, θ, mode, exactness and seam measures.
@@ -165,5 +186,8 @@ pub fn run_fit(args: &FitArgs) -> anyhow::Result<Outcome> {
         args.output.display()
     ));
     print(&s)?;
+    // The fitted design's patches, measured as `monge patches` measures them.
+    let fitted = build(&r.design, &options).with_context(|| file.clone())?;
+    eprint(&patch_warnings(&fitted));
     Ok(Outcome::Success)
 }

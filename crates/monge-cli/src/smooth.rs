@@ -6,14 +6,15 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Frame};
-use monge_core::{generate, GenerateOptions, MeshKind};
+use monge_core::measure::measure;
+use monge_core::{generate, GenerateOptions, MeshKind, Tolerances};
 use monge_io::{
     check_output, conical_has_no_net, read_design, read_mesh, write_iges, write_mesh_to,
     write_net_json, write_output, MeshFormat,
 };
 
 use crate::cli::SmoothArgs;
-use crate::output::{check_output_size, eprint, millis};
+use crate::output::{check_output_size, eprint, inexact_warning, millis};
 use crate::Outcome;
 
 /// Runs `monge smooth`.
@@ -35,16 +36,22 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
     };
     check_output(out, &[&args.design])?;
     let start = Instant::now();
-    let grid = if args.mesh {
-        read_mesh(&args.design)?
+    // The mesh, its tolerance and θ (none for a mesh file).
+    let (grid, tolerance, theta) = if args.mesh {
+        (
+            read_mesh(&args.design)?,
+            Tolerances::default().planarity,
+            None,
+        )
     } else {
         let design = read_design(&args.design)?;
         if design.mesh == MeshKind::Conical {
             bail!("{}", conical_has_no_net(&args.design.display().to_string()));
         }
-        generate(&design, &GenerateOptions::default())
-            .with_context(|| args.design.display().to_string())?
-            .grid
+        let g = generate(&design, &GenerateOptions::default())
+            .with_context(|| args.design.display().to_string())?;
+        let tolerance = design.tolerance.unwrap_or_default().planarity;
+        (g.grid, tolerance, Some(g.info.theta_deg))
     };
     let k = args.samples as usize;
     let (what, bytes) = estimate(&output, grid.rows, grid.cols, k);
@@ -101,6 +108,15 @@ pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {
         lines,
         millis(elapsed),
         out.display()
+    ));
+    // The net is as exact as the mesh under it, measured as `monge check` does.
+    eprint(&inexact_warning(
+        &format!("the mesh under the net (of `{}`)", args.design.display()),
+        measure(&grid).max_error(),
+        tolerance,
+        &grid.vertices,
+        net.folded().len(),
+        theta,
     ));
     Ok(Outcome::Success)
 }

@@ -1547,3 +1547,95 @@ fn a_conical_mesh_turned_over_is_reported_folded_everywhere() {
         .assert()
         .stderr(predicate::str::contains("in 4 faces, first at face (3, 0)"));
 }
+
+#[test]
+fn a_measured_error_above_the_tolerance_is_never_silent() {
+    let dir = TempDir::new().unwrap();
+    // The conical mesh turned over (conical error 2.0, 4 folded faces): its error
+    // measured by `check` on the written file.
+    let turned = write(
+        &dir,
+        "turned.json",
+        r#"{"theta_deg": -161.88466388622183, "mesh": "conical",
+ "guide_u": {"bspline": {"degree": 3, "samples": 7, "control_points": [[0,0,0],[1,0,0],
+   [2.2330790589699796,0,-0.5541680285794847],[2.8675485424895477,0,-2.155466699292466],[3.4849537934883603,0,1.7232772800102358]]}},
+ "guide_v": {"bspline": {"degree": 3, "samples": 11, "control_points": [[0,0,0],[0,1,0],
+   [-0.007441484123705624,1.9927520724723893,-0.0996294952040866],[6.193939782998956e-5,3.0061583164315824,0.0008292688442872063]]}}}"#,
+    );
+    let obj = dir.path().join("m.obj");
+    monge()
+        .arg("generate")
+        .arg(&turned)
+        .arg("-o")
+        .arg(&obj)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(format!(
+            "warning: the mesh written to `{}` measures an error of 2.0e0 of its size, above the \
+             tolerance 1e-9: likely cause: its 4 folded faces",
+            obj.display()
+        )));
+    let check = monge()
+        .arg("check")
+        .arg(&obj)
+        .args(["--kind", "conical", "--json"])
+        .output()
+        .unwrap();
+    let check: Value = serde_json::from_slice(&check.stdout).unwrap();
+    assert!(
+        (check["max_error"].as_f64().unwrap() - 2.0).abs() < 0.05,
+        "{check}"
+    );
+    monge()
+        .arg("fabricate")
+        .arg(&turned)
+        .arg("-o")
+        .arg(dir.path().join("fab"))
+        .assert()
+        .stderr(predicate::str::contains(
+            "measures an error of 2.0e0 of its size, above the tolerance 1e-9: likely cause: its 4 \
+             folded faces",
+        ));
+    // Far from the origin (1e10 away, 5.3e8 times the size): the cause and the option.
+    let far = fs::read_to_string(example("fig12-dupin-theta30.json"))
+        .unwrap()
+        .replace("[0, 0, -10]", "[1e10, 0, -10]")
+        .replace("[0, 0, -3]", "[1e10, 0, -3]")
+        .replace("[0, 0, 0]", "[1e10, 0, 0]");
+    let far = write(&dir, "far.json", &far);
+    let out = monge()
+        .arg("generate")
+        .arg(&far)
+        .arg("-o")
+        .arg(&obj)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains("likely cause: its coordinates, 5.3e8 times its size away from the origin"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("`--base-point start`"), "{stderr}");
+    let check = monge()
+        .arg("check")
+        .arg(&obj)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let check: Value = serde_json::from_slice(&check.stdout).unwrap();
+    let measured = check["max_error"].as_f64().unwrap();
+    assert!(measured > 1e-9, "{check}");
+    assert!(
+        stderr.contains(&format!("measures an error of {measured:.1e} of its size")),
+        "{measured:e}: {stderr}"
+    );
+    // An exact mesh: no such warning.
+    monge()
+        .arg("generate")
+        .arg(example("fig12-dupin-theta30.json"))
+        .arg("-o")
+        .arg(&obj)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("measures an error").not());
+}

@@ -60,6 +60,99 @@ pub fn far_from_origin(points: &[DVec3]) -> Option<String> {
     })
 }
 
+/// The singular θ (§3.1): every Gauss circle passes through the corner normal.
+pub const SINGULAR_DEG: f64 = 90.0;
+
+/// Whether θ is the singular +90° (within 1°, as the generator's own hint has it).
+///
+/// ```
+/// use monge_io::generated::near_singular;
+/// assert!(near_singular(89.5) && !near_singular(-90.0));
+/// ```
+pub fn near_singular(theta_deg: f64) -> bool {
+    (theta_deg - SINGULAR_DEG).abs() < 1.0
+}
+
+/// From this ratio of the coordinates' distance from the origin to the model's
+/// size ([`origin_ratio`]) on, f64 rounding is a likely cause of a measured
+/// error above 1e-9 of the size (measured over random designs: such errors
+/// start at about 1.5e3).
+pub const ORIGIN_RATIO_CAUSE: f64 = 1e3;
+
+/// What every front end says when its own measurement of a mesh it wrote,
+/// `max_error` (relative to the mesh's size, as `monge check` measures it),
+/// exceeds `tolerance` (or is NaN), with the likely causes: `folded_faces`
+/// (§5.2), coordinates far from the origin ([`ORIGIN_RATIO_CAUSE`]), θ near
+/// the singular +90° ([`near_singular`]; `theta_deg` is `None` for a mesh
+/// without one). `None` when the error is within the tolerance. `what` names
+/// the mesh (e.g. "the mesh written to `out.obj`").
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_io::generated::inexact;
+/// let near = [DVec3::ZERO, DVec3::ONE];
+/// assert!(inexact("the mesh", 3e-10, 1e-9, &near, 0, Some(30.0)).is_none());
+/// let w = inexact("the mesh", 0.2, 1e-9, &near, 4, Some(30.0)).unwrap();
+/// assert!(w.contains("error of 2.0e-1") && w.contains("4 folded faces"), "{w}");
+/// let far = [DVec3::splat(1e7), DVec3::splat(1e7) + DVec3::ONE];
+/// let w = inexact("the mesh", 3e-9, 1e-9, &far, 0, None).unwrap();
+/// assert!(w.contains("--base-point start"), "{w}");
+/// ```
+pub fn inexact(
+    what: &str,
+    max_error: f64,
+    tolerance: f64,
+    points: &[DVec3],
+    folded_faces: usize,
+    theta_deg: Option<f64>,
+) -> Option<String> {
+    if max_error <= tolerance {
+        return None;
+    }
+    let mut causes = Vec::new();
+    if folded_faces > 0 {
+        causes.push(format!(
+            "its {folded_faces} folded faces (§5.2; change θ or the guides)"
+        ));
+    }
+    let ratio = origin_ratio(points);
+    if ratio >= ORIGIN_RATIO_CAUSE {
+        causes.push(format!(
+            "its coordinates, {ratio:.1e} times its size away from the origin, where f64 numbers \
+             round by {:.1e} of the size (write them relative to the guides' start: \
+             `--base-point start`, Python `base_point=\"start\"`)",
+            ratio * f64::EPSILON
+        ));
+    }
+    if let Some(theta) = theta_deg.filter(|t| near_singular(*t)) {
+        causes.push(format!(
+            "θ = {theta}°, near the singular θ = +{SINGULAR_DEG}° (move θ away from it)"
+        ));
+    }
+    let cause = if causes.is_empty() {
+        "no known cause: no folded face, near the origin, θ away from +90°; please report the \
+         design"
+            .to_owned()
+    } else {
+        format!("likely cause: {}", causes.join("; "))
+    };
+    Some(format!(
+        "{what} measures an error of {max_error:.1e} of its size, above the tolerance \
+         {tolerance:.0e}: {cause}. `monge check` on it says where."
+    ))
+}
+
+/// The largest error `monge check --kind KIND` measures on `grid` (§2.2,
+/// §2.3): [`Measurements::max_error`](monge_core::measure::Measurements::max_error),
+/// or `max_error_conical` for a conical mesh.
+pub fn max_error(grid: &QuadGrid, kind: MeshKind) -> f64 {
+    let m = measure(grid);
+    match kind {
+        MeshKind::Circular => m.max_error(),
+        MeshKind::Conical => m.max_error_conical(conical_error(grid)),
+    }
+}
+
 /// The Combescure report as JSON (§5.2): `folded_faces`, `first_fold`,
 /// `min_crossing_sine`, `min_crossing_face`.
 pub fn report_json(r: &CombescureReport) -> Value {

@@ -58,7 +58,7 @@ pub use fabrication::{write_fabrication, FABRICATION_FILES};
 pub use gltf::{write_glb, write_grid_glb, write_quads_glb};
 pub use iges::{read_iges_surfaces, write_iges, IgesSurface, NurbsColumn, NurbsColumns};
 pub use kind::FileKind;
-pub use mesh_read::{read_mesh, read_mesh_from};
+pub use mesh_read::{read_face_normals, read_mesh, read_mesh_from};
 pub use mesh_write::{
     write_mesh, write_mesh_at, write_mesh_json, write_mesh_to, write_obj, write_ply,
     write_ply_binary, MeshFormat, BASE_POINT, MESH_JSON_KEYS,

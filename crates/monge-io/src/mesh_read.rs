@@ -191,6 +191,42 @@ fn parse_json(text: &str, file: &str) -> Result<QuadGrid, IoError> {
     grid(file, m.rows, m.cols, vertices, normals)
 }
 
+/// The `face_normals` of a conical mesh's JSON file (§2.3, as `monge generate`
+/// writes them), one per face of `grid` (the mesh read from it); `None` for a
+/// file of another format or without the key.
+///
+/// # Errors
+/// Those of [`read_mesh`] for the file, and [`IoError::CountMismatch`] if the
+/// normals are not one per face.
+pub fn read_face_normals(path: &Path, grid: &QuadGrid) -> Result<Option<Vec<DVec3>>, IoError> {
+    if MeshFormat::from_path(path)? != MeshFormat::Json {
+        return Ok(None);
+    }
+    #[derive(Deserialize)]
+    struct FaceNormals {
+        #[serde(default)]
+        face_normals: Option<Vec<[f64; 3]>>,
+    }
+    let file = path_name(path);
+    let text = std::fs::read_to_string(path).map_err(|source| crate::read_error(path, source))?;
+    let n: FaceNormals = parse_as(&text, DesignFormat::Json, &file)?;
+    let Some(normals) = n.face_normals else {
+        return Ok(None);
+    };
+    if normals.len() != grid.face_count() {
+        return Err(IoError::CountMismatch {
+            file,
+            what: format!(
+                "face_normals (one per face of the {} × {} grid)",
+                grid.rows, grid.cols
+            ),
+            expected: grid.face_count(),
+            found: normals.len(),
+        });
+    }
+    Ok(Some(normals.into_iter().map(DVec3::from_array).collect()))
+}
+
 /// The grid after checking the counts.
 fn grid(
     file: &str,

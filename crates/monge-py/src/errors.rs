@@ -5,7 +5,7 @@ use std::ffi::CString;
 
 use glam::DVec3;
 use monge_core::GenerateError;
-use monge_io::generated::far_from_origin;
+use monge_io::generated::{far_from_origin, inexact};
 use monge_io::IoError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyUserWarning};
@@ -79,6 +79,13 @@ create_exception!(
     "The coordinates lie so far from the origin, compared with the design's size, that their rounding as f64 numbers can put the mesh's error above 1e-9 of its size: generate with base_point=\"start\" (coordinates relative to the guides' start point), or model the design near the origin."
 );
 
+create_exception!(
+    monge,
+    InexactWarning,
+    PyUserWarning,
+    "The mesh, measured as `check` measures it, has an error above the design's tolerance (1e-9 of its size by default); the message gives the error and its likely cause (folded faces, coordinates far from the origin, θ near the singular +90°)."
+);
+
 /// Registers the exception classes in the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -96,6 +103,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "FarFromOriginWarning",
         py.get_type::<FarFromOriginWarning>(),
     )?;
+    m.add("InexactWarning", py.get_type::<InexactWarning>())?;
     Ok(())
 }
 
@@ -109,6 +117,24 @@ pub fn warn_far_from_origin(py: Python<'_>, points: &[DVec3]) -> PyResult<()> {
     };
     let message = CString::new(message).unwrap_or_default();
     PyErr::warn(py, &py.get_type::<FarFromOriginWarning>(), &message, 1)
+}
+
+/// Warns (`InexactWarning`) when `max_error`, measured on a mesh as `check`
+/// measures it, exceeds `tolerance`: the test and words of the commands
+/// ([`monge_io::generated::inexact`]). Raises instead if warnings are errors.
+pub fn warn_inexact(
+    py: Python<'_>,
+    what: &str,
+    (max_error, tolerance): (f64, f64),
+    points: &[DVec3],
+    folded_faces: usize,
+    theta_deg: Option<f64>,
+) -> PyResult<()> {
+    let Some(message) = inexact(what, max_error, tolerance, points, folded_faces, theta_deg) else {
+        return Ok(());
+    };
+    let message = CString::new(message).unwrap_or_default();
+    PyErr::warn(py, &py.get_type::<InexactWarning>(), &message, 1)
 }
 
 /// `x` as Python's `repr` writes a float: `nan`, `inf`, `-1.0`, `1e+20`.

@@ -6,18 +6,18 @@ use monge_core::combescure::CombescureReport;
 use monge_core::conical::{conical_dual, conical_folds, ConicalMesh};
 use monge_core::measure::{conical_error, measure, Measurements, Worst};
 use monge_core::offset::{face_offset, vertex_offset};
-use monge_core::{generate as core_generate, BasePoint, GenerateOptions, MeshKind, Mode, QuadGrid};
+use monge_core::{
+    generate as core_generate, BasePoint, GenerateOptions, MeshKind, Mode, QuadGrid, Tolerances,
+};
 use numpy::ndarray::ArrayView3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use monge_io::generated::with_folds;
-
 use crate::args;
 use crate::design::{kind_name, parse_kind, Design};
 use crate::errors::{
-    generate_error, py_float, py_short, warn_far_from_origin, DesignError, MeshError,
+    generate_error, py_float, py_short, warn_far_from_origin, warn_inexact, DesignError, MeshError,
 };
 
 /// The geometry of a mesh: a circular mesh with its node axes, or a conical mesh
@@ -36,6 +36,14 @@ impl Geometry {
         match self {
             Geometry::Circular(g) => g,
             Geometry::Conical(c) => &c.grid,
+        }
+    }
+
+    /// The face normals of a conical mesh (§2.3).
+    pub fn face_normals(&self) -> Option<&[DVec3]> {
+        match self {
+            Geometry::Circular(_) => None,
+            Geometry::Conical(c) => Some(&c.face_normals),
         }
     }
 }
@@ -65,14 +73,19 @@ pub struct Mesh {
 /// not satisfy. Returns the measurements and their `max_error`, the largest of
 /// the metrics the kind requires ([`Measurements::max_error_conical`] for a
 /// conical mesh), as `monge check --json` reports it; a conical mesh's folds
-/// are those `monge check --kind conical` finds ([`conical_folds`]).
-pub fn measurements(grid: &QuadGrid, kind: MeshKind) -> (Measurements, f64) {
+/// are those `monge check --kind conical` finds ([`conical_folds`], about its
+/// `face_normals` when known).
+pub fn measurements(
+    grid: &QuadGrid,
+    kind: MeshKind,
+    face_normals: Option<&[DVec3]>,
+) -> (Measurements, f64) {
     let mut m = measure(grid);
     if kind != MeshKind::Conical {
         let max_error = m.max_error();
         return (m, max_error);
     }
-    let folds = conical_folds(grid, None);
+    let folds = conical_folds(grid, face_normals);
     (m.folded_faces, m.first_fold) = (folds.count(), folds.first());
     let conical = conical_error(grid);
     let max_error = m.max_error_conical(conical);
@@ -108,6 +121,19 @@ fn view<'py>(
 }
 
 impl Mesh {
+    /// Warns (`InexactWarning`) as the commands do when this mesh's measured
+    /// `max_error` exceeds `tolerance`.
+    fn warn_inexact(&self, py: Python<'_>, tolerance: f64) -> PyResult<()> {
+        warn_inexact(
+            py,
+            "the mesh",
+            (self.max_error, tolerance),
+            &self.geometry.grid().vertices,
+            self.report.folded_faces,
+            Some(self.theta_deg),
+        )
+    }
+
     /// The mesh of `kind` (§2.2, §2.3) generated from `design`, relative to
     /// `base` if given ([`BasePoint::apply`]).
     fn generate(
@@ -156,10 +182,8 @@ impl Mesh {
             Geometry::Circular(_) => MeshKind::Circular,
             Geometry::Conical(_) => MeshKind::Conical,
         };
-        let (m, max_error) = measurements(geometry.grid(), kind);
-        let report = if let Geometry::Conical(c) = &geometry {
-            with_folds(&report, &conical_folds(&c.grid, Some(&c.face_normals)))
-        } else if measured_folds {
+        let (m, max_error) = measurements(geometry.grid(), kind, geometry.face_normals());
+        let report = if measured_folds || kind == MeshKind::Conical {
             CombescureReport {
                 folded_faces: m.folded_faces,
                 first_fold: m.first_fold,
@@ -300,7 +324,7 @@ impl Mesh {
     /// offset along the node axes, for a conical mesh the face offset. Refused
     /// (`MeshError`) if its coordinates or its size (the bounding-box diagonal that
     /// `check` measures against) are not finite in f64.
-    fn offset(&self, d: f64) -> PyResult<Mesh> {
+    fn offset(&self, py: Python<'_>, d: f64) -> PyResult<Mesh> {
         if !d.is_finite() {
             return Err(DesignError::new_err(format!(
                 "offset distance {d}: give a finite distance"
@@ -311,14 +335,16 @@ impl Mesh {
             Geometry::Conical(c) => Geometry::Conical(face_offset(c, d)),
         };
         check_offset(self.geometry.grid(), geometry.grid(), d)?;
-        Ok(Mesh::new(
+        let mesh = Mesh::new(
             geometry,
             self.theta_deg,
             self.mode,
             self.report,
             (self.offset + d, self.base_point),
             true,
-        ))
+        );
+        mesh.warn_inexact(py, Tolerances::default().planarity)?;
+        Ok(mesh)
     }
 
     fn __repr__(&self) -> String {
@@ -395,9 +421,11 @@ pub fn generate(
 ) -> PyResult<Mesh> {
     let kind = parse_kind(kind, design.inner.mesh)?;
     let design = design.clone();
+    let tolerance = design.inner.tolerance.unwrap_or_default().planarity;
     let options = GenerateOptions { max_vertices };
     let mesh = py.detach(move || Mesh::generate(&design, kind, &options, base_point))?;
     warn_far_from_origin(py, &mesh.geometry.grid().vertices)?;
+    mesh.warn_inexact(py, tolerance)?;
     Ok(mesh)
 }
 

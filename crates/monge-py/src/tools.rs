@@ -30,8 +30,8 @@ use pythonize::pythonize;
 use crate::args;
 use crate::design::{json_to_python, kind_name, parse_dict, parse_kind, Design};
 use crate::errors::{
-    generate_error, io_error, py_float, text, warn_far_from_origin, FabricationError, MeshError,
-    OptimiseError, ScanError, SmoothError,
+    generate_error, io_error, py_float, text, warn_far_from_origin, warn_inexact, FabricationError,
+    MeshError, OptimiseError, ScanError, SmoothError,
 };
 use crate::mesh::{measurements, Geometry, Mesh};
 
@@ -181,7 +181,10 @@ pub fn check<'py>(
     let kind = parse_kind(kind, default)?;
     let grid = grid_of(vertices, normals)?;
     measurable(&grid).map_err(|e| MeshError::new_err(e.to_string()))?;
-    let (m, max_error) = measurements(&grid, kind);
+    // A conical Mesh's folds about its face normals, as its report counts them.
+    let mesh = vertices.cast::<Mesh>().ok();
+    let face_normals = mesh.as_ref().and_then(|m| m.get().geometry.face_normals());
+    let (m, max_error) = measurements(&grid, kind, face_normals);
     let d = pythonize(py, &m)?.cast_into::<PyDict>()?;
     if kind == MeshKind::Conical {
         let conical = d.get_item("circularity")?;
@@ -271,10 +274,11 @@ pub fn smooth<'py>(
         &format!("lower samples (K × K points a patch) or {coarser}"),
         SmoothError::new_err,
     )?;
-    let (grid, context) =
+    // A design's mesh, its θ and tolerance (a Mesh was measured when generated).
+    let (grid, context, generated) =
         match (&mesh, &design) {
             (Some(m), _) => match &m.get().geometry {
-                Geometry::Circular(g) => (g.clone(), None),
+                Geometry::Circular(g) => (g.clone(), None, None),
                 Geometry::Conical(_) => return Err(SmoothError::new_err(
                     "a cyclidic net (§4.4) is built on a circular mesh with node axes, not on a \
                      conical mesh: pass the design, or generate(design, kind=\"circular\")",
@@ -285,7 +289,12 @@ pub fn smooth<'py>(
                 let g = py
                     .detach(|| generate(inner, &GenerateOptions::default()))
                     .map_err(|e| generate_error(d.context(), &e))?;
-                (g.grid, d.source.clone())
+                let tolerance = inner.tolerance.unwrap_or_default().planarity;
+                (
+                    g.grid,
+                    d.source.clone(),
+                    Some((g.info.theta_deg, tolerance)),
+                )
             }
             (None, None) => unreachable!("either a Mesh or a Design"),
         };
@@ -299,6 +308,17 @@ pub fn smooth<'py>(
             let context = context.map(|c| format!("{c}: the cyclidic net"));
             SmoothError::new_err(text(context.as_deref(), e))
         })?;
+    if let Some((theta, tolerance)) = generated {
+        // As `monge smooth`: the net is as exact as the mesh under it.
+        warn_inexact(
+            py,
+            "the mesh under the net",
+            (measurements(&grid, MeshKind::Circular, None).1, tolerance),
+            &grid.vertices,
+            net.folded().len(),
+            Some(theta),
+        )?;
+    }
     // The patches written straight into the array returned (no copy of it held).
     let (fr, fc, k) = (net.rows() - 1, net.cols() - 1, samples);
     let patches = PyArrayDyn::<f64>::zeros(py, IxDyn(&[fr, fc, k, k, 3]), false);
@@ -736,7 +756,7 @@ pub fn approximate<'py>(
     };
     d.set_item("kind", kind_name(kind))?;
     d.set_item("normals", normals)?;
-    d.set_item("max_error", measurements(g, kind).1)?;
+    d.set_item("max_error", measurements(g, kind, None).1)?;
     d.set_item("before", pythonize(py, &r.before)?)?;
     d.set_item("after", pythonize(py, &r.after)?)?;
     d.set_item("evaluations", r.evaluations)?;

@@ -329,11 +329,15 @@ def test_far_from_origin_warns_as_the_command_does(tmp_path, cli):
     # 1e10 away, the mesh is generated with max_error 2e-7: it was silent.
     path = write(tmp_path, "far.json", shifted(FREEFORM, 1e10))
     design = monge.Design.from_file(path)
-    command = cli("generate", path, "-o", tmp_path / "far.obj").stderr
-    command = command.split("warning: ", 1)[1].rstrip("\n")
-    with pytest.warns(monge.FarFromOriginWarning) as w:
+    stderr = cli("generate", path, "-o", tmp_path / "far.obj").stderr
+    lines = [line.split("warning: ", 1)[1] for line in stderr.splitlines() if "warning: " in line]
+    command = next(line for line in lines if line.startswith("the coordinates"))
+    with pytest.warns(UserWarning) as all_warnings:
         mesh = monge.generate(design)
+    w = [x for x in all_warnings if x.category is monge.FarFromOriginWarning]
     assert len(w) == 1 and issubclass(monge.FarFromOriginWarning, UserWarning)
+    # the measured error over 1e-9 is told too (InexactWarning)
+    assert [x.category for x in all_warnings].count(monge.InexactWarning) == 1
     message = str(w[0].message)
     # the command's words (one function of monge-io for both)
     assert message == command
@@ -424,3 +428,68 @@ def test_to_file_into_a_missing_folder_says_so_in_pythons_words(tmp_path):
         "(e.g. os.makedirs), or give a path in a folder that exists"
     )
     assert not path.parent.exists()
+
+
+# A conical mesh whose faces turn over (4 folded faces, conical error 2.0),
+# found by a sweep of random designs: once silent in Python and in the command.
+TURNED = {
+    "theta_deg": -161.88466388622183,
+    "mesh": "conical",
+    "guide_u": {"bspline": {"degree": 3, "samples": 7, "control_points": [
+        [0, 0, 0], [1, 0, 0], [2.2330790589699796, 0, -0.5541680285794847],
+        [2.8675485424895477, 0, -2.155466699292466], [3.4849537934883603, 0, 1.7232772800102358]]}},
+    "guide_v": {"bspline": {"degree": 3, "samples": 11, "control_points": [
+        [0, 0, 0], [0, 1, 0], [-0.007441484123705624, 1.9927520724723893, -0.0996294952040866],
+        [6.193939782998956e-5, 3.0061583164315824, 0.0008292688442872063]]}},
+}
+
+
+def test_an_error_above_the_tolerance_warns_as_the_command_does(tmp_path, cli):
+    path = write(tmp_path, "turned.json", TURNED)
+    stderr = cli("generate", path, "-o", tmp_path / "m.obj").stderr
+    command = next(line for line in stderr.splitlines() if "measures an error" in line)
+    with pytest.warns(monge.InexactWarning) as w:
+        mesh = monge.generate(monge.Design.from_file(path))
+    assert issubclass(monge.InexactWarning, UserWarning)
+    message = str(w[0].message)
+    assert message.startswith("the mesh measures an error of 2.0e0 of its size")
+    assert "likely cause: its 4 folded faces" in message
+    # the command's words after the mesh's name (one function of monge-io for both)
+    assert command.split(" measures ", 1)[1] == message.split(" measures ", 1)[1]
+    assert w[0].filename == __file__
+    assert mesh.report["folded_faces"] == 4 and mesh.report["max_error"] > 1.9
+    # the conical faces turned over, measured here with numpy: the cross
+    # product of each face's diagonals against its face normal
+    v = mesh.vertices
+    d1 = v[1:, 1:] - v[:-1, :-1]
+    d2 = v[:-1, 1:] - v[1:, :-1]
+    own = np.cross(d1, d2)
+    cli("generate", path, "-o", tmp_path / "m.json")
+    data = json.loads((tmp_path / "m.json").read_text())
+    normals = np.array(data["face_normals"], dtype=float).reshape(own.shape)
+    turned = int(((own * normals).sum(axis=2) < 0).sum())
+    assert 0 < turned <= mesh.report["folded_faces"]
+    # an exact mesh: no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", monge.InexactWarning)
+        monge.generate(monge.Design.from_file(DUPIN))
+
+
+def test_smooth_refuses_the_folded_mesh_that_check_finds_folded():
+    # Dupin-family guides sampled from two arcs, θ = 30°: 144 folded faces
+    # (48 bow-ties) for generate and check; smooth once built a net over them.
+    def arc(n, angle_deg, along):
+        t = np.radians(angle_deg) * np.arange(n) / (n - 1)
+        return [along(np.sin(x), np.cos(x) - 1) for x in t]
+
+    design = monge.Design.from_dict({
+        "theta_deg": 30,
+        "guide_u": {"points": arc(25, 120, lambda s, c: [s, 0, c])},
+        "guide_v": {"points": arc(21, 300, lambda s, c: [0, s, c])},
+    })
+    mesh = monge.generate(design)
+    assert monge.check(mesh)["folded_faces"] == {"value": 144, "at": (0, 0)}
+    for source in (design, mesh):
+        with pytest.raises(monge.SmoothError, match=r"face \(0, 0\) is folded"):
+            monge.smooth(source, samples=2)
+        assert monge.smooth(source, samples=2, allow_folded=True)["patches"].shape[:2] == (24, 20)

@@ -14,7 +14,8 @@ architectural envelopes", Automation in Construction 106 (2019) 102880
 
 Every error is a ``monge.MongeError`` (``DesignError``, ``ThetaError``, ...)
 whose message is the one the ``monge`` command prints; its warnings are
-Python warnings (``monge.FarFromOriginWarning``, a ``UserWarning``). Optional modules:
+Python warnings (``monge.FarFromOriginWarning``, ``monge.InexactWarning``, both
+``UserWarning``). Optional modules:
 ``monge.rhino`` (Rhino .3dm files, needs rhino3dm) and ``monge.compas``
 (COMPAS meshes, needs compas).
 """
@@ -26,6 +27,7 @@ from ._monge import (
     FabricationError,
     FarFromOriginWarning,
     FileError,
+    InexactWarning,
     Mesh,
     MeshError,
     MongeError,
@@ -52,6 +54,7 @@ __all__ = [
     "FabricationError",
     "FarFromOriginWarning",
     "FileError",
+    "InexactWarning",
     "Mesh",
     "MeshError",
     "MongeError",

@@ -21,6 +21,7 @@ __all__ = [
     "ScanError",
     "OptimiseError",
     "FarFromOriginWarning",
+    "InexactWarning",
     "Design",
     "Mesh",
     "generate",
@@ -71,6 +72,9 @@ class OptimiseError(MongeError):
 
 class FarFromOriginWarning(UserWarning):
     """The coordinates lie so far from the origin, compared with the design's size, that their rounding as f64 numbers can put the mesh's error above 1e-9 of its size: generate with base_point="start" (coordinates relative to the guides' start point), or model the design near the origin."""
+
+class InexactWarning(UserWarning):
+    """The mesh, measured as `check` measures it, has an error above the design's tolerance (1e-9 of its size by default); the message gives the error and its likely cause (folded faces, coordinates far from the origin, θ near the singular +90°)."""
 
 @final
 class Design:
