@@ -564,7 +564,7 @@ pub const FAR_FROM_ORIGIN: f64 = 1e-9 / (ROUNDING_GAIN * f64::EPSILON);
 /// ```
 pub fn precision_cause(ratio: f64, relative: f64) -> Option<String> {
     let rounding = f64::EPSILON * ratio;
-    (relative <= ROUNDING_GAIN * rounding).then(|| {
+    rounding_explains(ratio, relative).then(|| {
         format!(
             "The guides lie {ratio:.1e} times their size from the origin, where their \
              coordinates, as f64 numbers, are rounded by up to {rounding:.1e} of their size: that \
@@ -572,6 +572,21 @@ pub fn precision_cause(ratio: f64, relative: f64) -> Option<String> {
              with the guides' start point at 0) and move the result into place afterwards"
         )
     })
+}
+
+/// Whether the rounding of coordinates `ratio` times the size from the origin
+/// ([`origin_ratio`]), ε · ratio of the size, amplified by at most
+/// [`ROUNDING_GAIN`], can explain a deviation or error of `relative` (to the
+/// size, or radians) (§5.2). The one test behind [`precision_cause`] and the
+/// causes of a measured error that front ends name.
+///
+/// ```
+/// use monge_core::grid::rounding_explains;
+/// assert!(rounding_explains(1e6, 1e-9));
+/// assert!(!rounding_explains(10.0, 1e-9));
+/// ```
+pub fn rounding_explains(ratio: f64, relative: f64) -> bool {
+    relative <= ROUNDING_GAIN * f64::EPSILON * ratio
 }
 
 /// What to do about an input refused for a deviation `relative` (to its size,

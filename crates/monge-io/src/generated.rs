@@ -9,7 +9,7 @@ use std::borrow::Cow;
 use glam::DVec3;
 use monge_core::combescure::CombescureReport;
 use monge_core::conical::{conical_dual, conical_folded_faces, conical_folds};
-use monge_core::grid::{origin_ratio, Folds, FAR_FROM_ORIGIN, ROUNDING_GAIN};
+use monge_core::grid::{origin_ratio, rounding_explains, Folds, FAR_FROM_ORIGIN, ROUNDING_GAIN};
 use monge_core::measure::{conical_error, measure};
 use monge_core::offset::{face_offset, vertex_offset};
 use monge_core::{Generated, MeshKind, Mode, QuadGrid};
@@ -73,16 +73,11 @@ pub fn near_singular(theta_deg: f64) -> bool {
     (theta_deg - SINGULAR_DEG).abs() < 1.0
 }
 
-/// From this ratio of the coordinates' distance from the origin to the model's
-/// size ([`origin_ratio`]) on, f64 rounding is a likely cause of a measured
-/// error above 1e-9 of the size (measured over random designs: such errors
-/// start at about 1.5e3).
-pub const ORIGIN_RATIO_CAUSE: f64 = 1e3;
-
 /// What every front end says when its own measurement of a mesh it wrote,
 /// `max_error` (relative to the mesh's size, as `monge check` measures it),
 /// exceeds `tolerance` (or is NaN), with the likely causes: `folded_faces`
-/// (§5.2), coordinates far from the origin ([`ORIGIN_RATIO_CAUSE`]), θ near
+/// (§5.2), coordinates far enough from the origin for their rounding to explain
+/// the error ([`rounding_explains`]), θ near
 /// the singular +90° ([`near_singular`]; `theta_deg` is `None` for a mesh
 /// without one). `None` when the error is within the tolerance. `what` names
 /// the mesh (e.g. "the mesh written to `out.obj`").
@@ -116,7 +111,7 @@ pub fn inexact(
         ));
     }
     let ratio = origin_ratio(points);
-    if ratio >= ORIGIN_RATIO_CAUSE {
+    if rounding_explains(ratio, max_error) {
         causes.push(format!(
             "its coordinates, {ratio:.1e} times its size away from the origin, where f64 numbers \
              round by {:.1e} of the size (write them relative to the guides' start: \
