@@ -329,7 +329,7 @@ pub struct Approximation {
     pub evaluations: usize,
     /// Starts run to the end.
     pub starts: usize,
-    /// Whether the deadline stopped the search early.
+    /// Whether the deadline (or [`approximate_until`]'s stop) stopped the search early.
     pub timed_out: bool,
 }
 
@@ -1321,7 +1321,8 @@ struct Search<'a> {
     /// Evaluations of the whole search (for [`Progress::budget`]).
     total: usize,
     best: f64,
-    deadline: Option<Instant>,
+    /// Whether to stop now (the deadline, or the caller's own stop).
+    stop: &'a (dyn Fn() -> bool + Sync),
     timed_out: bool,
 }
 
@@ -1340,7 +1341,7 @@ fn bounds(x0: &[f64], size: f64) -> (Vec<f64>, Vec<f64>) {
 }
 
 impl Search<'_> {
-    /// A search with the same target, settings and deadline, and its own counts.
+    /// A search with the same target, settings and stop, and its own counts.
     fn fork(&self) -> Self {
         Search {
             target: self.target,
@@ -1350,7 +1351,7 @@ impl Search<'_> {
             budget: self.budget,
             total: self.total,
             best: f64::INFINITY,
-            deadline: self.deadline,
+            stop: self.stop,
             timed_out: false,
         }
     }
@@ -1365,9 +1366,9 @@ impl Search<'_> {
     }
 
     /// Objective at `x` (real units) from `start` on a grid of `faces`, or NaN when
-    /// infeasible (or past the deadline).
+    /// infeasible (or once stopped).
     fn objective(&mut self, start: &Start, x: &[f64], faces: (usize, usize)) -> f64 {
-        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+        if (self.stop)() {
             self.timed_out = true;
             return f64::NAN;
         }
@@ -1532,6 +1533,20 @@ pub fn approximate(
     options: &ApproxOptions,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<Approximation, ApproxError> {
+    approximate_until(points, options, &|| false, progress)
+}
+
+/// [`approximate`], stopped as by its deadline the first time `stop` returns true
+/// (checked before every mesh generated, from the threads of the parallel starts too):
+/// a caller's own limit (a cancel button, a budget). The result is the best design
+/// found so far, with [`Approximation::timed_out`] set, or [`ApproxError::TimeLimit`]
+/// when no design had been generated yet.
+pub fn approximate_until(
+    points: &[DVec3],
+    options: &ApproxOptions,
+    stop: &(dyn Fn() -> bool + Sync),
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<Approximation, ApproxError> {
     let (fu, fv) = options.faces;
     if fu < 4 || fv < 4 {
         return Err(ApproxError::GridTooSmall(fu, fv));
@@ -1559,7 +1574,7 @@ pub fn approximate(
         budget,
         total: guesses.len() * 34 + (starts_wanted + 1) * budget,
         best: f64::INFINITY,
-        deadline: options.deadline,
+        stop: &|| options.deadline.is_some_and(|d| Instant::now() >= d) || stop(),
         timed_out: false,
     };
     // θ from a scan every 10° (§4.3) at each corner; the best few as starts.

@@ -4,10 +4,13 @@
 //! error; every deviation measured independently by brute force (every triangle of the
 //! mesh, another point-triangle formula, not the library's spatial index).
 
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use glam::DVec3;
-use monge_core::approximate::{approximate, ApproxError, ApproxOptions, TargetCloud};
+use monge_core::approximate::{
+    approximate, approximate_until, ApproxError, ApproxOptions, Approximation, TargetCloud,
+};
 use monge_core::measure::measure;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 
@@ -100,9 +103,10 @@ fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
     )
 }
 
-/// The roof at 30 × 30 faces, its size, and its vertices noised by 1e-4 of it.
-fn noised_roof() -> (QuadGrid, f64, Vec<DVec3>) {
-    let fine = generate(&roof(31), &GenerateOptions::default())
+/// The roof at `samples` × `samples` vertices, its size, and its vertices noised by 1e-4
+/// of it.
+fn noised_roof(samples: usize) -> (QuadGrid, f64, Vec<DVec3>) {
+    let fine = generate(&roof(samples), &GenerateOptions::default())
         .unwrap()
         .grid;
     let size = fine.bbox_diagonal();
@@ -130,7 +134,7 @@ fn quick(faces: usize) -> ApproxOptions {
 
 #[test]
 fn a_noised_surface_with_planar_curvature_lines_is_recovered() {
-    let (_, size, target) = noised_roof();
+    let (_, size, target) = noised_roof(31);
     let r = approximate(&target, &quick(10), &mut |_| {}).unwrap();
     // Independent: both ways against the exact surface the target was sampled from, as
     // meshes of 40 × 40 faces (the result's design regenerated finer, so that the
@@ -383,7 +387,7 @@ fn to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
 
 #[test]
 fn keep_boundary_keeps_the_targets_boundary_curves_as_guides() {
-    let (fine, size, target) = noised_roof();
+    let (fine, size, target) = noised_roof(31);
     let options = ApproxOptions {
         keep_boundary: true,
         ..quick(10)
@@ -486,25 +490,56 @@ fn patches_follow_a_target_at_least_as_closely_and_stay_exact() {
 
 #[test]
 fn a_time_limit_keeps_the_best_design_found_so_far() {
-    let (_, _, target) = noised_roof();
-    // However fast the machine, one of these ends during the search, after the scan.
-    let mut stopped = 0;
-    for seconds in [0.5, 1.0, 2.0] {
-        let options = ApproxOptions {
-            deadline: Some(Instant::now() + std::time::Duration::from_secs_f64(seconds)),
-            ..quick(10)
-        };
-        match approximate(&target, &options, &mut |_| {}) {
-            Ok(r) => {
-                stopped += usize::from(r.timed_out);
-                assert!(measure(&r.grid).max_error() <= 1e-9);
-                assert!(r.after.mesh_to_target_rms.is_finite(), "{:?}", r.after);
-            }
-            Err(e) => assert_eq!(e, ApproxError::TimeLimit),
+    // The limit is reached after a given number of meshes, not after a time: the same
+    // stop whatever the machine's speed. One start: one order of the meshes.
+    let (_, _, target) = noised_roof(16);
+    let options = ApproxOptions {
+        starts: 1,
+        max_evaluations: 60,
+        ..quick(8)
+    };
+    let objective =
+        |r: &Approximation| r.after.mesh_to_target_rms.powi(2) + r.after.beyond_mesh_rms.powi(2);
+    let stopped_after = |meshes: usize| {
+        let asked = AtomicUsize::new(0);
+        let stop = || asked.fetch_add(1, Ordering::Relaxed) >= meshes;
+        approximate_until(&target, &options, &stop, &mut |_| {})
+    };
+    // Unstopped: the meshes of the scan and the coarse start (counted at the first
+    // progress), then those of the refinement.
+    let mut first_progress = None;
+    let full = approximate_until(&target, &options, &|| false, &mut |p| {
+        first_progress.get_or_insert(p.evaluations);
+    })
+    .unwrap();
+    let refinement_from = first_progress.unwrap();
+    assert!(!full.timed_out && full.starts == 1);
+    assert!(refinement_from < full.evaluations);
+    // Before any mesh: nothing to keep.
+    assert_eq!(stopped_after(0).unwrap_err(), ApproxError::TimeLimit);
+    // During the scan, the start; during the coarse search, its best so far; during
+    // the refinement, its best so far. Each exact, and never worse than an earlier stop.
+    let mut previous = f64::INFINITY;
+    for meshes in [
+        refinement_from / 4,
+        refinement_from + 1,
+        (refinement_from + full.evaluations) / 2,
+    ] {
+        let r = stopped_after(meshes).unwrap();
+        assert!(r.timed_out, "stopped after {meshes} meshes");
+        assert_eq!(r.evaluations, meshes);
+        assert_eq!(r.starts, usize::from(meshes > refinement_from));
+        let error = measure(&r.grid).max_error();
+        assert!(error <= 1e-9, "{error:e} after {meshes} meshes");
+        let f = objective(&r);
+        assert!(f.is_finite(), "{:?}", r.after);
+        if meshes > refinement_from {
+            assert!(
+                f <= previous,
+                "{f:e} after {meshes} meshes, {previous:e} before"
+            );
+            previous = f;
         }
     }
-    assert!(
-        stopped >= 1,
-        "no run was stopped by its time limit with a design"
-    );
+    assert!(objective(&full) <= previous);
 }

@@ -4,7 +4,6 @@
 //! never a panic.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::time::Instant;
 
 use glam::{DQuat, DVec3};
 use monge_core::design::{ArcSpec, BSplineSpec, ParabolaSpec};
@@ -76,7 +75,8 @@ fn assert_mentions(message: &str, parts: &[&str]) {
 
 #[test]
 fn grid_too_large_is_refused_before_sampling() {
-    // 10⁹ × 10⁹ samples: sampling would take hours and 48 EB; refusing is instant.
+    // 10⁹ × 10⁹ samples: sampling would take hours and 48 EB (the test would not end,
+    // or abort on the allocation); the refusal comes first.
     let huge = Design {
         mesh: Default::default(),
         theta_deg: 30.0,
@@ -85,7 +85,6 @@ fn grid_too_large_is_refused_before_sampling() {
         tolerance: None,
     };
     let small = GenerateOptions { max_vertices: 1000 };
-    let t = Instant::now();
     let e = refused(&huge, &small);
     assert_eq!(
         e,
@@ -131,11 +130,6 @@ fn grid_too_large_is_refused_before_sampling() {
         ..huge
     };
     assert!(generate(&at_limit, &small).is_ok());
-    assert!(
-        t.elapsed().as_secs_f64() < 10.0,
-        "took {:?}: the grid was sampled",
-        t.elapsed()
-    );
 }
 
 #[test]

@@ -334,10 +334,12 @@ fn a_failing_writer_stops_a_large_write() {
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
 }
 
-/// Run with `cargo test --release -p monge-io -- --ignored` (debug builds are slower).
+/// The time to write a 1001 × 1001 grid in every format (well under a second in a
+/// release build), reported, not asserted: a test never depends on the machine's speed.
+/// Run with `cargo test --release -p monge-io -- --ignored --nocapture`.
 #[test]
 #[ignore]
-fn writes_a_1001_by_1001_grid_in_well_under_a_second() {
+fn reports_the_time_to_write_a_1001_by_1001_grid() {
     // A smooth surface of architectural size, with normals.
     let n = 1001;
     let (mut vertices, mut normals) = (Vec::new(), Vec::new());
@@ -370,7 +372,6 @@ fn writes_a_1001_by_1001_grid_in_well_under_a_second() {
             size / 1_000_000
         )
         .unwrap();
-        assert!(elapsed.as_secs_f64() < 1.0, "{format:?} took {elapsed:?}");
     }
 }
 
