@@ -155,10 +155,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         None => None,
     };
     let points = read_points(&args.target)?;
-    let kind = match args.kind {
-        KindArg::Circular => MeshKind::Circular,
-        KindArg::Conical => MeshKind::Conical,
-    };
+    let kind = MeshKind::from(args.kind);
     let options = ApproxOptions {
         faces: args.grid,
         kind,

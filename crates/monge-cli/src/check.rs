@@ -3,10 +3,14 @@
 use std::io;
 
 use anyhow::{bail, Context};
+use glam::DVec3;
 use monge_core::conical::conical_folds;
 use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
 use monge_core::QuadGrid;
-use monge_io::{is_stdio, read_face_normals, read_mesh, read_mesh_from, MeshFormat};
+use monge_io::{
+    is_stdio, read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from,
+    MeshFormat,
+};
 use serde_json::{json, Map, Value};
 
 use crate::cli::{CheckArgs, KindArg};
@@ -16,10 +20,10 @@ use crate::Outcome;
 /// Runs `monge check`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let path = args.mesh.as_path();
-    let grid = match (is_stdio(path), args.format) {
-        (true, Some(f)) => read_mesh_from(io::stdin().lock(), MeshFormat::from(f))?,
+    let (grid, named_kind) = match (is_stdio(path), args.format) {
+        (true, Some(f)) => read_mesh_and_kind_from(io::stdin().lock(), MeshFormat::from(f))?,
         (true, None) => bail!("`-` (standard input) needs --format obj, ply or json"),
-        (false, None) => read_mesh(path)?,
+        (false, None) => read_mesh_and_kind(path)?,
         (false, Some(_)) => bail!(
             "--format is only for `-` (standard input); `{}` is read in the format of its extension",
             path.display()
@@ -31,23 +35,18 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         path.display().to_string()
     };
     measurable(&grid).with_context(|| name.clone())?;
-    let mut m = measure(&grid);
-    let conical = match args.kind {
-        KindArg::Conical => {
-            // A conical mesh's folds: its faces turned over against their
-            // normals when the file gives them, else against the vertex cones.
-            let normals = if is_stdio(path) {
-                None
-            } else {
-                read_face_normals(path, &grid)?
-            };
-            let folds = conical_folds(&grid, normals.as_deref());
-            (m.folded_faces, m.first_fold) = (folds.count(), folds.first());
-            conical_error(&grid)
-        }
-        KindArg::Circular => None,
+    let m = measure(&grid);
+    // Said on the command line, else by the file, else circular.
+    let named_kind = named_kind.map(KindArg::from);
+    let kind = args.kind.or(named_kind).unwrap_or(KindArg::Circular);
+    // A conical mesh's faces are turned over against their normals when the
+    // file gives them, else against the vertex cones.
+    let face_normals = if is_stdio(path) {
+        None
+    } else {
+        read_face_normals(path, &grid)?
     };
-    let mut metrics = metrics(&m, args.kind, conical);
+    let mut metrics = metrics_of(&grid, &m, kind, face_normals.as_deref());
     if let Some(base) = &args.offset_from {
         let base = read_mesh(base)?;
         if (base.rows, base.cols) != (grid.rows, grid.cols) {
@@ -60,29 +59,41 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
                 base.cols
             );
         }
-        metrics.push(offset_metric(&base, &grid, args.kind, m.scale));
+        // Before the folded faces.
+        metrics.insert(
+            metrics.len() - 1,
+            offset_metric(&base, &grid, kind, m.scale),
+        );
     }
-    metrics.push(Metric {
-        key: "folded_faces",
-        label: "folded faces",
-        element: "first face",
-        worst: Worst {
-            value: m.folded_faces as f64,
-            at: m.first_fold.unwrap_or((0, 0)),
-        },
-        count: true,
-    });
     let pass = metrics.iter().all(|r| r.passes(args.tol));
     let text = if args.json {
         format!(
             "{}\n",
-            json_report(&name, &grid, &m, &metrics, args.tol, pass)
+            json_report(&name, &grid, &m, kind, &metrics, args.tol, pass)
         )
     } else {
-        text_report(&name, &grid, &m, &metrics, args.tol, pass)
+        text_report(&name, &grid, &m, kind, &metrics, args.tol, pass)
     };
     print(&text)?;
     eprint(&far_from_origin_warning(&grid.vertices).unwrap_or_default());
+    // Failed as circular for want of saying what it is: perhaps a conical mesh.
+    let circularity_failed = metrics
+        .iter()
+        .any(|r| r.key == "circularity" && !r.passes(args.tol));
+    if circularity_failed && args.kind.is_none() && named_kind.is_none() {
+        let as_conical = metrics_of(&grid, &m, KindArg::Conical, face_normals.as_deref());
+        eprint(&if as_conical.iter().all(|r| r.passes(args.tol)) {
+            format!(
+                "note: `{name}` fails as a circular mesh but passes as a conical one (§2.3): \
+                 check it with --kind conical\n"
+            )
+        } else {
+            format!(
+                "note: `{name}` was measured as a circular mesh (§2.2); a conical mesh (§2.3) \
+                 is checked with --kind conical\n"
+            )
+        });
+    }
     Ok(if pass {
         Outcome::Success
     } else {
@@ -111,10 +122,40 @@ impl Metric {
     }
 }
 
-/// The metrics of `m` for a mesh of `kind`, in print order: for a circular mesh
-/// torsion and normal length only with normals (§2.2); for a conical mesh the
-/// conical condition instead of circularity (§2.3).
-fn metrics(m: &Measurements, kind: KindArg, conical: Option<Worst>) -> Vec<Metric> {
+/// Every metric of `grid` (measured as `m`) as a mesh of `kind` but an offset's:
+/// [`metrics`], then the folded faces (§5.2): a conical mesh's about its
+/// `face_normals` if given, else about its vertex cones ([`conical_folds`]).
+fn metrics_of(
+    grid: &QuadGrid,
+    m: &Measurements,
+    kind: KindArg,
+    face_normals: Option<&[DVec3]>,
+) -> Vec<Metric> {
+    let mut v = metrics(grid, m, kind);
+    let (folded, first) = match kind {
+        KindArg::Circular => (m.folded_faces, m.first_fold),
+        KindArg::Conical => {
+            let folds = conical_folds(grid, face_normals);
+            (folds.count(), folds.first())
+        }
+    };
+    v.push(Metric {
+        key: "folded_faces",
+        label: "folded faces",
+        element: "first face",
+        worst: Worst {
+            value: folded as f64,
+            at: first.unwrap_or((0, 0)),
+        },
+        count: true,
+    });
+    v
+}
+
+/// The metrics of `grid` (measured as `m`) for a mesh of `kind`, in print order: for
+/// a circular mesh torsion and normal length only with normals (§2.2); for a conical
+/// mesh the conical condition instead of circularity (§2.3).
+fn metrics(grid: &QuadGrid, m: &Measurements, kind: KindArg) -> Vec<Metric> {
     let metric = |key, label, element, worst| Metric {
         key,
         label,
@@ -131,7 +172,7 @@ fn metrics(m: &Measurements, kind: KindArg, conical: Option<Worst>) -> Vec<Metri
     match kind {
         KindArg::Circular => v.push(metric("circularity", "circularity", "face", m.circularity)),
         KindArg::Conical => {
-            if let Some(c) = conical {
+            if let Some(c) = conical_error(grid) {
                 v.push(metric("conical", "conical vertices", "vertex", c));
             }
         }
@@ -219,6 +260,11 @@ fn offset_metric(base: &QuadGrid, grid: &QuadGrid, kind: KindArg, scale: f64) ->
     }
 }
 
+/// `"circular"` or `"conical"`, as a JSON mesh names its kind.
+fn kind_name(kind: KindArg) -> &'static str {
+    monge_io::generated::kind_name(kind.into())
+}
+
 /// `value ≤ tol`; NaN fails.
 fn passes(value: f64, tol: f64) -> bool {
     value <= tol
@@ -238,12 +284,13 @@ fn text_report(
     name: &str,
     grid: &QuadGrid,
     m: &Measurements,
+    kind: KindArg,
     metrics: &[Metric],
     tol: f64,
     pass: bool,
 ) -> String {
     let mut s = format!(
-        "{name}: {} × {} vertices, {} faces, {}\n\
+        "{name}: {} × {} vertices, {} faces, {}, measured as a {} mesh\n\
          lengths and torsion relative to the bounding-box diagonal {}; normal length is dimensionless\n",
         grid.rows,
         grid.cols,
@@ -253,6 +300,7 @@ fn text_report(
         } else {
             "with normals"
         },
+        kind_name(kind),
         num(m.scale)
     );
     for r in metrics {
@@ -286,6 +334,7 @@ fn json_report(
     name: &str,
     grid: &QuadGrid,
     m: &Measurements,
+    kind: KindArg,
     metrics: &[Metric],
     tol: f64,
     pass: bool,
@@ -312,6 +361,7 @@ fn json_report(
         "cols": grid.cols,
         "faces": grid.face_count(),
         "normals": !grid.normals.is_empty(),
+        "kind": kind_name(kind),
         "scale": m.scale,
         "tol": tol,
         "max_error": largest(metrics.iter().filter(|r| !r.count).map(|r| r.worst.value)),

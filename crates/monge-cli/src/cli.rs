@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand, ValueEnum};
 use monge_core::cyclidic::CyclidicOptions;
-use monge_core::{BasePoint, GenerateOptions};
+use monge_core::{BasePoint, GenerateOptions, MeshKind};
 use monge_io::{is_stdio, MeshFormat};
 use monge_render::MAX_SIDE;
 
@@ -112,7 +112,9 @@ pub enum Command {
              column planarity (distance of a vertex from the best-fit plane of its curvature \
              line), all relative to the bounding-box diagonal; and, when the mesh has normals, \
              torsion (|det(edge, n_p, n_q)| over edges, also relative to the diagonal: 0 when the \
-             node axes at both ends of every edge are coplanar) and normal length (| |n| − 1 |)."
+             node axes at both ends of every edge are coplanar) and normal length (| |n| − 1 |). \
+             A conical mesh (--kind conical; by default the `kind` a JSON mesh names) has the \
+             conical condition at every vertex instead of circularity, torsion and normal length."
         ),
         after_help = format!(
             "Examples:\n  \
@@ -527,6 +529,24 @@ pub enum KindArg {
     Conical,
 }
 
+impl From<MeshKind> for KindArg {
+    fn from(kind: MeshKind) -> Self {
+        match kind {
+            MeshKind::Circular => KindArg::Circular,
+            MeshKind::Conical => KindArg::Conical,
+        }
+    }
+}
+
+impl From<KindArg> for MeshKind {
+    fn from(kind: KindArg) -> Self {
+        match kind {
+            KindArg::Circular => MeshKind::Circular,
+            KindArg::Conical => MeshKind::Conical,
+        }
+    }
+}
+
 /// Arguments of `monge check`.
 #[derive(Debug, clap::Args)]
 pub struct CheckArgs {
@@ -548,9 +568,10 @@ pub struct CheckArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
-    /// What MESH is: which properties to measure.
-    #[arg(long, value_enum, default_value = "circular")]
-    pub kind: KindArg,
+    /// What MESH is: which properties to measure (default: the `kind` a JSON mesh
+    /// written by monge names, else circular).
+    #[arg(long, value_enum)]
+    pub kind: Option<KindArg>,
     /// MESH is an offset of BASE (same grid): also measure how far the offset distance varies
     /// (vertex distances for a circular mesh, face-plane distances for a conical one).
     #[arg(long, value_name = "BASE")]

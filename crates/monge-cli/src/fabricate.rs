@@ -9,7 +9,7 @@ use monge_core::conical::{conical_dual, conical_folds};
 use monge_core::fabrication::{fabricate, BaseMesh, FabricationOptions, Summary};
 use monge_core::{generate, BasePoint, GenerateOptions, MeshKind};
 use monge_io::generated::{max_error, with_folds};
-use monge_io::{check_output, read_design, write_fabrication, ScheduleJson, FABRICATION_FILES};
+use monge_io::{check_fabrication_output, read_design, write_fabrication, ScheduleJson};
 
 use crate::generate::generation_warnings;
 use crate::output::{
@@ -23,7 +23,8 @@ pub struct FabricateArgs {
     /// The design file (`.json` or `.toml`); `"mesh": "conical"` fabricates the conical dual.
     #[arg(value_name = "DESIGN")]
     pub design: PathBuf,
-    /// Output directory (created if missing); existing files of the same names are replaced.
+    /// Output directory (created if missing, in a directory that exists); existing files of the
+    /// same names are replaced.
     #[arg(short, long, value_name = "DIR")]
     pub output: PathBuf,
     /// Comma-separated layer distances along the node axes (node offsets §2.2; face offsets
@@ -97,11 +98,7 @@ pub fn run(args: &FabricateArgs) -> anyhow::Result<Outcome> {
         "fabricate writes a directory of nine files: give a directory for -o, not `-`"
     );
     // The files go into OUT: none of them may be the design.
-    if args.output.is_dir() {
-        for name in FABRICATION_FILES {
-            check_output(&args.output.join(name), &[&args.design])?;
-        }
-    }
+    check_fabrication_output(&args.output, &[&args.design])?;
     let (design, base_point) = match &args.base_point {
         Some(b) => b.apply(read_design(&args.design)?),
         None => (read_design(&args.design)?, None),

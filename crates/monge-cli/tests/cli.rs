@@ -1638,4 +1638,84 @@ fn a_measured_error_above_the_tolerance_is_never_silent() {
         .assert()
         .success()
         .stderr(predicate::str::contains("measures an error").not());
+
+/// A conical mesh checked without --kind: a JSON mesh says its kind and is measured as
+/// it says; an OBJ cannot say, and its failure as a circular mesh names the flag (that
+/// it passes as conical when it does). The truth: the generator's conical dual.
+#[test]
+fn check_takes_a_json_mesh_s_kind_and_suggests_kind_conical_otherwise() {
+    let dir = TempDir::new().unwrap();
+    let (json, obj) = (dir.path().join("c.json"), dir.path().join("c.obj"));
+    for out in [&json, &obj] {
+        monge()
+            .arg("generate")
+            .arg(example("fig13-conical.json"))
+            .arg("-o")
+            .arg(out)
+            .assert()
+            .success();
+    }
+    assert_eq!(read_json(&json)["kind"], "conical");
+    let (code, v) = check_json(&json, &[]);
+    assert_eq!(code, Some(0), "{v}");
+    assert_eq!(v["kind"], "conical");
+    assert!(v["metrics"]["conical"]["pass"].as_bool().unwrap(), "{v}");
+    assert!(v["metrics"].get("circularity").is_none(), "{v}");
+    monge()
+        .arg("check")
+        .arg(&json)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("measured as a conical mesh"))
+        .stderr(predicate::str::is_empty());
+    // Said on the command line, the kind is the user's: no note.
+    monge()
+        .arg("check")
+        .arg(&json)
+        .args(["--kind", "circular"])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::is_empty());
+    // The OBJ: measured as circular, fails, and the note says what to do.
+    monge()
+        .arg("check")
+        .arg(&obj)
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains("measured as a circular mesh"))
+        .stderr(predicate::eq(format!(
+            "note: `{}` fails as a circular mesh but passes as a conical one (§2.3): check it \
+             with --kind conical\n",
+            obj.display()
+        )));
+    monge()
+        .arg("check")
+        .arg(&obj)
+        .args(["--kind", "conical"])
+        .assert()
+        .success();
+    // Neither circular nor conical (one vertex moved off its face's circle and plane):
+    // the note only names the flag.
+    let text = fs::read_to_string(&obj).unwrap();
+    let first = text.find("\nv ").unwrap() + 1;
+    let end = first + text[first..].find('\n').unwrap();
+    let moved = format!("{}v 0.5 0.25 0.125{}", &text[..first], &text[end..]);
+    let bent = dir.path().join("bent.obj");
+    fs::write(&bent, moved).unwrap();
+    monge()
+        .arg("check")
+        .arg(&bent)
+        .assert()
+        .code(1)
+        .stderr(predicate::eq(format!(
+            "note: `{}` was measured as a circular mesh (§2.2); a conical mesh (§2.3) is \
+             checked with --kind conical\n",
+            bent.display()
+        )));
+    monge()
+        .arg("check")
+        .arg(&bent)
+        .args(["--kind", "conical"])
+        .assert()
+        .code(1);
 }

@@ -126,15 +126,6 @@ fn bad_arguments_exit_with_status_2() {
     run(&["--layers", "0,nan"]).stderr(predicate::str::contains("not a finite number"));
     run(&["--section", "0.1"]).stderr(predicate::str::contains("WIDTH,DEPTH"));
     run(&["--tol", "-1"]).stderr(predicate::str::contains("non-negative"));
-    // An output "directory" that is a file.
-    let file = dir.path().join("file");
-    std::fs::write(&file, "x").unwrap();
-    monge()
-        .args(["fabricate", design.to_str().unwrap(), "-o"])
-        .arg(&file)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("cannot write"));
     // A layer distance that collapses the mesh is a fabrication error.
     monge()
         .args(["fabricate", design.to_str().unwrap(), "-o"])
@@ -213,4 +204,26 @@ fn fabricate_refuses_standard_output() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("give a directory for -o"));
+}
+
+/// An OUT that is a file: said plainly (it once read only "File exists (os error 17)",
+/// after all the work), the file untouched, nothing else written.
+#[test]
+fn fabricate_into_a_file_says_what_exists_and_what_to_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("fab");
+    std::fs::write(&file, "mine").unwrap();
+    monge()
+        .current_dir(dir.path())
+        .arg("fabricate")
+        .arg(example("fig25-biarc.json"))
+        .args(["-o", "fab"])
+        .assert()
+        .code(2)
+        .stderr(predicate::eq(
+            "error: `fab` exists and is not a directory: the output is a directory of files; \
+             give -o a new or existing directory (or remove `fab` first)\n",
+        ));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }

@@ -270,3 +270,22 @@ fn standard_output_full_or_closed_is_a_clear_error() {
     );
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// A directory that `monge fabricate` made for its files is removed when they cannot be
+/// written: nothing is left.
+#[test]
+fn a_file_size_limit_leaves_no_fabrication_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fab");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_monge"));
+    cmd.arg("fabricate")
+        .arg(common::example("fig25-biarc.json"))
+        .arg("-o")
+        .arg(&out);
+    let output = with_file_size_limit(&mut cmd, 1024).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("refused to write more"), "{stderr}");
+    assert!(!out.exists(), "the directory made for the files is left");
+    assert!(listing(dir.path()).is_empty());
+}

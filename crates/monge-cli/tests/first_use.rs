@@ -73,7 +73,16 @@ fn run_with_output(dir: &Path, args: &[String], out: &str) -> assert_cmd::assert
 #[test]
 fn every_command_refuses_a_missing_output_directory_plainly() {
     let dir = TempDir::new().unwrap();
-    for (name, args) in writers() {
+    // fabricate's OUT is a directory: it makes that one, not the directories above it.
+    let fabricate = [
+        "fabricate",
+        example("fig13-freeform.json").to_str().unwrap(),
+        "-o",
+        "OUT",
+    ]
+    .map(str::to_owned)
+    .to_vec();
+    for (name, args) in writers().into_iter().chain([("fabricate", fabricate)]) {
         let out = args.iter().find(|a| a.starts_with("OUT")).unwrap();
         let path = out.replace("OUT", "missing/x");
         let expected = format!(

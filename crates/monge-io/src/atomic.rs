@@ -385,7 +385,7 @@ impl Staged {
 
 /// The directory of `path` (`.` for a bare file name), or
 /// [`IoError::NoDirectory`] if it does not exist.
-fn existing_directory(path: &Path) -> Result<&Path, IoError> {
+pub(crate) fn existing_directory(path: &Path) -> Result<&Path, IoError> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),

@@ -84,6 +84,18 @@ pub enum IoError {
         dir: PathBuf,
     },
 
+    /// An output directory's path is a file.
+    #[error(
+        "`{}` exists and is not a directory: the output is a directory of files; give -o a \
+         new or existing directory (or remove `{}` first)",
+        path.display(),
+        path.display()
+    )]
+    NotADirectory {
+        /// The output directory, as given.
+        path: PathBuf,
+    },
+
     /// An output path is one of the command's input files.
     #[error(
         "`{}` is an input of this command and cannot also be its output: choose another -o \

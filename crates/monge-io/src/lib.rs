@@ -54,11 +54,13 @@ pub use design::{
 };
 pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
-pub use fabrication::{write_fabrication, FABRICATION_FILES};
+pub use fabrication::{check_fabrication_output, write_fabrication, FABRICATION_FILES};
 pub use gltf::{write_glb, write_grid_glb, write_quads_glb};
 pub use iges::{read_iges_surfaces, write_iges, IgesSurface, NurbsColumn, NurbsColumns};
 pub use kind::FileKind;
-pub use mesh_read::{read_face_normals, read_mesh, read_mesh_from};
+pub use mesh_read::{
+    read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from,
+};
 pub use mesh_write::{
     write_mesh, write_mesh_at, write_mesh_json, write_mesh_to, write_obj, write_ply,
     write_ply_binary, MeshFormat, BASE_POINT, MESH_JSON_KEYS,

@@ -7,7 +7,7 @@ use std::io::{self, BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use monge_core::QuadGrid;
+use monge_core::{MeshKind, QuadGrid};
 use serde::Deserialize;
 
 use crate::design::{parse_as, DesignFormat};
@@ -34,6 +34,22 @@ use crate::path_name;
 /// OBJ and PLY are parsed line by line (record by record) from a buffered
 /// reader, so memory holds the mesh, not the file; JSON is read whole.
 pub fn read_mesh(path: &Path) -> Result<QuadGrid, IoError> {
+    read_mesh_and_kind(path).map(|(grid, _)| grid)
+}
+
+/// [`read_mesh`], and the kind of mesh the file says it is: a JSON mesh's `kind`
+/// (`"circular"` or `"conical"`, as `monge generate` writes it); `None` for another
+/// `kind` (`"developable"`), none, or an OBJ or PLY file, which do not say.
+///
+/// ```
+/// use monge_core::MeshKind;
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("m.json");
+/// std::fs::write(&path, r#"{"rows": 1, "cols": 1, "vertices": [[0, 0, 0]], "kind": "conical"}"#).unwrap();
+/// let (grid, kind) = monge_io::read_mesh_and_kind(&path).unwrap();
+/// assert_eq!((grid.rows, kind), (1, Some(MeshKind::Conical)));
+/// ```
+pub fn read_mesh_and_kind(path: &Path) -> Result<(QuadGrid, Option<MeshKind>), IoError> {
     let format = MeshFormat::from_path(path)?;
     if format == MeshFormat::Glb {
         return Err(not_readable(&path_name(path)));
@@ -75,6 +91,15 @@ pub(crate) fn read_vertices(path: &Path, format: MeshFormat) -> Result<Vec<DVec3
 /// assert_eq!((grid.rows, grid.cols), (1, 2));
 /// ```
 pub fn read_mesh_from(reader: impl Read, format: MeshFormat) -> Result<QuadGrid, IoError> {
+    read_mesh_and_kind_from(reader, format).map(|(grid, _)| grid)
+}
+
+/// [`read_mesh_from`], and the kind of mesh the input says it is (see
+/// [`read_mesh_and_kind`]).
+pub fn read_mesh_and_kind_from(
+    reader: impl Read,
+    format: MeshFormat,
+) -> Result<(QuadGrid, Option<MeshKind>), IoError> {
     parse_mesh(
         BufReader::with_capacity(READ_BUFFER, reader),
         format,
@@ -94,13 +119,14 @@ fn read_failed(file: &str, source: io::Error) -> IoError {
     }
 }
 
-/// Reads a quad grid in `format` from `r` (`size` bytes long, when known).
+/// Reads a quad grid in `format` from `r` (`size` bytes long, when known),
+/// and the kind a JSON mesh names.
 fn parse_mesh(
     mut r: impl BufRead,
     format: MeshFormat,
     size: Option<u64>,
     file: &str,
-) -> Result<QuadGrid, IoError> {
+) -> Result<(QuadGrid, Option<MeshKind>), IoError> {
     match format {
         MeshFormat::Json => {
             let mut bytes = Vec::new();
@@ -110,9 +136,9 @@ fn parse_mesh(
                 .map_err(|e| read_failed(file, io::Error::new(io::ErrorKind::InvalidData, e)))?;
             parse_json(text, file)
         }
-        MeshFormat::Obj => parse_obj(r, file, Keep::Grid)?.into_grid(file),
+        MeshFormat::Obj => Ok((parse_obj(r, file, Keep::Grid)?.into_grid(file)?, None)),
         MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
-            parse_ply(r, file, size, Keep::Grid)?.into_grid(file)
+            Ok((parse_ply(r, file, size, Keep::Grid)?.into_grid(file)?, None))
         }
         MeshFormat::Glb => Err(not_readable(file)),
     }
@@ -181,14 +207,18 @@ struct MeshJson {
     vertices: Vec<[f64; 3]>,
     #[serde(default)]
     normals: Vec<[f64; 3]>,
+    /// Any value: only a mesh kind's name is taken.
+    #[serde(default)]
+    kind: serde_json::Value,
 }
 
-fn parse_json(text: &str, file: &str) -> Result<QuadGrid, IoError> {
+fn parse_json(text: &str, file: &str) -> Result<(QuadGrid, Option<MeshKind>), IoError> {
     expect_kind(text, DesignFormat::Json, file, &[FileKind::Mesh])?;
     let m: MeshJson = parse_as(text, DesignFormat::Json, file)?;
+    let kind = serde_json::from_value(m.kind).ok();
     let vertices = m.vertices.into_iter().map(DVec3::from_array).collect();
     let normals = m.normals.into_iter().map(DVec3::from_array).collect();
-    grid(file, m.rows, m.cols, vertices, normals)
+    Ok((grid(file, m.rows, m.cols, vertices, normals)?, kind))
 }
 
 /// The `face_normals` of a conical mesh's JSON file (§2.3, as `monge generate`

@@ -184,6 +184,7 @@ pub fn io_error(e: IoError) -> PyErr {
         | IoError::Write { .. }
         | IoError::Full { .. }
         | IoError::Changed { .. }
+        | IoError::NotADirectory { .. }
         | IoError::OutputIsInput { .. }
         | IoError::SameOutput { .. } => FileError::new_err(message),
         IoError::Syntax { .. }
