@@ -1,7 +1,10 @@
 """A Hops endpoint serving monge.generate (for Rhino 7 and 8 Grasshopper).
 
-    pip install monge[rhino] ghhops-server flask
+    pip install target/wheels/monge-*.whl rhino3dm ghhops-server flask
     python examples/grasshopper/hops_server.py          # http://127.0.0.1:5000/
+
+from the repository root, with the wheel built as README.md says (the package
+index has no `monge`).
 
 In Grasshopper, place a Hops component and set its path to
 http://127.0.0.1:5000/monge_generate: it takes two curves, θ and the number of

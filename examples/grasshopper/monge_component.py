@@ -13,8 +13,8 @@ Outputs:
     metrics  mode, admissible θ, folds and every measured error, one line each
     error    the message when the design is invalid (then the other outputs are empty)
 
-The `# r: monge` line makes Rhino 8 install the package (pip install monge:
-build the wheel and install it into Rhino's Python as README.md says). Everything
+The `# r: monge` line makes Rhino 8 find the package, once the wheel is built and
+installed into Rhino's Python as README.md says (the package index has no `monge`). Everything
 but building Rhino meshes is in monge.grasshopper, tested outside Rhino.
 """
 

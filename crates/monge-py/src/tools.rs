@@ -16,7 +16,7 @@ use monge_core::panels::{optimise_panels as core_optimise_panels, PanelOptions};
 use monge_core::scan::scan as core_scan;
 use monge_core::{generate, inspect, GenerateOptions, MeshKind, Mode, QuadGrid};
 use monge_io::{
-    conical_has_no_net, parse_multipatch, read_mesh, read_multipatch, write_schedule_json,
+    conical_has_no_net, parse_multipatch, read_mesh_and_kind, read_multipatch, write_schedule_json,
     DesignFormat, ScheduleJson,
 };
 use numpy::ndarray::IxDyn;
@@ -24,7 +24,8 @@ use numpy::{
     PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyList};
+use pyo3::exceptions::PyTypeError;
+use pyo3::types::{PyBytes, PyDict, PyList, PyString};
 use pythonize::pythonize;
 
 use crate::args;
@@ -132,12 +133,27 @@ fn grid_points(array: &Bound<'_, PyAny>, what: &str) -> PyResult<(usize, usize, 
 }
 
 /// The quad grid of a `Mesh`, a mesh file (OBJ, PLY or JSON), or arrays.
-fn grid_of(vertices: &Bound<'_, PyAny>, normals: Option<&Bound<'_, PyAny>>) -> PyResult<QuadGrid> {
+fn grid_of(
+    vertices: &Bound<'_, PyAny>,
+    normals: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(QuadGrid, Option<MeshKind>)> {
     if let Ok(mesh) = vertices.cast::<Mesh>() {
-        return Ok(mesh.get().geometry.grid().clone());
+        let kind = match mesh.get().geometry {
+            Geometry::Conical(_) => MeshKind::Conical,
+            _ => MeshKind::Circular,
+        };
+        return Ok((mesh.get().geometry.grid().clone(), Some(kind)));
     }
     if let Ok(path) = vertices.extract::<PathBuf>() {
-        return read_mesh(&path).map_err(io_error);
+        return read_mesh_and_kind(&path).map_err(io_error);
+    }
+    if let Some(n) = normals.filter(|n| n.is_instance_of::<PyString>()) {
+        return Err(PyTypeError::new_err(format!(
+            "check(vertices, normals, kind=...): normals is the string {}; give the kind by \
+             name, kind={}",
+            n.repr()?,
+            n.repr()?
+        )));
     }
     let (rows, cols, points) = grid_points(vertices, "vertices")?;
     let normals = match normals {
@@ -152,7 +168,7 @@ fn grid_of(vertices: &Bound<'_, PyAny>, normals: Option<&Bound<'_, PyAny>>) -> P
         }
         None => Vec::new(),
     };
-    Ok(QuadGrid::new(rows, cols, points, normals))
+    Ok((QuadGrid::new(rows, cols, points, normals), None))
 }
 
 /// Measures a quad mesh independently of how it was made (§2.2, §2.3), as
@@ -163,23 +179,21 @@ fn grid_of(vertices: &Bound<'_, PyAny>, normals: Option<&Bound<'_, PyAny>>) -> P
 /// (§5.2: crossed, non-convex or turned-over faces), `{"value": count, "at":
 /// first folded face or None}`, which must be 0.
 ///
-/// `vertices` is a `Mesh`, a mesh file path, or an array (rows, cols, 3).
-/// Warns (`FarFromOriginWarning`) as the command does when the mesh lies far
+/// `vertices` is a `Mesh`, a mesh file path, or an array (rows, cols, 3), with
+/// `normals` an array of the same shape (as `monge.compas.from_mesh` gives them:
+/// `check(*from_mesh(c))`). `kind` is given by name; by default a `Mesh`'s own kind, the
+/// `kind` a JSON mesh file names, else circular. Warns (`FarFromOriginWarning`) as the command does when the mesh lies far
 /// from the origin compared with its size.
 #[pyfunction]
-#[pyo3(signature = (vertices, kind = None, normals = None))]
+#[pyo3(signature = (vertices, normals = None, *, kind = None))]
 pub fn check<'py>(
     py: Python<'py>,
     vertices: &Bound<'py, PyAny>,
-    kind: Option<&str>,
     normals: Option<&Bound<'py, PyAny>>,
+    kind: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let default = match vertices.cast::<Mesh>() {
-        Ok(m) if matches!(m.get().geometry, Geometry::Conical(_)) => MeshKind::Conical,
-        _ => MeshKind::Circular,
-    };
-    let kind = parse_kind(kind, default)?;
-    let grid = grid_of(vertices, normals)?;
+    let (grid, named) = grid_of(vertices, normals)?;
+    let kind = parse_kind(kind, named.unwrap_or(MeshKind::Circular))?;
     measurable(&grid).map_err(|e| MeshError::new_err(e.to_string()))?;
     // A conical Mesh's folds about its face normals, as its report counts them.
     let mesh = vertices.cast::<Mesh>().ok();

@@ -4,7 +4,7 @@ geometry and numpy."""
 import numpy as np
 import pytest
 
-pytest.importorskip("compas")  # an optional dependency: monge[compas]
+pytest.importorskip("compas")  # an optional dependency (the wheel's extra `compas`)
 
 import compas.geometry
 from compas.datastructures import Mesh as CompasMesh
@@ -29,6 +29,8 @@ def test_round_trip_of_a_circular_mesh(cli_mesh):
     assert np.abs(v - ref["vertices"]).max() <= 1e-12 * mnp.scale(v)
     assert np.abs(n - ref["normals"]).max() <= 1e-12
     assert monge.check(v, normals=n)["max_error"] <= 1e-9
+    # As README.md writes it: the arrays straight into check, normals second.
+    assert monge.check(*monge.compas.from_mesh(c)) == monge.check(v, normals=n)
     # COMPAS's own face geometry: every face is flat (compas.geometry.is_coplanar)
     for f in list(c.faces())[::37]:
         assert compas.geometry.is_coplanar(c.face_coordinates(f), tol=1e-9)
@@ -50,6 +52,7 @@ def test_conical_meshes_carry_face_normals():
     c = monge.compas.to_mesh(mesh)
     v, n = monge.compas.from_mesh(c)
     assert n is None and np.array_equal(v, mesh.vertices)
+    assert monge.check(*monge.compas.from_mesh(c), kind="conical")["conical"]["value"] <= 1e-9
     for f, expected in zip(c.faces(), mesh.face_normals.reshape(-1, 3)):
         assert np.abs(np.cross(c.face_normal(f), expected)).max() <= 1e-9  # COMPAS's normal, parallel
         assert np.array_equal(c.face_attribute(f, "normal"), expected)

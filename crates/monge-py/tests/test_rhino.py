@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-rhino3dm = pytest.importorskip("rhino3dm")  # an optional dependency: monge[rhino]
+rhino3dm = pytest.importorskip("rhino3dm")  # an optional dependency (the wheel's extra `rhino`)
 
 import monge
 import monge.rhino
@@ -142,3 +142,19 @@ def test_a_base_point_is_every_objects_user_text(tmp_path):
     monge.rhino.write_3dm(path, monge.generate(design))
     for o in rhino3dm.File3dm.Read(str(path)).Objects:
         assert o.Attributes.UserStringCount == 0
+
+
+@pytest.mark.parametrize("umask", [0o022, 0o027])
+def test_the_file_has_the_permissions_of_the_commands_files(tmp_path, cli, umask):
+    # Once 0o600 whatever the umask (a temporary file's), where `monge generate` writes
+    # 0o666 less the umask.
+    mesh = monge.generate(monge.Design.from_file(DUPIN))
+    previous = os.umask(umask)
+    try:
+        monge.rhino.write_3dm(tmp_path / "m.3dm", mesh, panels=False)
+        cli("generate", DUPIN, "-o", tmp_path / "m.obj")
+    finally:
+        os.umask(previous)
+    mode = os.stat(tmp_path / "m.3dm").st_mode & 0o777
+    assert mode == os.stat(tmp_path / "m.obj").st_mode & 0o777 == 0o666 & ~umask
+    assert sorted(os.listdir(tmp_path)) == ["m.3dm", "m.obj"]  # no temporary file left

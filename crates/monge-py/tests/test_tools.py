@@ -101,6 +101,25 @@ def test_check_conical(cli, tmp_path):
     v[3, 4, 2] += 0.05
     m = monge.check(v, kind="conical")
     assert m["conical"]["value"] > 1e-6 and mnp.conical(v) > 1e-6
+    # A JSON mesh file names its kind, as for `monge check`: measured as it says.
+    assert "conical" in monge.check(out) and "circularity" in monge.check(out, kind="circular")
+
+
+def test_check_takes_normals_second_and_the_kind_by_name():
+    # As README.md shows: `check(v, n)`, e.g. `check(*monge.compas.from_mesh(c))`.
+    mesh = monge.generate(monge.Design.from_file(DUPIN))
+    v, n = np.array(mesh.vertices), np.array(mesh.normals)
+    m = monge.check(v, n)
+    assert m["torsion"]["value"] <= 1e-9 and m["normal_length"]["value"] <= 1e-9
+    assert m == monge.check(mesh)
+    # The torsion is measured with the normals given: turned node axes are found.
+    turned = n.copy()
+    axis = n[4, 5] + np.array([0.0, 0.0, 0.3])
+    turned[4, 5] = axis / np.linalg.norm(axis)
+    assert monge.check(v, turned)["torsion"]["value"] > 1e-6 and mnp.torsion(v, turned) > 1e-6
+    # The kind once came second: a string there says to give it by name.
+    with pytest.raises(TypeError, match=r"give the kind by name, kind='conical'"):
+        monge.check(v, "conical")
 
 
 def test_smooth_equals_the_command_and_interpolates_the_mesh(cli, tmp_path):

@@ -160,8 +160,9 @@ def info(design: Design) -> Dict[str, Any]:
 
 def check(
     vertices: Union[Mesh, _PathLike, npt.ArrayLike],
-    kind: Optional[_Kind] = None,
     normals: Optional[npt.ArrayLike] = None,
+    *,
+    kind: Optional[_Kind] = None,
 ) -> Dict[str, Any]:
     """Independent measurements of a quad mesh (§2.2, §2.3) and its folded faces (§5.2), as ``monge check``."""
 

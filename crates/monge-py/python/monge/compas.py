@@ -1,4 +1,4 @@
-"""COMPAS meshes (``pip install monge[compas]``): ``to_mesh`` and back.
+"""COMPAS meshes (with compas: ``pip install compas``): ``to_mesh`` and back.
 
 ``to_mesh(mesh)`` gives a ``compas.datastructures.Mesh`` with the quad faces
 of a ``monge.Mesh`` (vertex keys ``i·cols + j``, faces in the order of
@@ -7,7 +7,7 @@ circular mesh, ``normal`` and ``node_axis`` (the same unit node axis, §2.2);
 for a conical mesh each face has ``normal`` (its unit face normal, §2.3). The
 mesh attributes say ``rows``, ``cols``, ``kind``, ``theta_deg`` and
 ``offset_distance``. ``from_mesh`` reads such a mesh back as numpy arrays
-(rows, cols, 3) that ``monge.check`` measures. Only data is converted here.
+(rows, cols, 3) that ``monge.check`` measures: ``monge.check(*from_mesh(c))``. Only data is converted here.
 """
 
 import numpy as np
@@ -15,7 +15,7 @@ import numpy as np
 try:
     from compas.datastructures import Mesh as CompasMesh
 except ImportError as _missing:  # pragma: no cover - depends on the environment
-    raise ImportError("monge.compas needs compas: pip install monge[compas]") from _missing
+    raise ImportError("monge.compas needs compas: pip install compas") from _missing
 
 from ._monge import Mesh, MeshError
 

@@ -1,4 +1,4 @@
-"""Native Rhino files (.3dm) with rhino3dm (openNURBS): ``pip install monge[rhino]``.
+"""Native Rhino files (.3dm) with rhino3dm (openNURBS; ``pip install rhino3dm``).
 
 ``write_3dm(path, mesh, smooth=...)`` writes, each on its own named layer:
 
@@ -16,21 +16,23 @@ The model's unit system is set (``units``, a name of ``rhino3dm.UnitSystem``,
 default meters). A mesh generated with ``base_point`` (coordinates relative to
 that point, exact far from the origin) keeps its relative coordinates, and the
 point is every object's attribute user text ``monge.base_point``, ``"x y z"``
-(Rhino, too, models best near the origin: move the objects by it if needed). The file is written to a temporary file beside ``path`` and
-renamed, so no half-written file is left. This module only converts arrays
+(Rhino, too, models best near the origin: move the objects by it if needed).
+The file is written to a hidden file beside ``path`` and renamed, so no
+half-written file is left; its permissions are those of every file monge
+writes (read and write for all, less the umask). This module only converts arrays
 into openNURBS objects: the geometry is monge's.
 """
 
 import math
 import os
-import tempfile
+import secrets
 
 import numpy as np
 
 try:
     import rhino3dm
 except ImportError as _missing:  # pragma: no cover - depends on the environment
-    raise ImportError("monge.rhino needs rhino3dm: pip install monge[rhino]") from _missing
+    raise ImportError("monge.rhino needs rhino3dm: pip install rhino3dm") from _missing
 
 from ._monge import FileError, Mesh, MeshError
 
@@ -124,6 +126,20 @@ def arc_curve(arc):
     return rhino3dm.ArcCurve.CreateFromArc(rhino3dm.Arc(circle, math.radians(arc["sweep_deg"])))
 
 
+def _new_file_beside(path):
+    """A new empty file beside ``path``, named ``.NAME.XXXXXX.tmp`` as the command's,
+    and made as open(2) makes files, ``0o666`` less the umask (``tempfile.mkstemp``
+    makes them ``0o600``, which the rename would keep); its path."""
+    directory, name = os.path.split(os.path.abspath(os.fspath(path)))
+    while True:
+        tmp = os.path.join(directory, f".{name}.{secrets.token_hex(3)}.tmp")
+        try:
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            return tmp
+        except FileExistsError:
+            continue  # another writer's name: draw again
+
+
 def write_3dm(path, mesh, smooth=None, panels=True, units="Meters"):
     """Writes ``mesh`` (a ``monge.Mesh``), and the cyclidic net and beams of
     ``smooth`` (``monge.smooth``'s result) if given, to the Rhino file ``path``
@@ -174,8 +190,7 @@ def write_3dm(path, mesh, smooth=None, panels=True, units="Meters"):
     directory = os.path.dirname(os.path.abspath(os.fspath(path)))
     if not os.path.isdir(directory):
         raise FileError(f"cannot write `{os.fspath(path)}`: the directory `{directory}` does not exist")
-    fd, tmp = tempfile.mkstemp(suffix=".3dm", dir=directory)
-    os.close(fd)
+    tmp = _new_file_beside(path)
     try:
         if not model.Write(tmp, 8):
             raise FileError(f"cannot write `{os.fspath(path)}`: openNURBS refused to write the model")
