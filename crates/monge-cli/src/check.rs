@@ -8,8 +8,7 @@ use monge_core::conical::conical_folds;
 use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
 use monge_core::QuadGrid;
 use monge_io::{
-    is_stdio, read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from,
-    MeshFormat,
+    is_stdio, read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, MeshFormat,
 };
 use serde_json::{json, Map, Value};
 

@@ -1638,6 +1638,7 @@ fn a_measured_error_above_the_tolerance_is_never_silent() {
         .assert()
         .success()
         .stderr(predicate::str::contains("measures an error").not());
+}
 
 /// A conical mesh checked without --kind: a JSON mesh says its kind and is measured as
 /// it says; an OBJ cannot say, and its failure as a circular mesh names the flag (that
