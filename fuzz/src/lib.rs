@@ -79,7 +79,7 @@ pub fn design(data: &[u8], format: DesignFormat) {
         _ => match parse_any_design(text, format) {
             Ok(AnyDesign::Surface(d)) => surface(&d),
             Ok(AnyDesign::Developable(d)) => {
-                if let Ok(mesh) = developable(&d.developable) {
+                if let Ok(mesh) = developable(&d.developable, &options()) {
                     assert_grid("developable", &mesh.grid);
                 }
             }

@@ -502,7 +502,8 @@ pub struct GenerateArgs {
     /// agree with OUT's extension.
     #[arg(long, value_enum)]
     pub format: Option<FormatArg>,
-    /// Refuse grids of more than N vertices (rows × cols), before allocating anything.
+    /// Refuse grids of more than N vertices (rows × cols; of a developable design, rulings ×
+    /// heights), before allocating anything.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
     /// Also write the offset at distance D (repeatable): the node offset along the node axes

@@ -37,18 +37,20 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         check_output(&offset_path(out, *d), &[&args.design])?;
     }
 
+    let options = GenerateOptions {
+        max_vertices: args.max_vertices,
+    };
     let design = match read_any_design(&args.design)? {
         AnyDesign::Surface(design) => *design,
-        AnyDesign::Developable(d) => return run_developable(args, format, &d.developable),
+        AnyDesign::Developable(d) => {
+            return run_developable(args, format, &d.developable, &options)
+        }
     };
     let (design, base) = match &args.base_point {
         Some(b) => b.apply(design),
         None => (design, None),
     };
     let base = base.map(DVec3::from_array);
-    let options = GenerateOptions {
-        max_vertices: args.max_vertices,
-    };
     let start = Instant::now();
     let generated =
         generate(&design, &options).with_context(|| args.design.display().to_string())?;
@@ -163,6 +165,7 @@ fn run_developable(
     args: &GenerateArgs,
     format: MeshFormat,
     spec: &DevelopableSpec,
+    options: &GenerateOptions,
 ) -> anyhow::Result<Outcome> {
     if args.base_point.is_some() {
         bail!(
@@ -173,7 +176,7 @@ fn run_developable(
         );
     }
     let start = Instant::now();
-    let mesh = developable(spec).with_context(|| args.design.display().to_string())?;
+    let mesh = developable(spec, options).with_context(|| args.design.display().to_string())?;
     let generation = start.elapsed().as_secs_f64();
     let layers: Vec<Layer> = std::iter::once(0.0)
         .chain(args.offsets.iter().copied())

@@ -14,12 +14,12 @@ use crate::Outcome;
 
 /// Runs `monge info`.
 pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
-    let design = match read_any_design(&args.design)? {
-        AnyDesign::Surface(design) => *design,
-        AnyDesign::Developable(d) => return developable_info(args, &d.developable),
-    };
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
+    };
+    let design = match read_any_design(&args.design)? {
+        AnyDesign::Surface(design) => *design,
+        AnyDesign::Developable(d) => return developable_info(args, &d.developable, &options),
     };
     let info = inspect(&design, &options).with_context(|| args.design.display().to_string())?;
     let planarity_tol = design.tolerance.unwrap_or_default().planarity;
@@ -46,9 +46,13 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
 }
 
 /// `monge info` of a developable design (§3.3): validated by building it (it is
-/// cheap: one vertex per ruling and cutting plane).
-fn developable_info(args: &InfoArgs, spec: &DevelopableSpec) -> anyhow::Result<Outcome> {
-    let mesh = developable(spec).with_context(|| args.design.display().to_string())?;
+/// cheap: one vertex per ruling and cutting plane, at most `options.max_vertices`).
+fn developable_info(
+    args: &InfoArgs,
+    spec: &DevelopableSpec,
+    options: &GenerateOptions,
+) -> anyhow::Result<Outcome> {
+    let mesh = developable(spec, options).with_context(|| args.design.display().to_string())?;
     let (rows, cols) = (mesh.grid.rows, mesh.grid.cols);
     let file = args.design.display().to_string();
     let text = if args.json {

@@ -162,7 +162,7 @@ fn load(
             Ok((scene(&g, design.mesh, gauss, smooth, path)?, what))
         }
         AnyDesign::Developable(d) => {
-            let mesh = developable(&d.developable).with_context(context)?;
+            let mesh = developable(&d.developable, options).with_context(context)?;
             let column: Vec<_> = mesh.grid.column(0).collect();
             let scene = Scene {
                 highlights: guide_highlights(&mesh.helix, &column),

@@ -178,3 +178,71 @@ fn a_design_file_over_16_mib_is_refused_before_it_is_read() {
             )));
     }
 }
+
+/// A developable design of `points` helix points (a zigzag in plan, rising at
+/// 45°) cut at `heights` planes below it.
+fn developable_design(points: usize, heights: usize) -> String {
+    let points: Vec<String> = (0..points).map(|k| format!("[{k},{},0]", k % 2)).collect();
+    let heights: Vec<String> = (1..=heights).map(|k| format!("-{k}")).collect();
+    format!(
+        r#"{{"developable": {{"projection": {{"points": [{}], "alpha_deg": 45}}, "heights": [{}]}}}}"#,
+        points.join(","),
+        heights.join(",")
+    )
+}
+
+/// A 1.6 MB developable design asked for 999 rulings × 200 000 cutting planes,
+/// 2e8 vertices (a 16 MB one for 4e11, aborting on allocation), after a crossing
+/// check quadratic in its points: refused at once by the vertex limit, the same
+/// as a surface design's, or by its number of points; no output file.
+#[test]
+fn a_developable_design_over_the_vertex_limit_is_refused_before_it_is_built() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = file(dir.path(), "big.json", &developable_design(1000, 200_000));
+    let out = dir.path().join("m.obj");
+    for command in ["info", "generate", "render"] {
+        let mut cmd = monge();
+        cmd.arg(command).arg(&big);
+        if command != "info" {
+            cmd.arg("-o").arg(if command == "render" {
+                dir.path().join("m.png")
+            } else {
+                out.clone()
+            });
+        }
+        cmd.assert().code(2).stderr(predicate::str::contains(
+            "the grid would have 999 × 200000 = 199800000 vertices, more than the limit of \
+             25000000: lower the `samples` of the guides (of a developable design: its helix \
+             points or `heights`), or raise the limit (`--max-vertices`",
+        ));
+    }
+    assert!(!out.exists() && !dir.path().join("m.png").exists());
+    // The same limit, lowered: 3 rulings × 3 planes.
+    let small = file(dir.path(), "small.json", &developable_design(4, 3));
+    for (limit, ok) in [("8", false), ("9", true)] {
+        let run = monge()
+            .args(["generate", "--max-vertices", limit])
+            .arg(&small)
+            .arg("-o")
+            .arg(&out)
+            .assert();
+        if ok {
+            run.success();
+        } else {
+            run.code(2).stderr(predicate::str::contains(
+                "3 × 3 = 9 vertices, more than the limit of 8",
+            ));
+        }
+        assert_eq!(out.exists(), ok);
+    }
+    // More helix points than the crossing check accepts.
+    let many = file(dir.path(), "many.json", &developable_design(1001, 2));
+    monge()
+        .arg("info")
+        .arg(&many)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "the helix has 1001 points, more than the limit of 1000",
+        ));
+}

@@ -35,8 +35,11 @@
 //! # Limits
 //!
 //! The projection of the helix onto the reference plane must not cross itself
-//! (checked pairwise, quadratic in the number of points), so a helix winds at
-//! most once around; a closed projection (last point = first) is allowed. Every
+//! (checked pairwise, quadratic in the number of points, hence at most
+//! [`MAX_HELIX_POINTS`] points), so a helix winds at most once around; a closed
+//! projection (last point = first) is allowed. The mesh has as many vertices as
+//! rulings (points − 1) times cutting planes, refused above
+//! [`GenerateOptions::max_vertices`] before anything is built. Every
 //! helix vertex where two rulings meet (all but the first and last) must lie
 //! outside the range of the cutting heights, or some face would cross the helix.
 
@@ -44,6 +47,7 @@ use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 use crate::design::Xyz;
+use crate::generate::{check_grid_size, GenerateError, GenerateOptions};
 use crate::grid::{bbox_diagonal, QuadGrid};
 
 /// Relative tolerance of every check (§3.3): lengths relative to the design size
@@ -55,6 +59,11 @@ pub const MAX_EXTENT: f64 = 1e100;
 
 /// Smallest non-zero largest absolute coordinate or height accepted (§3.3).
 pub const MIN_EXTENT: f64 = 1e-100;
+
+/// Most helix points accepted (§3.3): the check that the helix does not cross
+/// itself compares every pair of segments, about half a million pairs at this
+/// count. A helix winds at most once around, which a thousand points draw finely.
+pub const MAX_HELIX_POINTS: usize = 1000;
 
 /// A design file holding a developable mesh (§3.3): `{"developable": {…}}`.
 ///
@@ -262,6 +271,21 @@ pub enum DevelopableError {
         /// Number of segments.
         segments: usize,
     },
+    /// More than [`MAX_HELIX_POINTS`] helix points.
+    #[error(
+        "the helix has {points} points, more than the limit of {MAX_HELIX_POINTS} (every pair of \
+         its segments is checked for crossings): give fewer points — a helix winds at most once \
+         around, which {MAX_HELIX_POINTS} points draw finely"
+    )]
+    TooManyPoints {
+        /// Number of points.
+        points: usize,
+    },
+    /// The mesh would have more vertices than [`GenerateOptions::max_vertices`]
+    /// (always [`GenerateError::GridTooLarge`]: rows are the rulings, columns the
+    /// cutting planes).
+    #[error(transparent)]
+    GridTooLarge(GenerateError),
     /// Fewer than 2 cutting planes.
     #[error("{heights} cutting plane height(s) given: give at least 2 in `heights`")]
     TooFewHeights {
@@ -432,7 +456,8 @@ pub enum DevelopableError {
 }
 
 /// The developable circular mesh with planar curvature lines of a discrete
-/// general helix (§3.3, Figure 11).
+/// general helix (§3.3, Figure 11), refused before it is built if it would have
+/// more than `options.max_vertices` vertices.
 ///
 /// Rows are the rulings (one per helix segment), columns the cuts by the planes
 /// at `heights`; every face is an isosceles trapezoid (circular), rows are
@@ -441,19 +466,23 @@ pub enum DevelopableError {
 ///
 /// ```
 /// use monge_core::developable::{developable, DevelopableSpec};
+/// use monge_core::GenerateOptions;
 /// // Over a square, α = 45°: the helix rises by the length of each side.
 /// let spec = DevelopableSpec::projection(
 ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
 ///     45.0,
 ///     vec![-1.0, -2.0],
 /// );
-/// let mesh = developable(&spec).unwrap();
+/// let mesh = developable(&spec, &GenerateOptions::default()).unwrap();
 /// assert_eq!((mesh.grid.rows, mesh.grid.cols), (3, 2));
 /// assert!((mesh.helix[3].z - 3.0).abs() < 1e-15);
 /// // Ruling 0 runs along +x through the helix vertex (1, 0, 1): 2 below it at height −1.
 /// assert!((mesh.grid.vertex(0, 0) - glam::DVec3::new(-1.0, 0.0, -1.0)).length() < 1e-15);
 /// ```
-pub fn developable(spec: &DevelopableSpec) -> Result<DevelopableMesh, DevelopableError> {
+pub fn developable(
+    spec: &DevelopableSpec,
+    options: &GenerateOptions,
+) -> Result<DevelopableMesh, DevelopableError> {
     let (points, alpha_deg, field) = match (&spec.helix, &spec.projection) {
         (Some(h), None) => (&h.points, None, Field::HelixPoint),
         (None, Some(p)) => (&p.points, Some(p.alpha_deg), Field::ProjectionPoint),
@@ -498,6 +527,13 @@ pub fn developable(spec: &DevelopableSpec) -> Result<DevelopableMesh, Developabl
             heights: spec.heights.len(),
         });
     }
+    if points.len() > MAX_HELIX_POINTS {
+        return Err(DevelopableError::TooManyPoints {
+            points: points.len(),
+        });
+    }
+    check_grid_size(points.len() - 1, spec.heights.len(), options)
+        .map_err(DevelopableError::GridTooLarge)?;
 
     let frame = Frame::new(normal);
     let plan: Vec<DVec2> = points.iter().map(|p| frame.plan(p)).collect();

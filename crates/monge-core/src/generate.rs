@@ -60,13 +60,14 @@ pub enum GenerateError {
     /// The grid would exceed [`GenerateOptions::max_vertices`].
     #[error(
         "the grid would have {rows} × {cols} = {vertices} vertices, more than the limit of {limit}: \
-         lower the `samples` of the guides, or raise the limit (`--max-vertices` on the command line, \
+         lower the `samples` of the guides (of a developable design: its helix points or \
+         `heights`), or raise the limit (`--max-vertices` on the command line, \
          `GenerateOptions::max_vertices` in the library) if the machine has the memory (48 bytes a vertex)"
     )]
     GridTooLarge {
-        /// Samples of guide_u.
+        /// Samples of guide_u (of a developable mesh: its rulings).
         rows: usize,
-        /// Samples of guide_v.
+        /// Samples of guide_v (of a developable mesh: its cutting planes).
         cols: usize,
         /// `rows · cols` (saturating).
         vertices: usize,

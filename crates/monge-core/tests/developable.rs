@@ -13,7 +13,7 @@ use monge_core::developable::{
 };
 use monge_core::measure::measure;
 use monge_core::offset::vertex_offset;
-use monge_core::QuadGrid;
+use monge_core::{GenerateError, GenerateOptions, QuadGrid};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestRunner};
 
@@ -129,7 +129,7 @@ fn curve(k: usize, t0: f64, t1: f64, f: impl Fn(f64) -> Xyz) -> Vec<Xyz> {
 }
 
 fn generate_checked(spec: &DevelopableSpec, alpha_deg: f64) -> (DevelopableMesh, Worst) {
-    let mesh = developable(spec).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = developable(spec, &GenerateOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     let w = check(
         &mesh,
         &spec.heights,
@@ -240,7 +240,7 @@ fn node_axes_offset_is_the_mesh_of_the_raised_helix() {
     let alpha: f64 = 35.0;
     let heights = vec![-0.5, -1.0, -2.0, -3.5];
     let spec = DevelopableSpec::projection(pts.clone(), alpha, heights.clone());
-    let mesh = developable(&spec).unwrap();
+    let mesh = developable(&spec, &GenerateOptions::default()).unwrap();
     let d = 0.7;
     let off = vertex_offset(&mesh.grid, d);
     let m = measure(&off);
@@ -257,7 +257,11 @@ fn node_axes_offset_is_the_mesh_of_the_raised_helix() {
             assert!((x.z - h).abs() < 1e-12);
         }
     }
-    let again = developable(&DevelopableSpec::projection(raised, alpha, shifted)).unwrap();
+    let again = developable(
+        &DevelopableSpec::projection(raised, alpha, shifted),
+        &GenerateOptions::default(),
+    )
+    .unwrap();
     let diff = off
         .vertices
         .iter()
@@ -290,7 +294,7 @@ fn square() -> Vec<Xyz> {
 }
 
 fn err(spec: &DevelopableSpec) -> (DevelopableError, String) {
-    let e = developable(spec).expect_err("must be refused");
+    let e = developable(spec, &GenerateOptions::default()).expect_err("must be refused");
     let msg = e.to_string();
     (e, msg)
 }
@@ -404,6 +408,95 @@ fn error_too_few_segments_and_heights() {
     let (e, msg) = err(&DevelopableSpec::projection(square(), 30.0, vec![-1.0]));
     assert_eq!(e, DevelopableError::TooFewHeights { heights: 1 });
     assert!(msg.contains("at least 2"), "{msg}");
+}
+
+#[test]
+fn error_too_many_points_and_a_crossing_at_the_limit() {
+    // An Archimedean spiral of the most points accepted: a mesh of 999 rulings.
+    let spiral = |k: usize| {
+        curve(k, 0.0, 3.0 * TAU, |t| {
+            let r = 1.0 + 0.4 * t;
+            [r * t.cos(), r * t.sin(), 2.0]
+        })
+    };
+    let max = monge_core::developable::MAX_HELIX_POINTS;
+    let spec = DevelopableSpec::projection(spiral(max), 20.0, vec![-1.0, -2.0]);
+    let mesh = developable(&spec, &GenerateOptions::default()).unwrap();
+    assert_eq!((mesh.grid.rows, mesh.grid.cols), (max - 1, 2));
+    // An open polygon of as many points on a circle, its last segment turned
+    // to run from its first point through the middle of segment 0 and on: the
+    // crossing is still found, segment 0 with the last segment.
+    let mut arc = curve(max, 0.0, 0.9 * TAU, |t| [t.cos(), t.sin(), 0.0]);
+    let middle = (DVec3::from(arc[0]) + DVec3::from(arc[1])) / 2.0;
+    arc[max - 1] = (2.0 * middle - DVec3::from(arc[max - 2])).to_array();
+    let (e, _) = err(&DevelopableSpec::projection(arc, 20.0, vec![-1.0, -2.0]));
+    assert!(
+        matches!(e, DevelopableError::SelfCrossing { a: 0, b, distance, .. }
+            if b == max - 2 && distance == 0.0),
+        "{e:?}"
+    );
+    // One point more is refused, by its count.
+    let (e, msg) = err(&DevelopableSpec::projection(
+        spiral(max + 1),
+        20.0,
+        vec![-1.0, -2.0],
+    ));
+    assert_eq!(e, DevelopableError::TooManyPoints { points: max + 1 });
+    assert!(
+        msg.contains("1001 points") && msg.contains("limit of 1000"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn error_grid_too_large_names_the_limit_and_the_option() {
+    // 3 rulings × 3 cutting planes = 9 vertices.
+    let spec = DevelopableSpec::projection(square(), 30.0, vec![-1.0, -2.0, -3.0]);
+    let limit = |max_vertices| GenerateOptions { max_vertices };
+    assert_eq!(
+        developable(&spec, &limit(9)).unwrap().grid.vertices.len(),
+        9
+    );
+    let e = developable(&spec, &limit(8)).unwrap_err();
+    assert_eq!(
+        e,
+        DevelopableError::GridTooLarge(GenerateError::GridTooLarge {
+            rows: 3,
+            cols: 3,
+            vertices: 9,
+            limit: 8
+        })
+    );
+    let msg = e.to_string();
+    for part in [
+        "3 × 3 = 9 vertices",
+        "limit of 8",
+        "helix points",
+        "`--max-vertices`",
+    ] {
+        assert!(msg.contains(part), "{part}: {msg}");
+    }
+    // A mesh of 999 × 200 000 ≈ 2e8 vertices (9.6 GB) is refused by the default
+    // limit before it is built.
+    let pts = curve(1000, 0.0, 0.9 * TAU, |t| [t.cos(), t.sin(), 0.0]);
+    let heights: Vec<f64> = (1..=200_000).map(|k| -f64::from(k)).collect();
+    let e = developable(
+        &DevelopableSpec::projection(pts, 30.0, heights),
+        &GenerateOptions::default(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            DevelopableError::GridTooLarge(GenerateError::GridTooLarge {
+                rows: 999,
+                cols: 200_000,
+                vertices: 199_800_000,
+                limit: 25_000_000
+            })
+        ),
+        "{e:?}"
+    );
 }
 
 #[test]
@@ -696,7 +789,7 @@ fn garbage_never_panics() {
                 DevelopableSpec::projection(points, alpha, heights)
             };
             spec.reference_normal = normal;
-            if let Ok(mesh) = developable(&spec) {
+            if let Ok(mesh) = developable(&spec, &GenerateOptions::default()) {
                 let w = check(
                     &mesh,
                     &spec.heights,
@@ -771,7 +864,8 @@ fn property_random_projection_curves() {
     let worst = std::cell::Cell::new(0.0f64);
     runner
         .run(&random_spec(), |(spec, alpha)| {
-            let mesh = developable(&spec).map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let mesh = developable(&spec, &GenerateOptions::default())
+                .map_err(|e| TestCaseError::fail(e.to_string()))?;
             let w = check(&mesh, &spec.heights, DVec3::Z, alpha);
             worst.set(worst.get().max(w.max()));
             prop_assert!(w.max() <= TOL, "{:?}", w);
@@ -785,7 +879,7 @@ fn property_random_projection_curves() {
 fn grid_shape_follows_the_rulings() {
     // Rows are rulings (straight), each row i passes through helix vertices i and i + 1.
     let spec = DevelopableSpec::projection(square(), 45.0, vec![-1.0, -2.0, -3.0]);
-    let mesh = developable(&spec).unwrap();
+    let mesh = developable(&spec, &GenerateOptions::default()).unwrap();
     let g: &QuadGrid = &mesh.grid;
     for i in 0..g.rows {
         let (a, b) = (mesh.helix[i], mesh.helix[i + 1]);

@@ -229,7 +229,9 @@ fn developable_meshes_stay_exact_far_from_the_origin() {
                 25.0,
                 (0..8).map(|k| c.z - s * (0.5 + k as f64)).collect(),
             );
-            let g = developable(&spec).unwrap().grid;
+            let g = developable(&spec, &GenerateOptions::default())
+                .unwrap()
+                .grid;
             let size = g.bbox_diagonal();
             failures.extend(row("developable", corner, size, errors(&g, size)));
         }
