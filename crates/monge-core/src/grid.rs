@@ -291,7 +291,18 @@ impl QuadGrid {
 /// assert_eq!(quad_area(&dart), 4.0);
 /// ```
 pub fn quad_area(q: &[DVec3; 4]) -> f64 {
-    0.5 * (q[2] - q[0]).cross(q[3] - q[1]).length()
+    0.5 * scaled_length((q[2] - q[0]).cross(q[3] - q[1]))
+}
+
+/// `|v|` without overflow or underflow of the squares: the vector area of a
+/// face whose edges are about 1e80 (or 1e-80) long has components whose
+/// squares leave the range of a double, while the length itself does not.
+pub fn scaled_length(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * (v / m).length()
 }
 
 /// How the corners of a quad turn about an axis (§5.2): see [`quad_turn`].

@@ -1,11 +1,13 @@
 //! Panel-size optimisation (§4.8, Figure 22) and the `parameters` of B-spline guides.
 
+use glam::DVec3;
 use monge_core::design::GuideSpec;
+use monge_core::grid::quad_area;
 use monge_core::guide::GuideError;
 use monge_core::measure::measure;
 use monge_core::panels::{optimise_panels, PanelError, PanelOptions, MAX_FREE_SAMPLES};
 use monge_core::scan::panel_stats;
-use monge_core::{generate, Design, GenerateError};
+use monge_core::{generate, Design, GenerateError, QuadGrid};
 
 /// Figure-22-like: cubic B-spline guides, nearly straight at first and sharply
 /// bent near their ends, so uniform parameters give elongated faces.
@@ -178,4 +180,33 @@ fn guide_parameters_are_validated() {
     .unwrap();
     let plain = generate(&figure22(), &Default::default()).unwrap();
     assert_eq!(uniform.grid.vertices, plain.grid.vertices);
+}
+
+/// A square of side `s` has area `s²` at every scale a design may have
+/// (sizes 1e-100 to 1e100): the squares of its vector area's components
+/// overflowed beyond sides of 1e77 (area inf, `scan`'s area spread NaN) and
+/// underflowed below 1e-77 (area 0).
+#[test]
+fn panel_areas_hold_at_the_extremes_of_the_design_scale() {
+    for s in [1e-99, 1e-90, 1e-78, 1.0, 1e78, 1e90, 1e99] {
+        let sq = [
+            DVec3::ZERO,
+            DVec3::new(s, 0.0, 0.0),
+            DVec3::new(s, s, 0.0),
+            DVec3::new(0.0, s, 0.0),
+        ];
+        let expected = s * s;
+        let area = quad_area(&sq);
+        assert!(
+            (area - expected).abs() <= 4.0 * f64::EPSILON * expected,
+            "side {s:e}: area {area:e}, expected {expected:e}"
+        );
+        let grid = QuadGrid::new(2, 2, vec![sq[0], sq[3], sq[1], sq[2]], vec![DVec3::Z; 4]);
+        let stats = panel_stats(&grid);
+        assert!(
+            stats.area_max.is_finite() && stats.area_min > 0.0,
+            "side {s:e}: {stats:?}"
+        );
+        assert_eq!(stats.spread(), 1.0, "side {s:e}");
+    }
 }
