@@ -246,3 +246,54 @@ fn a_developable_design_over_the_vertex_limit_is_refused_before_it_is_built() {
             "the helix has 1001 points, more than the limit of 1000",
         ));
 }
+
+/// A design near the largest size accepted (1e100): its coordinates beyond
+/// ±3.4e38 do not fit the glTF's 32-bit floats.
+const HUGE_DESIGN: &str = r#"{"theta_deg": -30,
+  "guide_u": {"bspline": {"degree": 3, "samples": 5,
+    "control_points": [[0, 0, 0], [4e98, 0, 0], [8e98, 0, 2.5e98], [12e98, 0, 1e98], [16e98, 0, 3.5e98]]}},
+  "guide_v": {"bspline": {"degree": 3, "samples": 5,
+    "control_points": [[0, 0, 0], [0, 3e98, 0], [0, 6e98, -1.5e98], [0, 10e98, 1e98]]}}}"#;
+
+/// `fabricate` that cannot write one of its files leaves nothing behind,
+/// not even the folders it created for them (they stayed, empty).
+#[test]
+fn a_fabrication_that_cannot_be_written_leaves_no_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = file(dir.path(), "huge.json", HUGE_DESIGN);
+    let out = dir.path().join("new").join("fab");
+    monge()
+        .arg("fabricate")
+        .arg(&design)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("not finite in 32-bit floats"));
+    assert!(!dir.path().join("new").exists());
+}
+
+/// `scan` of a design near the largest size writes finite panel areas: the
+/// squares of the faces' vector areas overflowed (areas `inf`, exit 0).
+#[test]
+fn panel_areas_of_a_huge_design_are_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = file(dir.path(), "huge.json", HUGE_DESIGN);
+    let csv = dir.path().join("scan.csv");
+    monge()
+        .arg("scan")
+        .arg(&design)
+        .args(["--theta", "-30:-30:1", "-o"])
+        .arg(&csv)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    for name in ["area_min", "area_max", "area_spread", "area_mean"] {
+        let k = header.iter().position(|h| *h == name).unwrap();
+        let value: f64 = row[k].parse().unwrap();
+        assert!(value.is_finite() && value > 0.0, "{name} = {}", row[k]);
+    }
+}
