@@ -210,3 +210,26 @@ fn panel_areas_hold_at_the_extremes_of_the_design_scale() {
         assert_eq!(stats.spread(), 1.0, "side {s:e}");
     }
 }
+
+/// A design of size about 1e99 (the largest accepted is 1e100) is optimised as
+/// at size 1: its areas' squares overflowed, the objective was NaN everywhere
+/// and the design came back unchanged with exit 0.
+#[test]
+fn a_huge_design_is_optimised_as_at_unit_scale() {
+    let unit = figure22();
+    let mut huge = figure22();
+    for g in [&mut huge.guide_u, &mut huge.guide_v] {
+        for p in g.bspline.as_mut().unwrap().control_points.iter_mut() {
+            *p = p.map(|c| c * 1e99);
+        }
+    }
+    let options = PanelOptions::default();
+    let r1 = optimise_panels(&unit, &Default::default(), &options).unwrap();
+    let r99 = optimise_panels(&huge, &Default::default(), &options).unwrap();
+    assert!(
+        r99.after.spread() < 0.5 * r99.before.spread(),
+        "{:?}",
+        r99.after
+    );
+    assert!((r99.after.spread() - r1.after.spread()).abs() < 1e-6 * r1.after.spread());
+}
