@@ -255,13 +255,14 @@ const HUGE_DESIGN: &str = r#"{"theta_deg": -30,
   "guide_v": {"bspline": {"degree": 3, "samples": 5,
     "control_points": [[0, 0, 0], [0, 3e98, 0], [0, 6e98, -1.5e98], [0, 10e98, 1e98]]}}}"#;
 
-/// `fabricate` that cannot write one of its files leaves nothing behind,
-/// not even the folders it created for them (they stayed, empty).
+/// `fabricate` that cannot write one of its files leaves nothing behind, not
+/// even the folder it created for them (it stayed, empty); the folders above
+/// it must exist, as for every command.
 #[test]
 fn a_fabrication_that_cannot_be_written_leaves_no_folder() {
     let dir = tempfile::tempdir().unwrap();
     let design = file(dir.path(), "huge.json", HUGE_DESIGN);
-    let out = dir.path().join("new").join("fab");
+    let out = dir.path().join("fab");
     monge()
         .arg("fabricate")
         .arg(&design)
@@ -270,7 +271,7 @@ fn a_fabrication_that_cannot_be_written_leaves_no_folder() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("not finite in 32-bit floats"));
-    assert!(!dir.path().join("new").exists());
+    assert!(!out.exists());
 }
 
 /// `scan` of a design near the largest size writes finite panel areas: the
