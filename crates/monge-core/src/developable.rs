@@ -36,7 +36,8 @@
 //!
 //! The projection of the helix onto the reference plane must not cross itself
 //! (checked pairwise, quadratic in the number of points, hence at most
-//! [`MAX_HELIX_POINTS`] points), so a helix winds at most once around; a closed
+//! [`MAX_HELIX_POINTS`] points: each point is a ruling, a row of panels; Figure 11
+//! has 24); it may wind around several times without crossing, and a closed
 //! projection (last point = first) is allowed. The mesh has as many vertices as
 //! rulings (points − 1) times cutting planes, refused above
 //! [`GenerateOptions::max_vertices`] before anything is built. Every
@@ -62,7 +63,7 @@ pub const MIN_EXTENT: f64 = 1e-100;
 
 /// Most helix points accepted (§3.3): the check that the helix does not cross
 /// itself compares every pair of segments, about half a million pairs at this
-/// count. A helix winds at most once around, which a thousand points draw finely.
+/// count. Each point is a ruling, a row of panels: Figure 11 has 24.
 pub const MAX_HELIX_POINTS: usize = 1000;
 
 /// A design file holding a developable mesh (§3.3): `{"developable": {…}}`.
@@ -274,8 +275,8 @@ pub enum DevelopableError {
     /// More than [`MAX_HELIX_POINTS`] helix points.
     #[error(
         "the helix has {points} points, more than the limit of {MAX_HELIX_POINTS} (every pair of \
-         its segments is checked for crossings): give fewer points — a helix winds at most once \
-         around, which {MAX_HELIX_POINTS} points draw finely"
+         its segments is checked for crossings): give fewer points (each point is a ruling, \
+         a row of panels; Figure 11 of the paper has 24)"
     )]
     TooManyPoints {
         /// Number of points.
@@ -383,7 +384,7 @@ pub enum DevelopableError {
     #[error(
         "the projection curve crosses itself: segments {a} (points {a}..{a1}) and {b} (points \
          {b}..{b1}) come {distance:.3e} close ({relative:.1e} of the design size; tolerance \
-         {TOLERANCE:.0e}); the helix must wind at most once around — remove or move points",
+         {TOLERANCE:.0e}); its projection must not cross itself — remove or move points",
         a1 = a + 1,
         b1 = b + 1
     )]
