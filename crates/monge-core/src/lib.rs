@@ -10,35 +10,34 @@
 //! rationalization of curved architectural envelopes*, Automation in
 //! Construction 106 (2019) 102880, doi:10.1016/j.autcon.2019.102880.
 //!
-//! The pipeline, one module per concept of the paper:
-//! [`guide`] (sampled, validated guide curves, §3) →
-//! [`gauss_map`] (normals along the guides, pencil axes, the discrete Gauss map, §2.1.2, §2.2.1, §3.2) →
-//! [`combescure`] (the discrete Combescure transform, §2.2.3) → a [`QuadGrid`].
-//! [`measure`] measures any quad mesh independently of how it was made.
+//! The source is laid out in folders, one part of the paper each:
+//!
+//! | folder | what | modules |
+//! |---|---|---|
+//! | `construction/` | the generation method (§2, §3) | [`design`], [`guide`], [`projective`], [`gauss_map`], [`combescure`], [`grid`], [`generate`](mod@generate), [`conical`], [`offset`], [`developable`] |
+//! | `measure/` | measuring any quad mesh, however it was made (§2.2, §2.3) | [`measure`] |
+//! | `smooth/` | the smooth surface (§2.1.1, §4.4) | [`darboux`], [`cyclidic`] |
+//! | `fabrication/` | the gridshell's parts (§6) | [`fabrication`] |
+//! | `tools/` | the design tools (§4, §5) | [`scan`], [`panels`], [`boundary`], [`symmetry`], [`multipatch`], [`optimise`], [`approximate`] |
+//!
+//! Layers point one way: `construction` depends on no other folder; `measure`
+//! on `construction`'s grid only; `smooth` and `fabrication` on those two;
+//! `tools` on all of them. The modules are re-exported here, so a path is
+//! `monge_core::guide`, whichever folder holds it.
 
-pub mod approximate;
-pub mod boundary;
-pub mod combescure;
-pub mod conical;
-mod coords;
-pub mod cyclidic;
-pub mod darboux;
-pub mod design;
-pub mod developable;
+mod construction;
 pub mod fabrication;
-pub mod gauss_map;
-pub mod generate;
-pub mod grid;
-pub mod guide;
 pub mod measure;
-pub mod multipatch;
-pub mod offset;
-pub mod optimise;
-pub mod panels;
-pub mod projective;
-pub mod scan;
-pub mod symmetry;
+mod smooth;
 pub mod tasks;
+mod tools;
+
+pub(crate) use construction::coords;
+pub use construction::{
+    combescure, conical, design, developable, gauss_map, generate, grid, guide, offset, projective,
+};
+pub use smooth::{cyclidic, darboux};
+pub use tools::{approximate, boundary, multipatch, optimise, panels, scan, symmetry};
 
 pub use design::{BasePoint, Design, GuideSpec, MeshKind, Tolerances};
 pub use generate::{
