@@ -10,58 +10,12 @@ use serde::Serialize;
 
 use crate::atomic::Outputs;
 use crate::error::IoError;
-use crate::kind::{expect_kind, FileKind};
-use crate::path_name;
+use crate::format::{DesignFormat, FileKind};
+use crate::kind::expect_kind;
+use crate::read::{path_name, read_error, read_unchanged, utf8};
 
 /// File name used in error messages for text that did not come from a file.
 const NO_FILE: &str = "<input>";
-const ACCEPTED: &str = "`.json` or `.toml`";
-
-/// The two design-file formats.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DesignFormat {
-    /// JSON (`.json`).
-    Json,
-    /// TOML (`.toml`).
-    Toml,
-}
-
-impl DesignFormat {
-    /// The format named by the path's extension (`.json` or `.toml`, any case).
-    ///
-    /// ```
-    /// use monge_io::DesignFormat;
-    /// use std::path::Path;
-    /// assert_eq!(DesignFormat::from_path(Path::new("a/b.TOML")).unwrap(), DesignFormat::Toml);
-    /// assert!(DesignFormat::from_path(Path::new("b.yaml")).is_err());
-    /// ```
-    pub fn from_path(path: &Path) -> Result<DesignFormat, IoError> {
-        match extension(path).as_deref() {
-            Some("json") => Ok(DesignFormat::Json),
-            Some("toml") => Ok(DesignFormat::Toml),
-            _ => Err(unknown_extension(path, ACCEPTED)),
-        }
-    }
-}
-
-/// The lower-case extension of `path`, if any.
-pub(crate) fn extension(path: &Path) -> Option<String> {
-    path.extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-}
-
-/// The [`IoError::UnknownExtension`] for `path`.
-pub(crate) fn unknown_extension(path: &Path, accepted: &'static str) -> IoError {
-    let found = match path.extension() {
-        Some(e) => format!("extension `.{}`", e.to_string_lossy()),
-        None => "file name without extension".to_owned(),
-    };
-    IoError::UnknownExtension {
-        path: path.to_owned(),
-        found,
-        accepted,
-    }
-}
 
 /// The largest design file read, of any kind (a design, a developable or
 /// multi-patch design, a planes file), in bytes: 16 MiB. A design is a few kB;
@@ -85,14 +39,12 @@ fn check_design_size(size: u64, file: &str) -> Result<(), IoError> {
 /// [`MAX_DESIGN_BYTES`] is refused by its length before it is read (a stream,
 /// once more has been read).
 pub(crate) fn read_design_text(path: &Path) -> Result<String, IoError> {
-    let file = std::fs::File::open(path).map_err(|source| crate::read_error(path, source))?;
-    let opened = file
-        .metadata()
-        .map_err(|source| crate::read_error(path, source))?;
+    let file = std::fs::File::open(path).map_err(|source| read_error(path, source))?;
+    let opened = file.metadata().map_err(|source| read_error(path, source))?;
     check_design_size(opened.len(), &path_name(path))?;
-    let bytes = crate::read_unchanged(path, file, &opened, MAX_DESIGN_BYTES + 1)?;
+    let bytes = read_unchanged(path, file, &opened, MAX_DESIGN_BYTES + 1)?;
     check_design_size(bytes.len() as u64, &path_name(path))?;
-    crate::utf8(path, bytes)
+    utf8(path, bytes)
 }
 
 /// The kind of the design text `text` (of any kind) if recognisable, after

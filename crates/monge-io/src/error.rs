@@ -3,7 +3,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
-use crate::kind::FileKind;
+use crate::format::FileKind;
 
 /// Everything that can go wrong reading or writing design and mesh files.
 ///

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use monge_core::fabrication::Fabrication;
 
-use crate::atomic::existing_directory;
+use crate::atomic::{check_output, existing_directory, Outputs};
 use crate::dxf::{write_beams_dxf, write_panels_dxf};
 use crate::error::IoError;
 use crate::gltf::write_glb;
@@ -15,7 +15,6 @@ use crate::schedule::{
     ScheduleJson,
 };
 use crate::svg::write_overview_svg;
-use crate::{check_output, Outputs};
 
 /// The files [`write_fabrication`] writes, in order (§6).
 pub const FABRICATION_FILES: [&str; 9] = [

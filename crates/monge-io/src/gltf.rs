@@ -14,7 +14,7 @@ use json::validation::{Checked::Valid, USize64};
 use monge_core::fabrication::{Beam, Fabrication};
 use monge_core::QuadGrid;
 
-use crate::mesh_write::{Faces, GridFaces};
+use crate::faces::{Faces, GridFaces};
 use crate::text::{emit, Out};
 
 /// Calls its argument with every item of a part, in order.

@@ -1,92 +1,72 @@
-//! The kinds of JSON/TOML file monge reads, told apart by their top-level keys,
-//! so that a file given to the wrong command is named with the command that takes it.
+//! Telling a file's format by its path's extension and its kind by its
+//! top-level keys, with the errors that name what was expected.
 
-use std::fmt;
+use std::path::Path;
 
-use crate::design::DesignFormat;
+use crate::atomic::is_stdio;
 use crate::error::IoError;
+use crate::format::{DesignFormat, FileKind, MeshFormat};
 
-/// A kind of file monge reads.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FileKind {
-    /// A design: two guides and θ (§3), keys `theta_deg`, `guide_u`, `guide_v`.
-    Design,
-    /// A developable design (§3.3): the key `developable`.
-    Developable,
-    /// A multi-patch design (§4.7): the key `patches`.
-    MultiPatch,
-    /// Four boundary planes (§4.5): `first_row`, `last_row`, `first_column`, `last_column`.
-    Planes,
-    /// A quad mesh: `rows`, `cols`, `vertices` (as `monge generate` writes it).
-    Mesh,
-}
+const DESIGN_ACCEPTED: &str = "`.json` or `.toml`";
+const MESH_ACCEPTED: &str = "`.obj`, `.ply`, `.json` or `.glb` (glTF, written only)";
 
-impl FileKind {
-    /// The kind whose top-level keys `keys` has, if any: `vertices` or `rows`
-    /// makes a mesh (a multi-patch mesh also has `patches`), then `developable`,
-    /// `patches`, any of the four planes, and any of a design's keys.
-    pub fn from_keys(keys: &[&str]) -> Option<FileKind> {
-        let has = |names: &[&str]| keys.iter().any(|k| names.contains(k));
-        [
-            (FileKind::Mesh, &["vertices", "rows"][..]),
-            (FileKind::Developable, &["developable"]),
-            (FileKind::MultiPatch, &["patches"]),
-            (
-                FileKind::Planes,
-                &["first_row", "last_row", "first_column", "last_column"],
-            ),
-            (FileKind::Design, &["theta_deg", "guide_u", "guide_v"]),
-        ]
-        .into_iter()
-        .find(|(_, names)| has(names))
-        .map(|(kind, _)| kind)
-    }
-
-    /// The kind of a JSON or TOML text by its top-level keys; `None` if it does
-    /// not parse as a table or has none of the keys of [`FileKind::from_keys`].
+impl DesignFormat {
+    /// The format named by the path's extension (`.json` or `.toml`, any case).
     ///
     /// ```
-    /// use monge_io::{DesignFormat, FileKind};
-    /// let kind = FileKind::of_text(r#"{"patches": []}"#, DesignFormat::Json);
-    /// assert_eq!(kind, Some(FileKind::MultiPatch));
-    /// assert_eq!(FileKind::of_text("theta_deg = 3", DesignFormat::Toml), Some(FileKind::Design));
+    /// use monge_io::DesignFormat;
+    /// use std::path::Path;
+    /// assert_eq!(DesignFormat::from_path(Path::new("a/b.TOML")).unwrap(), DesignFormat::Toml);
+    /// assert!(DesignFormat::from_path(Path::new("b.yaml")).is_err());
     /// ```
-    pub fn of_text(text: &str, format: DesignFormat) -> Option<FileKind> {
-        // The keys only: the values are read past, not built (a design's
-        // points as a tree of values took 16 times the file's size).
-        type Keys = std::collections::BTreeMap<String, serde::de::IgnoredAny>;
-        let keys: Keys = match format {
-            DesignFormat::Json => serde_json::from_str(text).ok()?,
-            DesignFormat::Toml => toml::from_str(text).ok()?,
-        };
-        let keys: Vec<&str> = keys.keys().map(String::as_str).collect();
-        FileKind::from_keys(&keys)
-    }
-
-    /// The commands that read this kind of file, for error messages.
-    pub fn commands(self) -> &'static str {
-        match self {
-            FileKind::Design => {
-                "`monge generate` (or `info`, `smooth`, `render`, `fabricate`, `scan`, \
-                 `optimise-panels`, `explore`)"
-            }
-            FileKind::Developable => "`monge generate` (or `info`, `render`)",
-            FileKind::MultiPatch => "`monge patches` (or `monge fit` when it has a `fit` key)",
-            FileKind::Planes => "`monge align`",
-            FileKind::Mesh => "`monge check` (or `monge smooth --mesh`)",
+    pub fn from_path(path: &Path) -> Result<DesignFormat, IoError> {
+        match extension(path).as_deref() {
+            Some("json") => Ok(DesignFormat::Json),
+            Some("toml") => Ok(DesignFormat::Toml),
+            _ => Err(unknown_extension(path, DESIGN_ACCEPTED)),
         }
     }
 }
 
-impl fmt::Display for FileKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            FileKind::Design => "a design (two guides and θ)",
-            FileKind::Developable => "a developable design (§3.3)",
-            FileKind::MultiPatch => "a multi-patch design (§4.7)",
-            FileKind::Planes => "a planes file (§4.5)",
-            FileKind::Mesh => "a mesh",
-        })
+impl MeshFormat {
+    /// The format named by the path's extension (any case).
+    ///
+    /// `-` (standard input/output) has none: [`IoError::NeedFormat`].
+    ///
+    /// ```
+    /// use monge_io::MeshFormat;
+    /// use std::path::Path;
+    /// assert_eq!(MeshFormat::from_path(Path::new("out/mesh.obj")).unwrap(), MeshFormat::Obj);
+    /// assert!(MeshFormat::from_path(Path::new("-")).is_err());
+    /// ```
+    pub fn from_path(path: &Path) -> Result<MeshFormat, IoError> {
+        if is_stdio(path) {
+            return Err(IoError::NeedFormat {
+                accepted: "obj, ply or json",
+            });
+        }
+        extension(path)
+            .and_then(|e| MeshFormat::from_extension(&e))
+            .ok_or_else(|| unknown_extension(path, MESH_ACCEPTED))
+    }
+}
+
+/// The lower-case extension of `path`, if any.
+pub(crate) fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+}
+
+/// The [`IoError::UnknownExtension`] for `path`.
+pub(crate) fn unknown_extension(path: &Path, accepted: &'static str) -> IoError {
+    let found = match path.extension() {
+        Some(e) => format!("extension `.{}`", e.to_string_lossy()),
+        None => "file name without extension".to_owned(),
+    };
+    IoError::UnknownExtension {
+        path: path.to_owned(),
+        found,
+        accepted,
     }
 }
 

@@ -10,11 +10,11 @@ use glam::DVec3;
 use monge_core::{MeshKind, QuadGrid};
 use serde::Deserialize;
 
-use crate::design::{parse_as, DesignFormat};
+use crate::design::parse_as;
 use crate::error::IoError;
-use crate::kind::{expect_kind, FileKind};
-use crate::mesh_write::MeshFormat;
-use crate::path_name;
+use crate::format::{DesignFormat, FileKind, MeshFormat};
+use crate::kind::expect_kind;
+use crate::read::{path_name, read_error};
 
 /// Reads a quad grid from a `.json`, `.obj` or `.ply` file (by its extension).
 ///
@@ -60,10 +60,8 @@ pub fn read_mesh_and_kind(path: &Path) -> Result<(QuadGrid, Option<MeshKind>), I
 
 /// The file `path`, buffered, and its length if it is a regular file.
 fn open(path: &Path) -> Result<(BufReader<File>, Option<u64>), IoError> {
-    let file = File::open(path).map_err(|source| crate::read_error(path, source))?;
-    let meta = file
-        .metadata()
-        .map_err(|source| crate::read_error(path, source))?;
+    let file = File::open(path).map_err(|source| read_error(path, source))?;
+    let meta = file.metadata().map_err(|source| read_error(path, source))?;
     let size = meta.is_file().then_some(meta.len());
     Ok((BufReader::with_capacity(READ_BUFFER, file), size))
 }
@@ -238,7 +236,7 @@ pub fn read_face_normals(path: &Path, grid: &QuadGrid) -> Result<Option<Vec<DVec
         face_normals: Option<Vec<[f64; 3]>>,
     }
     let file = path_name(path);
-    let text = std::fs::read_to_string(path).map_err(|source| crate::read_error(path, source))?;
+    let text = std::fs::read_to_string(path).map_err(|source| read_error(path, source))?;
     let n: FaceNormals = parse_as(&text, DesignFormat::Json, &file)?;
     let Some(normals) = n.face_normals else {
         return Ok(None);

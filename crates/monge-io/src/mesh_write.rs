@@ -8,19 +8,18 @@
 //! ([`QuadGrid::oriented_faces`]).
 
 use std::io::{self, Write};
-use std::ops::Range;
 use std::path::Path;
 
 use glam::DVec3;
 use monge_core::QuadGrid;
 use serde_json::{Map, Value};
 
-use crate::atomic::{is_stdio, write_output};
-use crate::design::{extension, unknown_extension};
+use crate::atomic::write_output;
 use crate::error::IoError;
+use crate::faces::{Faces, GridFaces};
+use crate::format::MeshFormat;
+use crate::gltf::write_grid_glb_at;
 use crate::text::{emit, Out};
-
-const ACCEPTED: &str = "`.obj`, `.ply`, `.json` or `.glb` (glTF, written only)";
 
 /// Keys of the mesh JSON format that extra keys may not use.
 pub const MESH_JSON_KEYS: [&str; 4] = ["rows", "cols", "vertices", "normals"];
@@ -28,91 +27,6 @@ pub const MESH_JSON_KEYS: [&str; 4] = ["rows", "cols", "vertices", "normals"];
 /// The key (JSON) and comment word (OBJ, PLY) that records the point a mesh's
 /// coordinates are relative to ([`write_mesh_at`]).
 pub const BASE_POINT: &str = "base_point";
-
-/// A mesh file format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum MeshFormat {
-    /// Wavefront OBJ (`.obj`).
-    Obj,
-    /// ASCII PLY with `double` coordinates (`.ply`).
-    Ply,
-    /// Binary little-endian PLY with `double` coordinates (`.ply`; format
-    /// name `ply-binary`): exact, a third of the size of ASCII.
-    PlyBinary,
-    /// Binary little-endian PLY with `float` (f32) coordinates (`.ply`;
-    /// format name `ply-f32`): for viewers, about 1e-7 of the model size.
-    PlyF32,
-    /// `{"rows", "cols", "vertices", "normals"}` JSON (`.json`).
-    Json,
-    /// Binary glTF (`.glb`), for viewers: `f32` positions, so written but never
-    /// read back (see [`crate::write_grid_glb`]).
-    Glb,
-}
-
-impl MeshFormat {
-    /// The format named by the path's extension (any case).
-    ///
-    /// `-` (standard input/output) has none: [`IoError::NeedFormat`].
-    ///
-    /// ```
-    /// use monge_io::MeshFormat;
-    /// use std::path::Path;
-    /// assert_eq!(MeshFormat::from_path(Path::new("out/mesh.obj")).unwrap(), MeshFormat::Obj);
-    /// assert!(MeshFormat::from_path(Path::new("-")).is_err());
-    /// ```
-    pub fn from_path(path: &Path) -> Result<MeshFormat, IoError> {
-        if is_stdio(path) {
-            return Err(IoError::NeedFormat {
-                accepted: "obj, ply or json",
-            });
-        }
-        extension(path)
-            .and_then(|e| MeshFormat::from_extension(&e))
-            .ok_or_else(|| unknown_extension(path, ACCEPTED))
-    }
-
-    /// The format named by an extension or format name such as `obj`, `.PLY`,
-    /// `json` or `ply-binary` (`.ply` alone is ASCII PLY).
-    ///
-    /// ```
-    /// use monge_io::MeshFormat;
-    /// assert_eq!(MeshFormat::from_extension(".PLY"), Some(MeshFormat::Ply));
-    /// assert_eq!(MeshFormat::from_extension("ply-f32"), Some(MeshFormat::PlyF32));
-    /// assert_eq!(MeshFormat::from_extension("stl"), None);
-    /// ```
-    pub fn from_extension(ext: &str) -> Option<MeshFormat> {
-        let ext = ext.strip_prefix('.').unwrap_or(ext);
-        [
-            MeshFormat::Obj,
-            MeshFormat::Ply,
-            MeshFormat::PlyBinary,
-            MeshFormat::PlyF32,
-            MeshFormat::Json,
-            MeshFormat::Glb,
-        ]
-        .into_iter()
-        .find(|f| f.extension().eq_ignore_ascii_case(ext) || f.name().eq_ignore_ascii_case(ext))
-    }
-
-    /// The usual extension, without the dot: `obj`, `ply`, `json` or `glb`.
-    pub fn extension(self) -> &'static str {
-        match self {
-            MeshFormat::Obj => "obj",
-            MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => "ply",
-            MeshFormat::Json => "json",
-            MeshFormat::Glb => "glb",
-        }
-    }
-
-    /// The format's name: its extension, or `ply-binary`, `ply-f32` for binary PLY.
-    pub fn name(self) -> &'static str {
-        match self {
-            MeshFormat::PlyBinary => "ply-binary",
-            MeshFormat::PlyF32 => "ply-f32",
-            other => other.extension(),
-        }
-    }
-}
 
 /// Writes a grid to `path` (atomically) or to standard output if `path` is `-`.
 ///
@@ -188,7 +102,7 @@ pub fn write_mesh_at<W: Write + ?Sized>(
             }
             None => write_mesh_json(grid, extra, w),
         },
-        MeshFormat::Glb => crate::gltf::write_grid_glb_at(grid, base, w),
+        MeshFormat::Glb => write_grid_glb_at(grid, base, w),
     }
 }
 
@@ -266,62 +180,6 @@ pub(crate) struct Quads<'a, F> {
     pub(crate) faces: F,
     pub(crate) comment: String,
     pub(crate) base: Option<DVec3>,
-}
-
-/// Faces that can be gone through in parts, side by side.
-pub(crate) trait Faces: Sync {
-    /// The number of faces.
-    fn count(&self) -> usize;
-    /// The faces numbered `range` (within `0..count`), in order.
-    fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]>;
-
-    /// Appends `face(corners)` for every face, in order, side by side.
-    fn each<W: Write + ?Sized>(
-        &self,
-        out: &mut Out<'_, W>,
-        face: impl Fn(&mut Out<'_, Vec<u8>>, [usize; 4]) + Sync,
-    ) -> io::Result<()> {
-        out.each_range(self.count(), |o, range| {
-            self.range(range).for_each(|corners| face(o, corners));
-        })
-    }
-}
-
-/// Quads listed one by one.
-impl Faces for &[[usize; 4]] {
-    fn count(&self) -> usize {
-        self.len()
-    }
-
-    fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]> {
-        self[range].iter().copied()
-    }
-}
-
-/// A grid's faces, wound as [`QuadGrid::oriented_faces`].
-pub(crate) struct GridFaces<'a> {
-    pub(crate) grid: &'a QuadGrid,
-    reversed: bool,
-}
-
-impl<'a> GridFaces<'a> {
-    /// The faces of `grid`, their winding decided now ([`QuadGrid::faces_reversed`]).
-    pub(crate) fn of(grid: &'a QuadGrid) -> Self {
-        GridFaces {
-            grid,
-            reversed: grid.faces_reversed(),
-        }
-    }
-}
-
-impl Faces for GridFaces<'_> {
-    fn count(&self) -> usize {
-        self.grid.face_count()
-    }
-
-    fn range(&self, range: Range<usize>) -> impl Iterator<Item = [usize; 4]> {
-        self.grid.faces_wound(self.reversed, range)
-    }
 }
 
 /// A grid's vertices, normals and [`QuadGrid::oriented_faces`], with the

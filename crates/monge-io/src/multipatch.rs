@@ -8,11 +8,12 @@ use monge_core::multipatch::MultiPatchDesign;
 use monge_core::symmetry::QuadMesh;
 
 use crate::atomic::{write_output, Outputs};
-use crate::design::{expect_design, parse_as, write_pretty, DesignFormat};
+use crate::design::{expect_design, parse_as, read_design_text, write_pretty};
 use crate::error::IoError;
-use crate::kind::FileKind;
-use crate::mesh_write::{MeshFormat, Quads};
-use crate::path_name;
+use crate::format::{DesignFormat, FileKind, MeshFormat};
+use crate::gltf::write_quads_glb;
+use crate::mesh_write::Quads;
+use crate::read::path_name;
 
 /// Reads a multi-patch design file (§4.7), JSON or TOML by its extension.
 ///
@@ -23,7 +24,7 @@ use crate::path_name;
 /// errors with line and column, non-finite numbers (TOML's `nan`, `inf`).
 pub fn read_multipatch(path: &Path) -> Result<MultiPatchDesign, IoError> {
     let format = DesignFormat::from_path(path)?;
-    let text = crate::design::read_design_text(path)?;
+    let text = read_design_text(path)?;
     parse_multipatch_named(&text, format, &path_name(path))
 }
 
@@ -55,7 +56,7 @@ fn parse_multipatch_named(
 /// TOML by its extension, with the errors of [`read_multipatch`].
 pub fn read_planes(path: &Path) -> Result<BoundarySpec, IoError> {
     let format = DesignFormat::from_path(path)?;
-    let text = crate::design::read_design_text(path)?;
+    let text = read_design_text(path)?;
     parse_planes_named(&text, format, &path_name(path))
 }
 
@@ -163,6 +164,6 @@ pub fn write_quad_mesh_to<W: Write + ?Sized>(
             serde_json::to_writer(&mut *w, &value)?;
             w.write_all(b"\n")
         }
-        MeshFormat::Glb => crate::write_quads_glb(&mesh.vertices, mesh.quads.iter().copied(), w),
+        MeshFormat::Glb => write_quads_glb(&mesh.vertices, mesh.quads.iter().copied(), w),
     }
 }

@@ -7,11 +7,12 @@ use std::path::Path;
 use glam::DVec3;
 use serde::Deserialize;
 
-use crate::design::{parse_as, DesignFormat};
+use crate::design::parse_as;
 use crate::error::IoError;
+use crate::format::{DesignFormat, MeshFormat};
+use crate::iges::read_iges_surfaces;
 use crate::mesh_read::read_vertices;
-use crate::mesh_write::MeshFormat;
-use crate::{path_name, read_to_string};
+use crate::read::{path_name, read_to_string};
 
 /// Reads the points of a target: the vertices of an OBJ (`v` lines; faces, if any, are
 /// ignored), of a PLY, ASCII or binary little-endian (`x`, `y`, `z` of the `vertex`
@@ -67,7 +68,7 @@ pub const IGES_TARGET_POINTS: usize = 4000;
 /// Points on every rational B-spline surface of an IGES file, on a square grid of each
 /// one's parameter range (at least 5 × 5 a surface).
 fn iges_points(text: &str, file: &str) -> Result<Vec<DVec3>, IoError> {
-    let surfaces = crate::read_iges_surfaces(text).map_err(|e| match e {
+    let surfaces = read_iges_surfaces(text).map_err(|e| match e {
         IoError::Syntax { line, message, .. } => syntax(file, line, message),
         e => e,
     })?;
