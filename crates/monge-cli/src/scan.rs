@@ -4,9 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use monge_core::scan::{parse_range, plot_svg, scan, to_csv, Scan, Status};
+use monge_core::scan::{parse_range, scan, Scan, Status};
 use monge_core::GenerateOptions;
-use monge_io::{check_output, read_design, Outputs};
+use monge_io::{check_output, read_design, write_scan_csv, write_scan_svg, Outputs};
 
 use crate::output::{eprint, num};
 use crate::Outcome;
@@ -70,13 +70,11 @@ pub fn run(args: &ScanArgs) -> anyhow::Result<Outcome> {
     );
     let s = scan(&design, path, &values, &options, &|| bar.inc(1)).with_context(|| file.clone())?;
     bar.finish_and_clear();
-    let csv = to_csv(&s);
     // The table and its plot change together or not at all.
     let mut out = Outputs::new();
-    out.write(&args.output, |w| w.write_all(csv.as_bytes()))?;
+    out.write(&args.output, |w| write_scan_csv(&s, w))?;
     if let Some(plot) = &args.plot {
-        let svg = plot_svg(&s);
-        out.write(plot, |w| w.write_all(svg.as_bytes()))?;
+        out.write(plot, |w| write_scan_svg(&s, w))?;
     }
     out.commit()?;
     eprint(&summary(&s));

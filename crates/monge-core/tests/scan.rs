@@ -1,9 +1,6 @@
 //! Design-space scans (§4.3, Figure 14; §5.2).
 
-use monge_core::scan::{
-    parse_range, plot_svg, scan, set_parameter, to_csv, values, ScanError, Status, CSV_HEADER,
-    MAX_VALUES,
-};
+use monge_core::scan::{parse_range, scan, set_parameter, values, ScanError, Status, MAX_VALUES};
 use monge_core::{generate, Design, GuideSpec};
 
 /// The two guides of Figure 14 (`examples/fig14-family.toml`, fewer samples):
@@ -65,27 +62,8 @@ fn the_theta_family_of_figure_14_folds_on_one_interval() {
         }
         assert_eq!(r.folded_faces > 0, r.status == Status::Folded);
     }
-    // The plot shades the two folded runs on either side of 90° and the singular value.
-    let svg = plot_svg(&s);
-    let folded = s.intervals(Status::Folded);
-    assert_eq!(folded, vec![(a, 88.0), (92.0, b)]);
-    for (x, y) in folded {
-        assert!(
-            svg.contains(&format!(
-                "class=\"folded\" data-from=\"{x}\" data-to=\"{y}\""
-            )),
-            "{svg}"
-        );
-    }
-    assert!(svg.contains("class=\"inadmissible\" data-from=\"90\" data-to=\"90\""));
-    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-    // The CSV has one line per value.
-    let csv = to_csv(&s);
-    assert_eq!(csv.lines().count(), 182);
-    assert_eq!(csv.lines().next(), Some(CSV_HEADER));
-    assert!(csv
-        .lines()
-        .any(|l| l.starts_with("90,inadmissible,false,0,,")));
+    // The folded runs lie on either side of the singular value.
+    assert_eq!(s.intervals(Status::Folded), vec![(a, 88.0), (92.0, b)]);
 }
 
 #[test]
@@ -108,7 +86,8 @@ fn results_do_not_depend_on_the_number_of_threads() {
             v.len(),
             "progress is called once per value"
         );
-        to_csv(&s)
+        // Debug prints every f64 exactly (and NaN as NaN, equal to itself).
+        format!("{s:?}")
     };
     assert_eq!(run(1), run(4));
 }

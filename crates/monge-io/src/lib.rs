@@ -42,6 +42,7 @@ mod multipatch;
 mod net;
 mod points_read;
 mod read;
+mod scan;
 mod schedule;
 mod svg;
 mod text;
@@ -70,6 +71,7 @@ pub use multipatch::{
 };
 pub use net::{conical_has_no_net, write_net_json};
 pub use points_read::{read_points, IGES_TARGET_POINTS};
+pub use scan::{write_scan_csv, write_scan_svg, SCAN_CSV_HEADER};
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,
     write_schedule_json, write_segments_csv, ScheduleJson,
