@@ -5,8 +5,9 @@
 //    Cargo.toml) into web/wasm/; paths are remapped so the bytes do not depend
 //    on where the repository or the cargo home is;
 // 2. index.html, style.css, default-design.json from src/, the module's
-//    monge_wasm_bg.wasm, and app.js and worker.js bundled with the parts of three.js it uses
-//    and the module's glue, minified by esbuild.
+//    monge_wasm_bg.wasm, and app.js (with the modules it imports from src/)
+//    and worker.js bundled with the parts of three.js they use and the
+//    module's glue, minified by esbuild.
 //
 // Deterministic: the same sources and toolchain give the same bytes, which
 // .ci/run checks against the copy embedded in the `monge` binary

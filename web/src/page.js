@@ -1,0 +1,36 @@
+// What every part of the explorer page shares: the page's state (which
+// `window.explorer` exposes to the e2e test), the wasm mesh shown, the size
+// limit, and the small helpers for elements and numbers.
+
+/** The element with id `id`. */
+export const $ = (id) => document.getElementById(id);
+
+/** A number as the page writes it: `digits` decimals, exponent form when very large or small, '—' when absent. */
+export const fmt = (x, digits = 3) => (x === null || x === undefined ? '—' : Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
+
+/** Everything the page knows; `window.explorer` exposes it to the e2e test. */
+export const state = {
+  design: null,      // the design, in the monge design-file format
+  mesh: null,        // the header of the mesh shown (see Mesh.header in crates/monge-wasm)
+  offset: 0,
+  latencies: [],     // ms from input event to the frame that shows its mesh
+  blocked: [],       // ms of each main-thread task for monge: a change (module, upload), a drag's end, the worker's answer
+  generations: 0,    // meshes drawn so far
+  stale: false,      // the design changed and monge refused it
+  fast: false,       // drawn in drag quality (see `quality` in view.js)
+  legend: null,      // the colour legend's numbers: { mode: 'area', min, max } or { mode: 'fold', folded, faces }
+  name: '<input>',   // the design's file name, in messages
+  net: null,         // the cyclidic net drawn: { lines, arcs } or { error }
+};
+
+/** Largest grid generated (rows × cols vertices), as `monge explore`'s default. */
+export const MAX_VERTICES = 250000;
+
+/** The wasm mesh shown (for metrics and exports); freed when replaced. */
+export let current = null;
+
+/** Makes the wasm `mesh` the one shown, freeing the one it replaces. */
+export function replaceCurrent(mesh) {
+  if (current) current.free();
+  current = mesh;
+}
