@@ -1,44 +1,24 @@
 //! `monge`: the command-line program of the monge workspace.
 //!
-//! Commands: `generate` (design → OBJ/PLY/JSON mesh), `check` (measure a mesh
-//! against a tolerance), `info` (validate a design without generating),
-//! `bench` (time the generator in-process) and `render` (design → PNG/SVG
-//! picture). See `monge --help`.
+//! `cli` holds the program's help and the list of commands; each command (its
+//! arguments, help text and run) is one file under `commands/`; what commands
+//! share is in `shared/`, which knows no command. See `monge --help`.
 //!
 //! Exit statuses: 0 success, 1 `check` found a metric above its tolerance,
 //! 2 any error (printed as `error: <message>` on stderr).
 
-mod align;
-mod approximate;
-mod bench;
-mod check;
 mod cli;
-mod explore;
-mod fabricate;
-mod generate;
+mod commands;
 mod http;
-mod info;
-mod optimise_panels;
-mod output;
-mod patches;
-mod render;
-mod scan;
-mod smooth;
+mod shared;
 
 use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::cli::{Cli, Command};
-
-/// What a command that ran to completion found.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Outcome {
-    /// Everything as expected: exit status 0.
-    Success,
-    /// `check` found a metric above its tolerance: exit status 1.
-    Failed,
-}
+use crate::cli::Cli;
+use crate::shared::output;
+use crate::shared::Outcome;
 
 /// mimalloc keeps freed pages for reuse: generating a large mesh again (the
 /// bench, or a designer's repeated runs in one process) does not pay the kernel
@@ -54,22 +34,7 @@ fn main() -> ExitCode {
     // clap prints its own `error: …` and exits with status 2 on bad arguments
     // (0 for --help and --version).
     let cli = Cli::parse();
-    let result = match cli.command {
-        Command::Generate(args) => generate::run(&args),
-        Command::Smooth(args) => smooth::run(&args),
-        Command::Check(args) => check::run(&args),
-        Command::Info(args) => info::run(&args),
-        Command::Bench(args) => bench::run(&args),
-        Command::Render(args) => render::run(&args),
-        Command::Fabricate(args) => fabricate::run(&args),
-        Command::Patches(args) => patches::run_patches(&args),
-        Command::Fit(args) => patches::run_fit(&args),
-        Command::Explore(args) => explore::run(&args),
-        Command::Scan(args) => scan::run(&args),
-        Command::OptimisePanels(args) => optimise_panels::run(&args),
-        Command::Align(args) => align::run(&args),
-        Command::Approximate(args) => approximate::run(&args),
-    };
+    let result = cli.command.run();
     match result {
         Ok(Outcome::Success) => ExitCode::SUCCESS,
         Ok(Outcome::Failed) => ExitCode::from(1),

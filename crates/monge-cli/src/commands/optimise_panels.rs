@@ -7,11 +7,27 @@ use monge_core::panels::{optimise_panels, PanelOptions};
 use monge_core::GenerateOptions;
 use monge_io::{check_output, read_design, write_design};
 
-use crate::output::{num, print};
-use crate::Outcome;
+use crate::shared::help::EXIT;
+use crate::shared::output::{num, print};
+use crate::shared::Outcome;
 
-/// Arguments of `monge optimise-panels`.
+/// Choose where B-spline guides are sampled so that panel areas vary least (§4.8, Figure 22).
 #[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Choose the sample parameters of the `bspline` guides of DESIGN (a monotone \
+         reparametrisation: positive gaps, ends fixed) that minimise the variance of the panel \
+         areas (divided by the squared mean), with BOBYQA, refusing samplings that fold the mesh \
+         (§5.2), and write the design with each B-spline's `parameters` to OPTIMISED_DESIGN. \
+         The samples stay on the same curves, so every exactness property still holds. Prints \
+         the area variance, min and max before and after, and the measured max error."
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge optimise-panels examples/fig22-panels.json -o even.json\n  \
+         monge generate even.json -o even.obj\n\n{EXIT}"
+    )
+)]
 pub struct OptimisePanelsArgs {
     /// The design file (`.json` or `.toml`) with at least one `bspline` guide.
     #[arg(value_name = "DESIGN")]

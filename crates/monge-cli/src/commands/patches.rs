@@ -1,24 +1,74 @@
-//! `monge patches` and `monge fit`: multi-patch meshes (§4.7), symmetric
-//! assembly (§4.5) and fitting θ with BOBYQA (§4.7, HippoHaus).
+//! `monge patches`: multi-patch meshes (§4.7), optionally assembled by
+//! symmetry (§4.5).
+
+use std::path::PathBuf;
 
 use anyhow::Context;
 use monge_core::measure::measure;
 use monge_core::multipatch::{build, MultiPatch};
-use monge_core::optimise::fit;
 use monge_core::symmetry::{assemble, isometries};
 use monge_core::GenerateOptions;
 use monge_io::{
-    check_output, read_multipatch, write_mesh, write_multipatch, write_output, write_quad_mesh,
-    MeshFormat,
+    check_output, read_multipatch, write_mesh, write_output, write_quad_mesh, MeshFormat,
 };
 use serde_json::{json, Map, Value};
 
-use crate::cli::{output_format, FitArgs, PatchesArgs};
-use crate::output::{eprint, inexact_warning, num, print};
-use crate::Outcome;
+use crate::shared::args::{output_format, WRITTEN_FORMATS};
+use crate::shared::help::{EXIT, THETA};
+use crate::shared::output::{eprint, num};
+use crate::shared::warnings::patch_warnings;
+use crate::shared::Outcome;
+
+/// Build a multi-patch mesh (§4.7), optionally assembled by symmetry (§4.5).
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Build a mesh with piecewise planar curvature lines from a multi-patch design \
+         (§4.7, Figures 20 and 21) and write it as OBJ, PLY or JSON.\n\n\
+         A multi-patch design (`.json` or `.toml`) has `patches`: the first with `theta_deg`, \
+         `guide_u` and `guide_v` like a design file; every later one with its own \
+         `theta_deg`, `attach`: {{\"patch\": K, \"side\": S}} (S = `last_row`, `first_row`, \
+         `last_column` or `first_column` of the earlier patch K, in K's own grid) and \
+         `guide`: the continuation, which must start at the first vertex of that line. The \
+         line becomes one guide of the new patch, the continuation the other (for a row \
+         side it continues guide_u, for a column side guide_v; a `first_` side runs \
+         backwards). Start tangents are forced so that the node axes continue across the \
+         seam: draw the continuation in the plane of the guide it continues (one planar \
+         bottom guide cut in pieces) and the beams are C¹ there. All patches must follow \
+         each other along rows, or all along columns: the result is one grid, shared lines \
+         stored once.\n\n\
+         Optional `symmetry`: a list of {{\"mirror\": {{\"point\", \"normal\"}}}} and \
+         {{\"rotate\": {{\"point\", \"axis\", \"order\"}}}}, applied in order to all copies so \
+         far (Figure 18: a mirror then order 5); the copies are merged where vertices \
+         coincide (1e-9 of the size) into one quad mesh (OBJ/PLY/JSON with `quads`).\n\n\
+         Without symmetry, JSON output has the grid plus `patches` (range, θ, mode, measured \
+         max error, seam and axis gaps, kink) and `line_planes` (for each row and column the \
+         plane it lies in within each patch it crosses). A summary goes to stderr.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge patches examples/fig20-piecewise.patches.json -o dome.obj\n  \
+         monge patches examples/fig21-hippohaus.patches.json -o - > hippo.json\n\n{EXIT}"
+    )
+)]
+pub struct PatchesArgs {
+    /// The multi-patch design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Output format, for `-o -` (default json) or an OUT whose extension names none; it must
+    /// agree with OUT's extension.
+    #[arg(long, value_parser = WRITTEN_FORMATS)]
+    pub format: Option<MeshFormat>,
+    /// Refuse patches of more than N grid vertices each.
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
 
 /// Runs `monge patches`.
-pub fn run_patches(args: &PatchesArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: &PatchesArgs) -> anyhow::Result<Outcome> {
     let file = args.design.display().to_string();
     let format = output_format(args.format, &args.output)?;
     check_output(&args.output, &[&args.design])?;
@@ -70,26 +120,6 @@ pub fn run_patches(args: &PatchesArgs) -> anyhow::Result<Outcome> {
     eprint(&summary);
     eprint(&patch_warnings(&mp));
     Ok(Outcome::Success)
-}
-
-/// A warning for each patch whose measured error exceeds its design's
-/// tolerance, with the likely cause ([`inexact_warning`]).
-fn patch_warnings(mp: &MultiPatch) -> String {
-    mp.patches
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let grid = mp.patch_grid(k);
-            inexact_warning(
-                &format!("patch {k}"),
-                measure(&grid).max_error(),
-                p.design.tolerance.unwrap_or_default().planarity,
-                &grid.vertices,
-                p.folded_faces,
-                Some(p.design.theta_deg),
-            )
-        })
-        .collect()
 }
 
 /// One line per patch: where it lies, θ, mode, exactness and seam measures.
@@ -148,46 +178,4 @@ fn patch_json(mp: &MultiPatch) -> Value {
             })
             .collect(),
     )
-}
-
-/// Runs `monge fit`.
-pub fn run_fit(args: &FitArgs) -> anyhow::Result<Outcome> {
-    let file = args.design.display().to_string();
-    check_output(&args.output, &[&args.design])?;
-    let design = read_multipatch(&args.design)?;
-    let options = GenerateOptions {
-        max_vertices: args.max_vertices,
-    };
-    let r = fit(&design, &options).with_context(|| file.clone())?;
-    write_multipatch(&r.design, &args.output)?;
-    let mut s = format!(
-        "before: largest distance {} (rms {}, {} of the model size)\n\
-         after:  largest distance {} (rms {}, {} of the model size)\n",
-        num(r.before.max),
-        num(r.before.rms),
-        num(r.before.relative),
-        num(r.after.max),
-        num(r.after.rms),
-        num(r.after.relative)
-    );
-    for (name, start, end, bounds) in &r.values {
-        s.push_str(&format!(
-            "{name}: {} -> {} (bounds [{}, {}])\n",
-            num(*start),
-            num(*end),
-            num(bounds[0]),
-            num(bounds[1])
-        ));
-    }
-    s.push_str(&format!(
-        "BOBYQA: {} meshes generated; {}\nwrote {}\n",
-        r.evaluations,
-        r.status,
-        args.output.display()
-    ));
-    print(&s)?;
-    // The fitted design's patches, measured as `monge patches` measures them.
-    let fitted = build(&r.design, &options).with_context(|| file.clone())?;
-    eprint(&patch_warnings(&fitted));
-    Ok(Outcome::Success)
 }

@@ -4,43 +4,94 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use glam::DVec3;
-use monge_core::approximate::{Deviation, TargetCloud};
+use monge_core::approximate::TargetCloud;
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::developable::developable;
 use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, MeshKind, QuadGrid};
 use monge_io::{check_output, read_any_design, read_points, write_atomic, AnyDesign};
 use monge_render::{
-    gauss_net, guide_highlights, heat, render_png, render_svg, sheet_png, sheet_svg, Highlight,
-    Panel, Projection, RenderOptions, Rgb, Scene, View,
+    gauss_net, guide_highlights, render_png, render_svg, Highlight, Panel, Projection,
+    RenderOptions, Rgb, Scene, View, MAX_SIDE,
 };
 
-use crate::cli::RenderArgs;
-use crate::output::{eprint, num};
-use crate::Outcome;
+use crate::shared::args::parse_finite;
+use crate::shared::help::{EXIT, THETA};
+use crate::shared::output::{eprint, num};
+use crate::shared::picture::{distance_panel, sheet, Picture};
+use crate::shared::Outcome;
 
-/// The picture formats, by extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Picture {
-    Png,
-    Svg,
-}
-
-impl Picture {
-    /// The format of `out`'s extension.
-    pub fn of(out: &Path) -> anyhow::Result<Picture> {
-        let ext = out
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        match ext.as_deref() {
-            Some("png") => Ok(Picture::Png),
-            Some("svg") => Ok(Picture::Svg),
-            _ => bail!(
-                "cannot tell the picture format of `{}`: OUT must end in `.png` or `.svg`",
-                out.display()
-            ),
-        }
-    }
+/// Draw designs as a shaded picture (PNG or SVG), or a sheet of θ values.
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Draw the mesh of a design as a picture: PNG or SVG by OUT's extension, written \
+         atomically.\n\n\
+         The mesh is seen from --view (z up) in a mild perspective (or --orthographic), \
+         fitted to the picture. Its faces are shaded (light steel blue on the side facing \
+         you, sand on the other, so folds show) and outlined; the guides are drawn on top: \
+         guide_u (column 0) in red, guide_v (row 0) in blue. A design with \
+         `\"mesh\": \"conical\"` is drawn as its conical dual (§2.3), with the guide samples \
+         highlighted. With --gauss the Gauss map is drawn on the right: the node axes as a \
+         quad net on the unit sphere (Figure 9), the normals along the guides in red and \
+         blue.\n\n\
+         Several DESIGNs make a contact sheet, one captioned cell each (any error stops \
+         the command). --theta-sweep draws one DESIGN at several θ (the family of \
+         Figure 14); a θ that cannot be built (the singular +90°, an inadmissible θ) \
+         gets an empty crossed cell captioned with the reason. PNG captions use a \
+         small pixel font in capitals.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge render examples/fig13-freeform.json -o freeform.png\n  \
+         monge render examples/fig10-arbitrary.json -o gauss.svg --gauss --size 1500x700\n  \
+         monge render examples/fig12-torus.json examples/fig12-dupin-theta30.json -o sheet.png\n  \
+         monge render examples/fig14-family.toml --theta-sweep=-180,-90,0,45,90,150 -o family.png\n  \
+         monge render examples/fig2-enneper.json -o top.png --view=-90,89 --orthographic\n\n{EXIT}"
+    )
+)]
+pub struct RenderArgs {
+    /// The design files (`.json` or `.toml`); several make a contact sheet.
+    #[arg(value_name = "DESIGN", required = true)]
+    pub designs: Vec<PathBuf>,
+    /// The picture to write: `.png` or `.svg`.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Also draw the Gauss map (the node axes on the unit sphere) beside each mesh.
+    #[arg(long)]
+    pub gauss: bool,
+    /// Size of the picture in pixels, WIDTHxHEIGHT (each from 1 to 16384).
+    #[arg(long, value_name = "WxH", default_value = "1200x800", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Where the eye is, in degrees: azimuth around z from +x towards +y, and elevation
+    /// above the xy plane (−89 to 89). Write `--view=-55,30` for a negative azimuth.
+    #[arg(long, value_name = "AZ,EL", default_value = "-55,30", value_parser = parse_view, allow_hyphen_values = true)]
+    pub view: (f64, f64),
+    /// Parallel projection instead of the default mild perspective.
+    #[arg(long)]
+    pub orthographic: bool,
+    /// Draw the one DESIGN at each of these θ (comma-separated degrees) as a contact sheet.
+    #[arg(
+        long,
+        value_name = "θ,θ,…",
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_parser = parse_finite
+    )]
+    pub theta_sweep: Option<Vec<f64>>,
+    /// Cells per row of a contact sheet [default: cells closest to 3:2].
+    #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true)]
+    pub columns: usize,
+    /// Draw the smooth surface instead: the cyclidic net (§4.4), K samples a patch side, with
+    /// every curvature line through the mesh vertices drawn as its chain of circular arcs.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(2..=64))]
+    pub smooth: Option<u32>,
+    /// Colour the mesh by its distance to TARGET (a mesh or point cloud: .obj, .ply,
+    /// .json), as `monge approximate` measures it: white on the target, dark red at the
+    /// 95th percentile (at least 1e-6 of the target's size) and beyond; the caption
+    /// gives the scale and the deviation both ways. One DESIGN only.
+    #[arg(long, value_name = "TARGET")]
+    pub deviation: Option<PathBuf>,
 }
 
 /// Runs `monge render`.
@@ -193,64 +244,6 @@ fn deviation_panel(scene: Scene, path: &Path) -> anyhow::Result<(Panel, String)>
     Ok((panel, what))
 }
 
-/// `scene` with its mesh coloured by each vertex's distance to `target`
-/// ([`TargetCloud::distances`]): white 0, dark red from `scale`, by default the 95th
-/// percentile (so that a few vertices beyond the target's last points do not wash out
-/// the rest; at least 1e-6 of the target's size, so that rounding on a mesh that is its
-/// own target stays white). The caption starts with `title`, then gives the scale and
-/// the deviation both ways. The panel, the scale, the deviation.
-pub fn distance_panel(
-    mut scene: Scene,
-    target: &TargetCloud,
-    title: &str,
-    scale: Option<f64>,
-) -> (Panel, f64, Deviation) {
-    let (distances, d) = target.distances_and_deviation(&scene.mesh);
-    let how = if scale.is_none() {
-        " (95th percentile)"
-    } else {
-        ""
-    };
-    let scale = scale.unwrap_or_else(|| {
-        let mut sorted = distances.clone();
-        sorted.sort_by(f64::total_cmp);
-        sorted[(sorted.len() - 1) * 95 / 100].max(1e-6 * target.size())
-    });
-    scene.vertex_colors = Some(distances.iter().map(|d| heat(d / scale)).collect());
-    let size = target.size();
-    // In the caption font's characters (capitals, digits, some punctuation).
-    let caption = format!(
-        "{title}\nwhite 0, dark red from {}{how}\n\
-         mesh to target: max {}, RMS {}\ntarget to mesh: max {}, RMS {}",
-        num(scale),
-        num(d.mesh_to_target_max * size),
-        num(d.mesh_to_target_rms * size),
-        num(d.target_to_mesh_max * size),
-        num(d.target_to_mesh_rms * size),
-    );
-    (
-        Panel {
-            scene: Some(scene),
-            caption,
-        },
-        scale,
-        d,
-    )
-}
-
-/// A contact sheet in `format`.
-pub fn sheet(
-    panels: &[Panel],
-    columns: usize,
-    options: &RenderOptions,
-    format: Picture,
-) -> anyhow::Result<Vec<u8>> {
-    Ok(match format {
-        Picture::Png => sheet_png(panels, columns, options)?,
-        Picture::Svg => sheet_svg(panels, columns, options)?.into_bytes(),
-    })
-}
-
 /// What to draw of a generated design: the circular mesh with its guides (row 0
 /// and column 0), or the conical dual with the guide samples; and the Gauss map
 /// (the circular mesh's node axes) if asked.
@@ -332,17 +325,47 @@ fn short_reason(e: &GenerateError) -> &'static str {
     }
 }
 
+/// `--size`: `WIDTHxHEIGHT`, each from 1 to [`MAX_SIDE`].
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || {
+        format!(
+            "`{s}` is not a size: give WIDTHxHEIGHT in pixels, each from 1 to {MAX_SIDE}, e.g. \
+             1200x800"
+        )
+    };
+    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let side = |t: &str| {
+        let v = t.trim().parse::<u64>().map_err(|_| bad())?;
+        match u32::try_from(v) {
+            Ok(v @ 1..=MAX_SIDE) => Ok(v),
+            _ => Err(format!(
+                "`{s}`: a side of {v} pixels is outside 1 to {MAX_SIDE} (the largest picture monge \
+                 draws is {MAX_SIDE} × {MAX_SIDE})"
+            )),
+        }
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// `--view`: `AZ,EL` in degrees, the elevation from −89 to 89.
+fn parse_view(s: &str) -> Result<(f64, f64), String> {
+    let bad = || {
+        format!(
+            "`{s}` is not a view: give AZ,EL in degrees, e.g. -55,30 (elevation from -89 to 89)"
+        )
+    };
+    let (a, e) = s.split_once(',').ok_or_else(bad)?;
+    let az = parse_finite(a).map_err(|_| bad())?;
+    let el = parse_finite(e).map_err(|_| bad())?;
+    if !(-89.0..=89.0).contains(&el) {
+        return Err(bad());
+    }
+    Ok((az, el))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn format_follows_the_extension() {
-        assert_eq!(Picture::of(Path::new("a/b.PNG")).unwrap(), Picture::Png);
-        assert_eq!(Picture::of(Path::new("b.svg")).unwrap(), Picture::Svg);
-        assert!(Picture::of(Path::new("b.jpg")).is_err());
-        assert!(Picture::of(Path::new("-")).is_err());
-    }
 
     #[test]
     fn reasons_are_short() {
@@ -351,5 +374,22 @@ mod tests {
             window: 1e-3,
         };
         assert_eq!(short_reason(&e), "singular");
+    }
+
+    #[test]
+    fn sizes_and_views_parse() {
+        assert_eq!(parse_size("900x600"), Ok((900, 600)));
+        assert_eq!(parse_size("16384x1"), Ok((16384, 1)));
+        for (size, side) in [("0x600", 0), ("20000x20000", 20000), ("900x16385", 16385)] {
+            let err = parse_size(size).unwrap_err();
+            assert!(
+                err.contains(&format!("a side of {side} pixels is outside 1 to 16384")),
+                "{err}"
+            );
+        }
+        assert!(parse_size("900").is_err());
+        assert_eq!(parse_view("-55,30"), Ok((-55.0, 30.0)));
+        assert!(parse_view("0,90").is_err());
+        assert!(parse_view("nan,0").is_err());
     }
 }

@@ -6,11 +6,42 @@ use anyhow::Context;
 use monge_core::boundary::{align, AlignOptions};
 use monge_io::{check_output, read_planes, write_design};
 
-use crate::output::{num, print};
-use crate::Outcome;
+use crate::shared::help::{EXIT, THETA};
+use crate::shared::output::{num, print};
+use crate::shared::Outcome;
 
-/// Arguments of `monge align`.
+/// Write a design whose mesh has its boundary rows and columns in four planes (§4.5, Figures 16–18).
 #[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Write a design (two circular-arc guides and θ) whose mesh, from `monge generate`, has \
+         its first row (guide_v) in `first_row` (P1), its last row in `last_row` (P2), its first \
+         column (guide_u) in `first_column` (P3) and its last column in `last_column` (P4), to \
+         round-off. PLANES is JSON:\n\n  \
+         {{\"first_row\":    {{\"point\": [0,0,0], \"normal\": [0,0,1]}},\n   \
+         \"last_row\":     {{\"point\": [2,0,0], \"normal\": [1,0,0]}},\n   \
+         \"first_column\": {{\"point\": [0,0,0], \"normal\": [0,1,0]}},\n   \
+         \"last_column\":  {{\"point\": [0,0,0], \"normal\": [-0.588,0.809,0]}},\n   \
+         \"corner\": [5,0,0], \"theta_deg\": -60, \"samples\": 21}}\n\n\
+         (a point and a normal per plane; `corner`, `theta_deg`, `samples` optional). The lines \
+         P1 ∩ P2 and P3 ∩ P4 must have orthogonal directions (the Gauss circles of the four \
+         boundary lines, {{n·p_k = c_k}}, then satisfy c_i·c_j = p_i·p_j, one free scale = θ). The \
+         guides start at `corner` projected onto P1 ∩ P3 (default: the point of that line \
+         nearest the mean of the planes' points). Without θ, monge scans θ in 1° steps and takes \
+         the middle of the longest run that gives an unfolded mesh in the planes.\n\n\
+         --facade (Figure 16): four vertical planes forming a rectangle in plan (P1 ∥ P2 ⊥ P3 ∥ P4); \
+         the guides are S-shaped bi-arcs with horizontal end tangents, rising by `rise` \
+         ({{\"guide_u\": h, \"guide_v\": h}}, default a quarter of each run); every θ but +90° \
+         works.\n\n\
+         Prints θ, the c_k, each boundary's distance from its plane (relative to the mesh size) \
+         and the measured max error.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge align examples/fig17.planes.json -o fig17.json && monge generate fig17.json -o fig17.obj\n  \
+         monge align examples/fig16-facade.planes.json --facade --samples 31 -o fig16.json\n\n{EXIT}"
+    )
+)]
 pub struct AlignArgs {
     /// The planes file (JSON or TOML): `first_row`, `last_row`, `first_column`, `last_column`, each
     /// `{"point": [x, y, z], "normal": [x, y, z]}`; optional `theta_deg`, `corner`,

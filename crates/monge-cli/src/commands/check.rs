@@ -1,6 +1,7 @@
 //! `monge check`: measure a mesh against a tolerance.
 
 use std::io;
+use std::path::PathBuf;
 
 use anyhow::{bail, Context};
 use glam::DVec3;
@@ -12,15 +13,68 @@ use monge_io::{
 };
 use serde_json::{json, Map, Value};
 
-use crate::cli::{CheckArgs, KindArg};
-use crate::output::{eprint, far_from_origin_warning, num, print};
-use crate::Outcome;
+use crate::shared::args::{parse_tolerance, KindArg, READ_FORMATS};
+use crate::shared::help::EXIT;
+use crate::shared::output::{eprint, far_from_origin_warning, num, print};
+use crate::shared::Outcome;
+
+/// Measure a quad mesh: planarity, circularity, planar lines, node axes.
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Measure a quad mesh (from `monge generate` or any row-major quad grid) independently \
+         of how it was made.\n\n\
+         Reads MESH (`.obj`, `.ply` or `.json` by extension, or `-` for standard input with \
+         --format) and prints, for each metric, its worst value and where it occurs, and PASS \
+         or FAIL against --tol: face planarity (distance between the diagonals' lines), \
+         circularity (distance of a corner from the circle through the other three), row and \
+         column planarity (distance of a vertex from the best-fit plane of its curvature \
+         line), all relative to the bounding-box diagonal; and, when the mesh has normals, \
+         torsion (|det(edge, n_p, n_q)| over edges, also relative to the diagonal: 0 when the \
+         node axes at both ends of every edge are coplanar) and normal length (| |n| − 1 |). \
+         A conical mesh (--kind conical; by default the `kind` a JSON mesh names) has the \
+         conical condition at every vertex instead of circularity, torsion and normal length."
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge check mesh.obj\n  \
+         monge generate examples/fig2-enneper.json -o - | monge check - --format json --json\n\n{EXIT}"
+    )
+)]
+pub struct CheckArgs {
+    /// The mesh file (`.obj`, `.ply` or `.json`), or `-` for standard input (needs --format).
+    #[arg(value_name = "MESH")]
+    pub mesh: PathBuf,
+    /// Largest accepted value of each metric (a non-negative number).
+    #[arg(
+        long,
+        value_name = "TOL",
+        default_value = "1e-9",
+        value_parser = parse_tolerance,
+        allow_negative_numbers = true
+    )]
+    pub tol: f64,
+    /// Format of standard input when MESH is `-` (files are read by their extension).
+    #[arg(long, value_parser = READ_FORMATS)]
+    pub format: Option<MeshFormat>,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// What MESH is: which properties to measure (default: the `kind` a JSON mesh
+    /// written by monge names, else circular).
+    #[arg(long, value_enum)]
+    pub kind: Option<KindArg>,
+    /// MESH is an offset of BASE (same grid): also measure how far the offset distance varies
+    /// (vertex distances for a circular mesh, face-plane distances for a conical one).
+    #[arg(long, value_name = "BASE")]
+    pub offset_from: Option<PathBuf>,
+}
 
 /// Runs `monge check`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let path = args.mesh.as_path();
     let (grid, named_kind) = match (is_stdio(path), args.format) {
-        (true, Some(f)) => read_mesh_and_kind_from(io::stdin().lock(), MeshFormat::from(f))?,
+        (true, Some(f)) => read_mesh_and_kind_from(io::stdin().lock(), f)?,
         (true, None) => bail!("`-` (standard input) needs --format obj, ply or json"),
         (false, None) => read_mesh_and_kind(path)?,
         (false, Some(_)) => bail!(

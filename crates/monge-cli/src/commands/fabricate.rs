@@ -11,14 +11,36 @@ use monge_core::{generate, BasePoint, GenerateOptions, MeshKind};
 use monge_io::generated::{max_error, with_folds};
 use monge_io::{check_fabrication_output, read_design, write_fabrication, ScheduleJson};
 
-use crate::generate::generation_warnings;
-use crate::output::{
+use crate::shared::args::{parse_finite, parse_non_negative};
+use crate::shared::help::EXIT;
+use crate::shared::output::{
     check_output_size, eprint, inexact_warning, millis, num, parse_gigabytes, print, MAX_OUTPUT_GB,
 };
-use crate::Outcome;
+use crate::shared::warnings::generation_warnings;
+use crate::shared::Outcome;
 
-/// Arguments of `monge fabricate` (§6).
+/// Fabrication output of a gridshell: layers, panels, beams, nodes (§6).
 #[derive(Debug, clap::Args)]
+#[command(
+    long_about = "Fabrication output of a gridshell built on the design's mesh (§6, Figure 25).\n\n\
+         Generates the mesh (the conical dual for `\"mesh\": \"conical\"`), offsets it to every \
+         --layers distance (node offsets along the node axes §2.2, face offsets §2.3), and writes \
+         into DIR, all files or none (if one cannot be written, no file in DIR changes): panels.csv (every face flattened exactly in its plane: \
+         outline, edges, angles, area, circumradius, residuals), beams.csv and segments.csv \
+         (every row and column in its plane, split into circular arcs where the circle changes, \
+         §4.6: radius, sweep, centre, split nodes, length along the arcs: the roller-bender list), nodes.csv (axis, \
+         beam angles, height across the layers, torsion, node type), schedule.json (the \
+         summary and the layers; with --full-json also every panel, beam and node), panels.dxf and beams.dxf (R12 drawings, labelled), overview.svg (plan) and \
+         gridshell.glb (glTF of all layers, beams swept with a rectangular section). Prints a \
+         summary: counts, segments per beam, distinct radii, node types, node heights, worst \
+         residuals. Lengths and residuals in the files and the summary are in the model's \
+         units; --tol is relative to the model's size (the summary prints it).",
+    after_help = format!(
+        "Examples:\n  \
+         monge fabricate examples/fig12-dupin-theta30.json -o out --layers 0,0.1,0.2\n  \
+         monge fabricate examples/fig25-biarc.json -o out --layers 0,-0.1,-0.2 --section 0.05,0.1\n\n{EXIT}"
+    )
+)]
 pub struct FabricateArgs {
     /// The design file (`.json` or `.toml`); `"mesh": "conical"` fabricates the conical dual.
     #[arg(value_name = "DESIGN")]
@@ -252,21 +274,5 @@ fn sci(x: f64) -> String {
         "0".to_owned()
     } else {
         format!("{x:.1e}")
-    }
-}
-
-/// `--layers`: finite numbers.
-fn parse_finite(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("`{s}` is not a finite number")),
-    }
-}
-
-/// Tolerances and sizes: finite, non-negative numbers.
-fn parse_non_negative(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        _ => Err(format!("`{s}` is not a finite, non-negative number")),
     }
 }

@@ -1,16 +1,49 @@
 //! `monge info`: validate a design and describe it, without generating.
 
+use std::path::PathBuf;
+
 use anyhow::Context;
 use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::guide::Guide;
 use monge_core::{inspect, DesignInfo, GenerateOptions, GuideSpec, Mode};
+use monge_io::generated::{mode_name, near_singular, SINGULAR_DEG};
 use monge_io::{read_any_design, AnyDesign};
 use serde_json::{json, Value};
 
-use crate::cli::InfoArgs;
-use crate::generate::{mode_name, near_singular, range_text, SINGULAR_DEG};
-use crate::output::{eprint, far_from_origin_warning, num, print, xyz};
-use crate::Outcome;
+use crate::shared::help::{EXIT, THETA};
+use crate::shared::output::{eprint, far_from_origin_warning, num, print, xyz};
+use crate::shared::warnings::range_text;
+use crate::shared::Outcome;
+
+/// Validate a design and print what generation would use, without generating.
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Validate a design and print what generation would use, without building the mesh.\n\n\
+         For each guide: its kind, number of samples, planarity deviation (absolute and \
+         relative to the guide's size, against the design's tolerance), size (bounding-box \
+         diagonal), unit start tangent and plane normal. Then the mode (characteristic §3.1: \
+         every θ works; arbitrary §3.2: θ has an admissible range), the admissible θ in \
+         degrees (both signs), whether the design's θ is admissible (an inadmissible θ is \
+         reported, not an error), the singular θ = +90°, and the grid size.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge info examples/fig10-arbitrary.json\n  \
+         monge info examples/fig14-family.toml --json\n\n{EXIT}"
+    )
+)]
+pub struct InfoArgs {
+    /// The design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Refuse designs of more than N grid vertices (as `monge generate` would).
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+}
 
 /// Runs `monge info`.
 pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {

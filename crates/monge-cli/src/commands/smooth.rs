@@ -1,6 +1,7 @@
 //! `monge smooth`: the cyclidic net of a design (§4.4): a C¹ surface of Dupin
 //! cyclide patches whose curvature lines are planar chains of circular arcs.
 
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{bail, Context};
@@ -13,9 +14,72 @@ use monge_io::{
     write_net_json, write_output, MeshFormat,
 };
 
-use crate::cli::SmoothArgs;
-use crate::output::{check_output_size, eprint, inexact_warning, millis};
-use crate::Outcome;
+use crate::shared::args::parse_tolerance;
+use crate::shared::help::EXIT;
+use crate::shared::output::{check_output_size, eprint, inexact_warning, millis};
+use crate::shared::Outcome;
+
+/// Build the smooth C¹ surface of a design: a cyclidic net of Dupin cyclide patches.
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Build the cyclidic net of a design (§4.4): one Dupin cyclide patch per face of its \
+         circular mesh, with the frames of §4.4, so that patches share their boundary arcs and \
+         tangent planes (C¹) and every curvature line is a planar chain of circular arcs: \
+         one arc where the mesh line is inscribed in a circle, bi-arcs where it is inscribed \
+         in two (§4.6).\n\n\
+         OUT `.json`: `patches` (per face (i, j): the patch sampled on a K × K grid of its own \
+         (u, v), row-major, (0, 0) at vertex (i, j), u towards (i+1, j), v towards (i, j+1)) and \
+         `lines` (per mesh line: family `u` or `v`, index, and its arcs: center, radius, \
+         normal, start, end). OUT `.igs`: the whole net as one exact NURBS surface (IGES \
+         entity 128, rational, degree 2 × 2), which Rhino and other CAD tools open. OUT `.obj` \
+         or `.ply`: the dense mesh of the whole net. A mesh \
+         with folded faces (§5.2: crossed or non-convex, or turned over against the others; \
+         the faces `monge check` counts) is refused unless --allow-folded, naming the first."
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge smooth examples/fig12-dupin-theta30.json -o net.json --samples 9\n  \
+         monge smooth examples/fig13-freeform.json -o smooth.obj\n\n{EXIT}"
+    )
+)]
+pub struct SmoothArgs {
+    /// The design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output: `.json` (patches and arcs), `.igs` (exact NURBS), `.obj`, `.ply` or `.glb` (dense
+    /// mesh).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Samples per patch side, K ≥ 2 (K × K points a patch).
+    #[arg(long, value_name = "K", default_value_t = 9, value_parser = clap::value_parser!(u32).range(2..=1000))]
+    pub samples: u32,
+    /// Refuse outputs estimated above this many gigabytes (10⁹ bytes), before computing
+    /// them: about 60 bytes a sample point in `.json`, 190 a dense vertex in `.obj`.
+    #[arg(long, value_name = "GB", default_value_t = crate::shared::output::MAX_OUTPUT_GB, value_parser = crate::shared::output::parse_gigabytes)]
+    pub max_output: f64,
+    /// Build the net over folded faces (those `monge check` counts) instead of refusing the mesh.
+    #[arg(long)]
+    pub allow_folded: bool,
+    /// Largest accepted non-circularity of a face: |Im q| / |q| for the cross-ratio q of
+    /// its corners (0 for a circle). Raise it for a mesh that is only nearly circular.
+    #[arg(long, value_name = "TOL", default_value_t = CyclidicOptions::default().circularity_tolerance, value_parser = parse_tolerance)]
+    pub circularity_tol: f64,
+    /// DESIGN is a circular quad mesh (`.obj`, `.ply` or `.json`, row-major grid), not a design:
+    /// the net is built on it (its lines need not be planar; then neither are the net's).
+    #[arg(long)]
+    pub mesh: bool,
+    /// The frame at vertex (0, 0), carried over the whole mesh by reflections (§4.4), as
+    /// `t1x,t1y,t1z,t2x,t2y,t2z` (orthonormal; t1 towards (1, 0), t2 towards (0, 1)).
+    /// Default: the frames of §4.4 from the node axes, which make the curvature lines planar.
+    #[arg(
+        long,
+        value_name = "T1,T2",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub frame: Option<Vec<f64>>,
+}
 
 /// Runs `monge smooth`.
 pub fn run(args: &SmoothArgs) -> anyhow::Result<Outcome> {

@@ -8,11 +8,32 @@ use monge_core::scan::{parse_range, scan, Scan, Status};
 use monge_core::GenerateOptions;
 use monge_io::{check_output, read_design, write_scan_csv, write_scan_svg, Outputs};
 
-use crate::output::{eprint, num};
-use crate::Outcome;
+use crate::shared::help::{EXIT, THETA};
+use crate::shared::output::{eprint, num};
+use crate::shared::Outcome;
 
-/// Arguments of `monge scan`.
+/// Scan θ (or any number of a design) over a range: CSV table and SVG plot (§4.3, Figure 14).
 #[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Generate the design at each value of θ (--theta START:END:STEP) or of any number of \
+         the design (--param PATH --range START:END:STEP, PATH as in the design's JSON, e.g. \
+         `guide_v.bspline.control_points[2][2]`), in parallel, and write one CSV row per value: \
+         status (fair, folded, inadmissible, degenerate, invalid), admissible, folded faces and \
+         the smallest crossing sine (pinching and self-intersection, §5.2), panel area min, max, \
+         spread (max/min), mean and variance, the longest edge, the measured max error and the \
+         generator's error message. --plot draws area spread and folded faces against the \
+         value with folded (red), inadmissible (grey), degenerate (orange) and invalid (blue) \
+         intervals shaded. A summary of the intervals goes to stderr; a progress bar too when \
+         it is a terminal.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge scan examples/fig14-family.toml --theta -180:180:2 -o scan.csv --plot scan.svg\n  \
+         monge scan examples/fig14-family.toml --param guide_v.bspline.control_points[2][2] \
+         --range 1:5:0.5 -o scan.csv\n\n{EXIT}"
+    )
+)]
 pub struct ScanArgs {
     /// The design file (`.json` or `.toml`).
     #[arg(value_name = "DESIGN")]

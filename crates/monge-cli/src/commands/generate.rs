@@ -5,23 +5,72 @@ use std::time::Instant;
 
 use anyhow::{bail, Context};
 use glam::DVec3;
-use monge_core::combescure::CombescureReport;
 use monge_core::developable::{developable, DevelopableSpec};
-use monge_core::gauss_map::ThetaRange;
-use monge_core::{generate, GenerateOptions, Generated, MeshKind, Mode};
+use monge_core::{generate, BasePoint, GenerateOptions, Generated, MeshKind};
 use monge_io::generated::{json_extras, layers, max_error, node_offset, Layer};
-pub use monge_io::generated::{mode_name, near_singular, SINGULAR_DEG};
 use monge_io::{
     check_output, is_stdio, read_any_design, write_mesh_at, AnyDesign, MeshFormat, Outputs,
 };
 use serde_json::{json, Map, Value};
 
-use crate::cli::{output_format, GenerateArgs};
-use crate::output::{eprint, far_from_origin_warning, inexact_warning, millis, num};
-use crate::Outcome;
+use crate::shared::args::{output_format, parse_finite, WRITTEN_FORMATS};
+use crate::shared::help::{EXIT, THETA};
+use crate::shared::output::{eprint, far_from_origin_warning, inexact_warning, millis, num};
+use crate::shared::warnings::{generation_warnings, range_text};
+use crate::shared::Outcome;
 
-/// Below this smallest crossing sine the summary warns that the mesh nearly pinches (§5.2).
-const LOW_CROSSING_SINE: f64 = 1e-3;
+/// Generate the mesh of a design and write it as OBJ, PLY or JSON.
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = format!(
+        "Generate the mesh of a design and write it as OBJ, PLY or JSON.\n\n\
+         Reads DESIGN (`.json` or `.toml`), validates it (guides planar, starting at the same \
+         point, meeting at 90°, θ admissible), builds the mesh exactly (§3) and writes it to OUT \
+         in the format of OUT's extension (`.obj`, `.ply` or `.json`; `--format ply-binary` \
+         or `ply-f32` for binary PLY with double or float coordinates), atomically: on any error \
+         no file is created and an existing OUT is left untouched (with --offset, no file at \
+         all). JSON output has `rows`, `cols`, `vertices`, `kind` and `offset`; a circular \
+         mesh adds its node axes `normals`, a conical mesh its `face_normals` (§2.3), and \
+         both `theta_deg`, `mode` and `report` (folded faces, first fold, smallest crossing \
+         sine); a developable mesh (§3.3) adds `normals` and its slope `alpha_deg`. A one-paragraph summary (grid \
+         size, mode, θ, admissible range, time taken, warnings about folds and pinches) goes \
+         to stderr.\n\n{THETA}"
+    ),
+    after_help = format!(
+        "Examples:\n  \
+         monge generate examples/fig13-freeform.json -o mesh.obj\n  \
+         monge generate examples/fig14-family.toml -o - --format ply > mesh.ply\n\n{EXIT}"
+    )
+)]
+pub struct GenerateArgs {
+    /// The design file (`.json` or `.toml`).
+    #[arg(value_name = "DESIGN")]
+    pub design: PathBuf,
+    /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Output format, for `-o -` (default json) or an OUT whose extension names none; it must
+    /// agree with OUT's extension.
+    #[arg(long, value_parser = WRITTEN_FORMATS)]
+    pub format: Option<MeshFormat>,
+    /// Refuse grids of more than N vertices (rows × cols; of a developable design, rulings ×
+    /// heights), before allocating anything.
+    #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
+    pub max_vertices: usize,
+    /// Also write the offset at distance D (repeatable): the node offset along the node axes
+    /// of a circular mesh (§2.2), the face offset of a conical mesh (§2.3). Each is written
+    /// next to OUT as `STEM.offset+D.EXT` (or `-D`), in OUT's format.
+    #[arg(long = "offset", value_name = "D", allow_negative_numbers = true, value_parser = parse_finite)]
+    pub offsets: Vec<f64>,
+    /// Write coordinates relative to a base point: `start` (the guides' common start point) or
+    /// X,Y,Z. Far from the origin (beyond about 1e3 times the design's size) this keeps the
+    /// mesh exact to 1e-9 of its size, which absolute f64 coordinates cannot. The mesh is
+    /// computed relative to the point, and the file records it: JSON `base_point`, OBJ
+    /// `# base_point x y z`, PLY `comment base_point x y z` (add it to every vertex for the
+    /// true coordinates), glTF the node's translation. Off by default.
+    #[arg(long, value_name = "start|X,Y,Z", allow_hyphen_values = true)]
+    pub base_point: Option<BasePoint>,
+}
 
 /// Runs `monge generate`.
 pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
@@ -214,52 +263,6 @@ fn offset_path(out: &Path, d: f64) -> PathBuf {
     out.with_file_name(name)
 }
 
-/// What the summary says about folds and pinches (§5.2),
-/// taken from a [`CombescureReport`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Pinching {
-    /// Faces oriented against face (0, 0).
-    folded_faces: usize,
-    /// The first of them, row-major.
-    first_fold: Option<(usize, usize)>,
-    /// The smallest sine between the two lines that defined a vertex.
-    min_sine: f64,
-    /// The face where it occurred.
-    min_face: (usize, usize),
-}
-
-impl From<&CombescureReport> for Pinching {
-    fn from(r: &CombescureReport) -> Self {
-        Pinching {
-            folded_faces: r.folded_faces,
-            first_fold: r.first_fold,
-            min_sine: r.min_crossing.sine,
-            min_face: r.min_crossing.face,
-        }
-    }
-}
-
-/// Below this |θ| in degrees, the lower end of an admissible range is 0 up to
-/// round-off (c_v = 0 in §3.2 computes as about 1e-15°).
-const ZERO_DEG: f64 = 1e-9;
-
-/// The admissible θ in words, both signs (§3.2); a range from 0 (up to
-/// round-off) is one interval, without `−0°`.
-pub fn range_text(mode: Mode, r: &ThetaRange) -> String {
-    match mode {
-        Mode::Characteristic => "every θ in (−180°, 180°]".to_owned(),
-        Mode::Arbitrary if r.min_deg.abs() < ZERO_DEG => format!(
-            "|θ| ≤ {max}°, i.e. θ in [−{max}°, {max}°]",
-            max = num(r.max_deg)
-        ),
-        Mode::Arbitrary => format!(
-            "|θ| in [{min}°, {max}°], i.e. θ in [−{max}°, −{min}°] ∪ [{min}°, {max}°]",
-            min = num(r.min_deg),
-            max = num(r.max_deg)
-        ),
-    }
-}
-
 /// The paragraph printed on stderr after a successful generation.
 fn summary(
     design: &Path,
@@ -289,102 +292,4 @@ fn summary(
         target,
         millis(writing),
     )
-}
-
-/// The warnings of a generation at `theta_deg` (near-singular θ, folds and
-/// pinches, §5.2) whose mesh `report` describes (for a conical mesh, its own
-/// folds), one line each, for every command that builds on a generated mesh.
-pub fn generation_warnings(theta_deg: f64, report: &CombescureReport) -> String {
-    warnings(theta_deg, &Pinching::from(report)).concat()
-}
-
-/// Warnings about the singular θ and about folds and pinches (§5.2), one line each.
-fn warnings(theta_deg: f64, r: &Pinching) -> Vec<String> {
-    let mut w = Vec::new();
-    if near_singular(theta_deg) {
-        w.push(format!(
-            "warning: θ = {}° is at or near the singular θ = +90°, where every Gauss circle passes \
-             through the corner normal: expect a degenerate mesh; run `monge check` on it.\n",
-            num(theta_deg)
-        ));
-    }
-    if let Some((i, j)) = r.first_fold {
-        w.push(format!(
-            "warning: the mesh folds over itself / pinches (§5.2) in {} faces, first at face ({i}, {j}).\n",
-            r.folded_faces
-        ));
-    }
-    if r.min_sine < LOW_CROSSING_SINE {
-        let (i, j) = r.min_face;
-        w.push(format!(
-            "warning: low crossing sine {:.1e} at face ({i}, {j}): vertex ({}, {}) is defined by two \
-             nearly parallel lines, the mesh nearly pinches there (§5.2); try another θ.\n",
-            r.min_sine,
-            i + 1,
-            j + 1
-        ));
-    }
-    w
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn report(folded_faces: usize, min_sine: f64) -> Pinching {
-        Pinching {
-            folded_faces,
-            first_fold: (folded_faces > 0).then_some((5, 6)),
-            min_sine,
-            min_face: (3, 4),
-        }
-    }
-
-    #[test]
-    fn a_clean_mesh_has_no_warnings() {
-        assert!(warnings(30.0, &report(0, 0.5)).is_empty());
-    }
-
-    #[test]
-    fn folds_and_low_sines_are_reported_with_their_faces() {
-        let w = warnings(-90.0, &report(7, 1e-4));
-        assert_eq!(w.len(), 2);
-        assert!(
-            w[0].contains("in 7 faces, first at face (5, 6)"),
-            "{}",
-            w[0]
-        );
-        assert!(w[1].contains("1.0e-4 at face (3, 4)"), "{}", w[1]);
-    }
-
-    #[test]
-    fn only_plus_ninety_is_singular() {
-        assert!(near_singular(90.0));
-        assert!(near_singular(89.5));
-        assert!(!near_singular(-90.0));
-        assert!(!near_singular(30.0));
-        let w = warnings(90.0, &report(0, 0.5));
-        assert_eq!(w.len(), 1);
-        assert!(w[0].contains("singular θ = +90°"), "{}", w[0]);
-    }
-
-    #[test]
-    fn ranges_have_both_signs() {
-        let r = ThetaRange {
-            min_deg: 61.9,
-            max_deg: 170.0,
-        };
-        assert_eq!(
-            range_text(Mode::Arbitrary, &r),
-            "|θ| in [61.9°, 170°], i.e. θ in [−170°, −61.9°] ∪ [61.9°, 170°]"
-        );
-        for min_deg in [0.0, -0.0, 1.3e-15] {
-            let r = ThetaRange {
-                min_deg,
-                max_deg: 170.0,
-            };
-            let text = range_text(Mode::Arbitrary, &r);
-            assert_eq!(text, "|θ| ≤ 170°, i.e. θ in [−170°, 170°]");
-        }
-    }
 }

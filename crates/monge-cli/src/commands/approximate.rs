@@ -17,14 +17,21 @@ use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{check_output, read_points, write_design_into, write_multipatch_into, Outputs};
 use monge_render::{RenderOptions, Scene};
 
-use crate::render::{distance_panel, sheet, Picture};
+use crate::shared::args::KindArg;
+use crate::shared::help::EXIT;
+use crate::shared::output::{num, print};
+use crate::shared::picture::{distance_panel, sheet, Picture};
+use crate::shared::Outcome;
 
-use crate::cli::KindArg;
-use crate::output::{num, print};
-use crate::Outcome;
-
-/// Arguments of `monge approximate`.
+/// Find the design whose exact mesh is nearest to a target mesh or point cloud.
 #[derive(Debug, clap::Args)]
+#[command(
+    long_about = "Find the design (corner, two planar guides, θ) whose exactly generated mesh is \
+                  nearest to TARGET both ways (mesh → target and target → mesh), with BOBYQA from \
+                  the target's principal directions at its corners; prints the deviation before \
+                  and after, relative to the target's size, and the measured exactness.",
+    after_help = format!("Example:\n  monge approximate examples/targets/roof-pcl.obj -o roof.json --grid 20x20\n\n{EXIT}")
+)]
 pub struct ApproximateArgs {
     /// The target: a mesh or point cloud (`.obj`, `.ply` ASCII or binary, or `.json` with `vertices` or
     /// `points`), or NURBS surfaces (`.igs`/`.iges`, entity 128, sampled at about 4000 points).

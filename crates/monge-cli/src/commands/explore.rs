@@ -31,8 +31,9 @@ use include_dir::{include_dir, Dir};
 use socket2::{Domain, Protocol, Socket, Type};
 
 use crate::http;
-use crate::output::{eprint, print};
-use crate::Outcome;
+use crate::shared::help::EXIT;
+use crate::shared::output::{eprint, print};
+use crate::shared::Outcome;
 
 /// The server's bounds: 256 connections; 10 s for a request to arrive whole,
 /// from the connection's opening or the previous answer (a connection that
@@ -48,10 +49,31 @@ const LIMITS: http::Limits = http::Limits {
 /// The design shown when `monge explore` is given none: the page's own default
 /// (`web/src/default-design.json`), the `monge bench` design at 100 × 100 faces
 /// (two cubic B-splines, characteristic case, θ = 30°).
-const DEFAULT_DESIGN: &str = include_str!("../web-dist/default-design.json");
+const DEFAULT_DESIGN: &str = include_str!("../../web-dist/default-design.json");
 
-/// Arguments of `monge explore`.
+/// Explore a design in the browser: drag θ and the guides, see the mesh live.
 #[derive(Debug, clap::Args)]
+#[command(
+    long_about = "Serve the design explorer on this machine and print its address: a web page \
+         with a 3D view of the mesh (guides highlighted, Gauss map beside it), a θ slider, \
+         draggable control points of B-spline guides (kept in their planes, start tangents \
+         kept), sample counts, circular/conical switch, offset distance, live metrics and \
+         warnings where the mesh folds or θ is not admissible; designs load and save in the \
+         design-file format, meshes export as OBJ or JSON.\n\n\
+         The page computes the mesh in the browser (monge-core in WebAssembly, the same code \
+         as `monge generate`); this server only serves the page and the start design \
+         (GET /api/design), and computes nothing. It listens on 127.0.0.1 unless --host says \
+         otherwise (and warns when it listens beyond this machine), answers GET and HEAD \
+         only, and closes a connection whose request has not arrived whole within 10 s or \
+         whose answer has not been taken within 30 s. The page is built into this binary; \
+         --web-dir serves one from disk instead (`npm ci && npm run build` in web/ writes it \
+         to web/dist).",
+    after_help = format!(
+        "Examples:\n  \
+         monge explore\n  \
+         monge explore examples/fig13-freeform.json --port 0\n\n{EXIT}"
+    )
+)]
 pub struct ExploreArgs {
     /// The design to start from (`.json` or `.toml`) [default: a built-in
     /// design of 100 × 100 faces].

@@ -1,0 +1,18 @@
+//! What the commands share: how a run ends ([`Outcome`]), printing and number
+//! formats, argument parsers and kinds, the help texts' common paragraphs, the
+//! warnings of a generated mesh, and pictures. Nothing here knows a command.
+
+pub mod args;
+pub mod help;
+pub mod output;
+pub mod picture;
+pub mod warnings;
+
+/// What a command that ran to completion found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Everything as expected: exit status 0.
+    Success,
+    /// `check` found a metric above its tolerance: exit status 1.
+    Failed,
+}
