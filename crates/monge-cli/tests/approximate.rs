@@ -7,7 +7,7 @@ use std::fs;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-use common::{examples, generate_and_check, monge};
+use common::{examples, generate_and_check, monge, refuses};
 
 /// `monge approximate` of the shipped paraboloid into `design`, quick: a grid of `n` × `n`
 /// faces, one start, `evaluations` meshes per search.
@@ -73,16 +73,16 @@ fn approximate_draws_the_initial_guess_and_the_result() {
     assert_eq!(scales[0], scales[1]);
     // A picture of another format is refused before any work, and nothing is written.
     let design = dir.path().join("other.json");
-    monge()
-        .arg("approximate")
-        .arg(examples().join("targets/paraboloid.obj"))
-        .arg("-o")
-        .arg(&design)
-        .args(["--picture", "fit.gif"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("`.png` or `.svg`"));
-    assert!(!design.exists());
+    refuses(
+        monge()
+            .arg("approximate")
+            .arg(examples().join("targets/paraboloid.obj"))
+            .arg("-o")
+            .arg(&design)
+            .args(["--picture", "fit.gif"]),
+        &["`.png` or `.svg`"],
+        &[&design],
+    );
 }
 
 #[test]
@@ -96,42 +96,45 @@ fn approximate_refuses_a_sphere_cap_with_status_2_and_no_output() {
     }
     fs::write(&target, text).unwrap();
     let design = dir.path().join("fit.json");
-    monge()
-        .arg("approximate")
-        .arg(&target)
-        .arg("-o")
-        .arg(&design)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("umbilic").and(predicate::str::contains("cannot follow")));
-    assert!(!design.exists());
+    refuses(
+        monge()
+            .arg("approximate")
+            .arg(&target)
+            .arg("-o")
+            .arg(&design),
+        &["umbilic", "cannot follow"],
+        &[&design],
+    );
 }
 
 #[test]
 fn approximate_refuses_a_malformed_grid_and_time_limit() {
     let target = examples().join("targets/paraboloid.obj");
-    monge()
-        .args(["approximate"])
-        .arg(&target)
-        .args(["-o", "x.json", "--grid", "40"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("not UxV"));
-    monge()
-        .args(["approximate"])
-        .arg(&target)
-        .args(["-o", "x.json", "--time-limit=0"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("positive number of seconds"));
+    refuses(
+        monge()
+            .args(["approximate"])
+            .arg(&target)
+            .args(["-o", "x.json", "--grid", "40"]),
+        &["not UxV"],
+        &[],
+    );
+    refuses(
+        monge()
+            .args(["approximate"])
+            .arg(&target)
+            .args(["-o", "x.json", "--time-limit=0"]),
+        &["positive number of seconds"],
+        &[],
+    );
     // Once quietly taken as 1.
-    monge()
-        .args(["approximate"])
-        .arg(&target)
-        .args(["-o", "x.json", "--starts", "0"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("--starts"));
+    refuses(
+        monge()
+            .args(["approximate"])
+            .arg(&target)
+            .args(["-o", "x.json", "--starts", "0"]),
+        &["--starts"],
+        &[],
+    );
     // Beyond what the clock holds (it once panicked: "overflow when adding duration
     // to instant", "cannot convert float seconds to Duration"): no limit.
     let dir = TempDir::new().unwrap();
@@ -183,12 +186,11 @@ fn approximate_patches_writes_a_multi_patch_design_when_it_follows_closer() {
         .success();
     // One patch is not several.
     let other = dir.path().join("other.json");
-    paraboloid(&other, 8, 40)
-        .args(["--patches", "1"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("at least 2"));
-    assert!(!other.exists());
+    refuses(
+        paraboloid(&other, 8, 40).args(["--patches", "1"]),
+        &["at least 2"],
+        &[&other],
+    );
 }
 
 #[test]

@@ -7,7 +7,7 @@ use predicates::prelude::*;
 use tempfile::TempDir;
 
 mod common;
-use common::{example, monge, obj_faces, shoelace_area, variance_and_spread};
+use common::{example, monge, obj_faces, refuses, shoelace_area, variance_and_spread};
 
 #[test]
 fn scan_writes_csv_and_plot_with_the_folded_interval() {
@@ -70,22 +70,24 @@ fn scan_of_another_parameter_and_bad_arguments() {
         .success()
         .stderr(predicate::str::contains("fair: 1..3"));
     assert_eq!(fs::read_to_string(&csv).unwrap().lines().count(), 4);
-    monge()
-        .args(["scan"])
-        .arg(example("fig14-family.toml"))
-        .args(["--theta", "0:10:-1", "-o"])
-        .arg(&csv)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("never reaches its end"));
-    monge()
-        .args(["scan"])
-        .arg(example("fig14-family.toml"))
-        .args(["--param", "guide_w.points[0][0]", "--range", "0:1:1", "-o"])
-        .arg(&csv)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("no key `guide_w`"));
+    refuses(
+        monge()
+            .args(["scan"])
+            .arg(example("fig14-family.toml"))
+            .args(["--theta", "0:10:-1", "-o"])
+            .arg(&csv),
+        &["never reaches its end"],
+        &[],
+    );
+    refuses(
+        monge()
+            .args(["scan"])
+            .arg(example("fig14-family.toml"))
+            .args(["--param", "guide_w.points[0][0]", "--range", "0:1:1", "-o"])
+            .arg(&csv),
+        &["no key `guide_w`"],
+        &[],
+    );
 }
 
 /// Issue 10, item 1: on Figure 22, `optimise-panels` makes the true panel areas
@@ -128,14 +130,15 @@ fn optimise_panels_writes_a_design_with_parameters_that_generates_exactly() {
     assert!(v1 < 0.1 * v0, "variance {v0} -> {v1}");
     assert!(s1 < 0.5 * s0, "max/min {s0} -> {s1}");
     // A design without B-spline guides: exit 2 with the reason.
-    monge()
-        .arg("optimise-panels")
-        .arg(example("fig12-dupin-theta30.json"))
-        .arg("-o")
-        .arg(dir.path().join("x.json"))
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("bspline"));
+    refuses(
+        monge()
+            .arg("optimise-panels")
+            .arg(example("fig12-dupin-theta30.json"))
+            .arg("-o")
+            .arg(dir.path().join("x.json")),
+        &["bspline"],
+        &[],
+    );
 }
 
 /// The areas of the faces of an OBJ mesh, by the shoelace formula.

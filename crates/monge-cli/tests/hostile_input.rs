@@ -6,7 +6,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{example, monge};
+use common::{example, monge, refuses};
 use predicates::prelude::*;
 
 /// `text` as `name` in `dir`.
@@ -143,9 +143,11 @@ fn a_guide_of_too_high_a_degree_is_refused_with_the_limit() {
         if command == "generate" {
             cmd.arg("-o").arg(dir.path().join("m.obj"));
         }
-        cmd.assert().code(2).stderr(predicate::str::contains(
-            "guide_u: `bspline.degree` is 4000, above the largest accepted, 32",
-        ));
+        refuses(
+            &mut cmd,
+            &["guide_u: `bspline.degree` is 4000, above the largest accepted, 32"],
+            &[],
+        );
     }
     // Degree 3 of the same control points is read.
     let cubic = design.replace(&format!("\"degree\": {n}"), "\"degree\": 3");
@@ -170,12 +172,14 @@ fn a_design_file_over_16_mib_is_refused_before_it_is_read() {
         if command != "info" {
             cmd.arg("-o").arg(dir.path().join("out.json"));
         }
-        cmd.assert()
-            .code(2)
-            .stderr(predicate::str::contains(format!(
+        refuses(
+            &mut cmd,
+            &[&format!(
                 "{} has 17825792 bytes, more than a design file may have: 16777216 bytes (16 MiB)",
                 path.display()
-            )));
+            )],
+            &[],
+        );
     }
 }
 
@@ -210,11 +214,15 @@ fn a_developable_design_over_the_vertex_limit_is_refused_before_it_is_built() {
                 out.clone()
             });
         }
-        cmd.assert().code(2).stderr(predicate::str::contains(
-            "the grid would have 999 × 200000 = 199800000 vertices, more than the limit of \
+        refuses(
+            &mut cmd,
+            &[
+                "the grid would have 999 × 200000 = 199800000 vertices, more than the limit of \
              25000000: lower the `samples` of the guides (of a developable design: its helix \
              points or `heights`), or raise the limit (`--max-vertices`",
-        ));
+            ],
+            &[],
+        );
     }
     assert!(!out.exists() && !dir.path().join("m.png").exists());
     // The same limit, lowered: 3 rulings × 3 planes.
@@ -237,14 +245,11 @@ fn a_developable_design_over_the_vertex_limit_is_refused_before_it_is_built() {
     }
     // More helix points than the crossing check accepts.
     let many = file(dir.path(), "many.json", &developable_design(1001, 2));
-    monge()
-        .arg("info")
-        .arg(&many)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains(
-            "the helix has 1001 points, more than the limit of 1000",
-        ));
+    refuses(
+        monge().arg("info").arg(&many),
+        &["the helix has 1001 points, more than the limit of 1000"],
+        &[],
+    );
 }
 
 /// A design near the largest size accepted (1e100): its coordinates beyond
@@ -263,15 +268,11 @@ fn a_fabrication_that_cannot_be_written_leaves_no_folder() {
     let dir = tempfile::tempdir().unwrap();
     let design = file(dir.path(), "huge.json", HUGE_DESIGN);
     let out = dir.path().join("fab");
-    monge()
-        .arg("fabricate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("not finite in 32-bit floats"));
-    assert!(!out.exists());
+    refuses(
+        monge().arg("fabricate").arg(&design).arg("-o").arg(&out),
+        &["not finite in 32-bit floats"],
+        &[&out],
+    );
 }
 
 /// `scan` of a design near the largest size writes finite panel areas: the

@@ -5,11 +5,10 @@
 use std::fs;
 use std::path::Path;
 
-use predicates::prelude::*;
 use tempfile::TempDir;
 
 mod common;
-use common::{example, monge};
+use common::{example, monge, refuses};
 
 /// Every file of `dir` with its content, sorted by name (directories as `<dir>`).
 fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
@@ -38,15 +37,16 @@ fn generate_with_offsets_changes_no_file_when_one_offset_fails() {
     fs::create_dir(d.join("m.offset+1.obj")).unwrap();
     let generate = |offsets: [&str; 2], says: &str| {
         let before = snapshot(d);
-        monge()
-            .arg("generate")
-            .arg(example("fig13-freeform.json"))
-            .arg("-o")
-            .arg(d.join("m.obj"))
-            .args(["--offset", offsets[0], "--offset", offsets[1]])
-            .assert()
-            .code(2)
-            .stderr(predicate::str::contains(says));
+        refuses(
+            monge()
+                .arg("generate")
+                .arg(example("fig13-freeform.json"))
+                .arg("-o")
+                .arg(d.join("m.obj"))
+                .args(["--offset", offsets[0], "--offset", offsets[1]]),
+            &[says],
+            &[],
+        );
         assert_eq!(snapshot(d), before);
     };
     generate(["0.5", "1"], "is a directory");
@@ -61,15 +61,16 @@ fn generate_never_writes_an_offset_over_its_design() {
     let design = dir.path().join("m.offset+1.json");
     fs::copy(example("fig13-freeform.json"), &design).unwrap();
     let before = snapshot(dir.path());
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(dir.path().join("m.json"))
-        .args(["--offset", "1"])
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("is an input of this command"));
+    refuses(
+        monge()
+            .arg("generate")
+            .arg(&design)
+            .arg("-o")
+            .arg(dir.path().join("m.json"))
+            .args(["--offset", "1"]),
+        &["is an input of this command"],
+        &[],
+    );
     assert_eq!(snapshot(dir.path()), before);
 }
 
@@ -81,26 +82,24 @@ fn fabricate_changes_no_file_when_one_fails_and_never_writes_over_its_design() {
     fs::write(out.join("panels.csv"), "previous").unwrap();
     fs::create_dir(out.join("nodes.csv")).unwrap();
     let before = snapshot(&out);
-    monge()
-        .arg("fabricate")
-        .arg(example("fig25-biarc.json"))
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("nodes.csv").and(predicate::str::contains("directory")));
+    refuses(
+        monge()
+            .arg("fabricate")
+            .arg(example("fig25-biarc.json"))
+            .arg("-o")
+            .arg(&out),
+        &["nodes.csv", "directory"],
+        &[],
+    );
     assert_eq!(snapshot(&out), before);
     let design = out.join("schedule.json");
     fs::copy(example("fig25-biarc.json"), &design).unwrap();
     let before = snapshot(&out);
-    monge()
-        .arg("fabricate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("is an input of this command"));
+    refuses(
+        monge().arg("fabricate").arg(&design).arg("-o").arg(&out),
+        &["is an input of this command"],
+        &[],
+    );
     assert_eq!(snapshot(&out), before);
 }
 
@@ -121,14 +120,8 @@ fn scan_writes_its_table_and_plot_together() {
         cmd
     };
     let before = snapshot(d);
-    scan("k.csv", "plot.svg")
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("is a directory"));
+    refuses(&mut scan("k.csv", "plot.svg"), &["is a directory"], &[]);
     assert_eq!(snapshot(d), before);
-    scan("k.csv", "k.csv")
-        .assert()
-        .code(2)
-        .stderr(predicate::str::contains("written twice"));
+    refuses(&mut scan("k.csv", "k.csv"), &["written twice"], &[]);
     assert_eq!(snapshot(d), before);
 }

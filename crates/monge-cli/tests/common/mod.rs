@@ -4,10 +4,13 @@
 //! some of it, hence the `allow`.
 #![allow(dead_code)]
 
+use std::fs;
 use std::path::{Path, PathBuf};
 
 use assert_cmd::Command;
 use predicates::prelude::*;
+use serde_json::Value;
+use tempfile::TempDir;
 
 /// The bundled example designs.
 pub fn examples() -> PathBuf {
@@ -22,6 +25,22 @@ pub fn example(name: &str) -> PathBuf {
 /// The `monge` binary.
 pub fn monge() -> Command {
     Command::new(env!("CARGO_BIN_EXE_monge"))
+}
+
+/// Runs `cmd` and asserts that `monge` refuses it: exit status 2, nothing on
+/// standard output, standard error starting with `error: ` and containing each
+/// of `expected`, and none of `absent` written. Returns standard error.
+pub fn refuses(cmd: &mut Command, expected: &[&str], absent: &[&Path]) -> String {
+    let output = cmd.assert().code(2).stdout("").get_output().clone();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.starts_with("error: "), "not an error: {stderr}");
+    for e in expected {
+        assert!(stderr.contains(e), "stderr lacks `{e}`: {stderr}");
+    }
+    for path in absent {
+        assert!(!path.exists(), "{} was written", path.display());
+    }
+    stderr
 }
 
 /// Generates `design` into `out` and checks the result, both with exit status 0.
@@ -96,4 +115,47 @@ pub fn variance_and_spread(values: &[f64]) -> (f64, f64) {
     let min = values.iter().copied().fold(f64::INFINITY, f64::min);
     let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     (variance, max / min)
+}
+
+/// Parses the JSON mesh written by `monge generate`.
+pub fn read_json(path: &Path) -> Value {
+    serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// Vertex `(i, j)` of a JSON mesh.
+pub fn vertex(mesh: &Value, i: usize, j: usize) -> [f64; 3] {
+    let cols = mesh["cols"].as_u64().unwrap() as usize;
+    let v = &mesh["vertices"][i * cols + j];
+    [0, 1, 2].map(|k| v[k].as_f64().unwrap())
+}
+
+/// fig10-arbitrary.json with another θ.
+pub fn fig10_with_theta(theta: f64) -> String {
+    let mut v: Value =
+        serde_json::from_str(&fs::read_to_string(example("fig10-arbitrary.json")).unwrap())
+            .unwrap();
+    v["theta_deg"] = theta.into();
+    v.to_string()
+}
+
+/// Writes `text` to `name` in `dir`.
+pub fn write(dir: &TempDir, name: &str, text: &str) -> PathBuf {
+    let path = dir.path().join(name);
+    fs::write(&path, text).unwrap();
+    path
+}
+
+/// `monge check --json` of `mesh` with `args`: its exit code and its JSON report.
+pub fn check_json(mesh: &Path, args: &[&str]) -> (Option<i32>, Value) {
+    let out = monge()
+        .arg("check")
+        .arg(mesh)
+        .arg("--json")
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        serde_json::from_slice(&out.stdout).unwrap(),
+    )
 }
