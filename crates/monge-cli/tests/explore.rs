@@ -267,12 +267,13 @@ fn a_copied_binary_serves_its_embedded_page() {
 #[test]
 fn a_web_dir_without_a_page_is_refused() {
     let empty = TempDir::new().unwrap();
-    common::monge()
-        .args(["explore", "--port", "0", "--web-dir"])
-        .arg(empty.path())
-        .assert()
-        .code(2)
-        .stderr(predicates::str::contains("has no index.html"));
+    common::refuses(
+        common::monge()
+            .args(["explore", "--port", "0", "--web-dir"])
+            .arg(empty.path()),
+        &["has no index.html"],
+        &[],
+    );
 }
 
 #[test]

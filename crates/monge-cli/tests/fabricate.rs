@@ -115,17 +115,20 @@ fn conical_design_uses_face_offsets() {
 fn bad_arguments_exit_with_status_2() {
     let dir = tempfile::tempdir().unwrap();
     let design = example("fig12-dupin-theta30.json");
-    let run = |extra: &[&str]| {
-        monge()
-            .args(["fabricate", design.to_str().unwrap(), "-o"])
-            .arg(dir.path().join("x"))
-            .args(extra)
-            .assert()
-            .code(2)
+    let out = dir.path().join("x");
+    let run = |extra: &[&str], says: &str| {
+        refuses(
+            monge()
+                .args(["fabricate", design.to_str().unwrap(), "-o"])
+                .arg(&out)
+                .args(extra),
+            &[says],
+            &[&out],
+        )
     };
-    run(&["--layers", "0,nan"]).stderr(predicate::str::contains("not a finite number"));
-    run(&["--section", "0.1"]).stderr(predicate::str::contains("WIDTH,DEPTH"));
-    run(&["--tol", "-1"]).stderr(predicate::str::contains("non-negative"));
+    run(&["--layers", "0,nan"], "not a finite number");
+    run(&["--section", "0.1"], "WIDTH,DEPTH");
+    run(&["--tol", "-1"], "non-negative");
     // A layer distance that collapses the mesh is a fabrication error.
     refuses(
         monge()
@@ -142,35 +145,39 @@ fn an_output_above_max_output_is_refused_before_anything_is_written() {
     // fig13-freeform: 60 × 40 faces, 3 layers: about 19 MB of files (32 MB with --full-json).
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fab");
-    let run = |extra: &[&str]| {
-        monge()
-            .args([
-                "fabricate",
-                example("fig13-freeform.json").to_str().unwrap(),
-                "-o",
-            ])
-            .arg(&out)
-            .args(extra)
-            .assert()
-            .code(2)
+    let run = |extra: &[&str], says: &[&str]| {
+        refuses(
+            monge()
+                .args([
+                    "fabricate",
+                    example("fig13-freeform.json").to_str().unwrap(),
+                    "-o",
+                ])
+                .arg(&out)
+                .args(extra),
+            says,
+            &[&out],
+        )
     };
-    run(&["--layers", "0,0.1,0.2", "--max-output", "0.01"])
-        .stderr(predicate::str::contains(
+    run(
+        &["--layers", "0,0.1,0.2", "--max-output", "0.01"],
+        &[
             "the fabrication files of 60 × 40 faces and 3 layer(s) would be about 19 MB",
-        ))
-        .stderr(predicate::str::contains("fewer --layers"))
-        .stderr(predicate::str::contains("--max-output GB"));
-    assert!(!out.exists());
-    run(&[
-        "--layers",
-        "0,0.1,0.2",
-        "--max-output",
-        "0.025",
-        "--full-json",
-    ])
-    .stderr(predicate::str::contains("would be about 32 MB"));
-    assert!(!out.exists());
-    run(&["--max-output", "0"]).stderr(predicate::str::contains("positive number of gigabytes"));
+            "fewer --layers",
+            "--max-output GB",
+        ],
+    );
+    run(
+        &[
+            "--layers",
+            "0,0.1,0.2",
+            "--max-output",
+            "0.025",
+            "--full-json",
+        ],
+        &["would be about 32 MB"],
+    );
+    run(&["--max-output", "0"], &["positive number of gigabytes"]);
 }
 
 /// A folded mesh is fabricated with the warning `monge generate` gives (it once
@@ -215,17 +222,20 @@ fn fabricate_into_a_file_says_what_exists_and_what_to_do() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("fab");
     std::fs::write(&file, "mine").unwrap();
-    monge()
-        .current_dir(dir.path())
-        .arg("fabricate")
-        .arg(example("fig25-biarc.json"))
-        .args(["-o", "fab"])
-        .assert()
-        .code(2)
-        .stderr(predicate::eq(
-            "error: `fab` exists and is not a directory: the output is a directory of files; \
-             give -o a new or existing directory (or remove `fab` first)\n",
-        ));
+    let stderr = refuses(
+        monge()
+            .current_dir(dir.path())
+            .arg("fabricate")
+            .arg(example("fig25-biarc.json"))
+            .args(["-o", "fab"]),
+        &[],
+        &[],
+    );
+    assert_eq!(
+        stderr,
+        "error: `fab` exists and is not a directory: the output is a directory of files; \
+         give -o a new or existing directory (or remove `fab` first)\n"
+    );
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }

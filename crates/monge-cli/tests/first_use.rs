@@ -64,10 +64,12 @@ fn writers() -> Vec<(&'static str, Vec<String>)> {
     ]
 }
 
-/// `args` with `OUT.ext` replaced by `out` + `.ext`, run in `dir`.
-fn run_with_output(dir: &Path, args: &[String], out: &str) -> assert_cmd::assert::Assert {
+/// `monge` in `dir` with `args`, `OUT.ext` in them replaced by `out` + `.ext`.
+fn with_output(dir: &Path, args: &[String], out: &str) -> assert_cmd::Command {
     let args: Vec<String> = args.iter().map(|a| a.replace("OUT", out)).collect();
-    monge().current_dir(dir).args(&args).assert()
+    let mut cmd = monge();
+    cmd.current_dir(dir).args(&args);
+    cmd
 }
 
 #[test]
@@ -89,10 +91,12 @@ fn every_command_refuses_a_missing_output_directory_plainly() {
             "error: cannot write `{path}`: the directory `missing` does not exist (create it \
              first, or choose another -o)\n"
         );
-        run_with_output(dir.path(), &args, "missing/x")
-            .code(2)
-            .stderr(predicate::eq(expected.as_str()).name(name));
-        assert!(!dir.path().join("missing").exists(), "{name}");
+        let stderr = refuses(
+            &mut with_output(dir.path(), &args, "missing/x"),
+            &[],
+            &[&dir.path().join("missing")],
+        );
+        assert_eq!(stderr, expected, "{name}");
     }
     assert_eq!(
         fs::read_dir(dir.path()).unwrap().count(),
@@ -115,34 +119,27 @@ fn every_command_refuses_to_write_over_its_input() {
         args[1] = "input.".to_owned() + ext;
         let out = args.iter().position(|a| a.starts_with("OUT")).unwrap();
         args[out] = format!("./input.{ext}");
-        monge()
-            .current_dir(dir.path())
-            .args(&args)
-            .assert()
-            .code(2)
-            .stderr(
-                predicate::eq(format!(
-                    "error: `./input.{ext}` is an input of this command and cannot also be its \
-                     output: choose another -o (monge never writes over its input)\n"
-                ))
-                .name(name),
-            );
+        let stderr = refuses(monge().current_dir(dir.path()).args(&args), &[], &[]);
+        assert_eq!(
+            stderr,
+            format!(
+                "error: `./input.{ext}` is an input of this command and cannot also be its \
+                 output: choose another -o (monge never writes over its input)\n"
+            ),
+            "{name}"
+        );
         assert_eq!(fs::read(&copy).unwrap(), before, "{name}: input untouched");
     }
 }
 
 /// `monge ARGS…` fails with exit status 2 and exactly `expected` on stderr.
 fn fails_with(args: &[&str], file: &Path, expected: &str) {
-    monge()
-        .args(&args[..1])
-        .arg(file)
-        .args(&args[1..])
-        .assert()
-        .code(2)
-        .stderr(predicate::eq(format!(
-            "error: {} is {expected}\n",
-            file.display()
-        )));
+    let stderr = refuses(
+        monge().args(&args[..1]).arg(file).args(&args[1..]),
+        &[],
+        &[],
+    );
+    assert_eq!(stderr, format!("error: {} is {expected}\n", file.display()));
 }
 
 #[test]
@@ -327,18 +324,20 @@ fn a_format_that_contradicts_the_extension_is_refused() {
         ("generate", "fig13-freeform.json"),
         ("patches", "fig20-piecewise.patches.json"),
     ] {
-        monge()
-            .current_dir(dir.path())
-            .arg(command)
-            .arg(example(design))
-            .args(["--format", "ply", "-o", "x.obj"])
-            .assert()
-            .code(2)
-            .stderr(predicate::eq(
-                "error: --format ply but OUT `x.obj` ends in `.obj`: name it `.ply`, or leave \
-                 --format out\n",
-            ));
-        assert!(!dir.path().join("x.obj").exists());
+        let stderr = refuses(
+            monge()
+                .current_dir(dir.path())
+                .arg(command)
+                .arg(example(design))
+                .args(["--format", "ply", "-o", "x.obj"]),
+            &[],
+            &[&dir.path().join("x.obj")],
+        );
+        assert_eq!(
+            stderr,
+            "error: --format ply but OUT `x.obj` ends in `.obj`: name it `.ply`, or leave \
+             --format out\n"
+        );
         // Agreeing, or an extension that names no format: written in --format.
         for out in ["x.ply", "x.mesh"] {
             monge()
@@ -366,18 +365,21 @@ fn small_messages_say_the_limit_and_one_list() {
         &["a side of 20000 pixels is outside 1 to 16384"],
         &[],
     );
-    monge()
-        .current_dir(dir.path())
-        .arg("smooth")
-        .arg(example("fig13-freeform.json"))
-        .args(["-o", "s.stl"])
-        .assert()
-        .code(2)
-        .stderr(predicate::eq(
-            "error: cannot tell what to write to `s.stl`: monge smooth writes `.json` (patches \
-             and arcs), `.igs` or `.iges` (the exact NURBS surface), or `.obj`, `.ply` or `.glb` \
-             (a dense mesh)\n",
-        ));
+    let stderr = refuses(
+        monge()
+            .current_dir(dir.path())
+            .arg("smooth")
+            .arg(example("fig13-freeform.json"))
+            .args(["-o", "s.stl"]),
+        &[],
+        &[&dir.path().join("s.stl")],
+    );
+    assert_eq!(
+        stderr,
+        "error: cannot tell what to write to `s.stl`: monge smooth writes `.json` (patches \
+         and arcs), `.igs` or `.iges` (the exact NURBS surface), or `.obj`, `.ply` or `.glb` \
+         (a dense mesh)\n"
+    );
     let toml = dir.path().join("d.toml");
     let text = fs::read_to_string(example("fig14-family.toml")).unwrap();
     let (line, _) = text
