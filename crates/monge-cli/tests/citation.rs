@@ -54,7 +54,7 @@ fn readme_and_core_docs_cite_the_paper_fully() {
 
 #[test]
 fn bobyqa_is_powells_2009_report() {
-    let text = workspace_file("crates/monge-core/src/optimise.rs");
+    let text = workspace_file("crates/monge-core/src/tools/optimise.rs");
     assert!(text.contains("DAMTP 2009/NA06"));
     monge()
         .args(["fit", "--help"])
