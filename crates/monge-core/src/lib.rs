@@ -14,7 +14,7 @@
 //!
 //! | folder | what | modules |
 //! |---|---|---|
-//! | `construction/` | the generation method (§2, §3) | [`design`], [`guide`], [`projective`], [`gauss_map`], [`combescure`], [`grid`], [`generate`](mod@generate), [`conical`], [`offset`], [`developable`] |
+//! | `construction/` | the generation method (§2, §3) | [`design`], [`guide`], [`bspline`], [`projective`], [`gauss_map`], [`combescure`], [`grid`], [`generate`](mod@generate), [`conical`], [`offset`], [`developable`] |
 //! | `measure/` | measuring any quad mesh, however it was made (§2.2, §2.3) | [`measure`] |
 //! | `smooth/` | the smooth surface (§2.1.1, §4.4) | [`darboux`], [`cyclidic`] |
 //! | `fabrication/` | the gridshell's parts (§6) | [`fabrication`] |
@@ -34,7 +34,8 @@ mod tools;
 
 pub(crate) use construction::coords;
 pub use construction::{
-    combescure, conical, design, developable, gauss_map, generate, grid, guide, offset, projective,
+    bspline, combescure, conical, design, developable, gauss_map, generate, grid, guide, offset,
+    projective,
 };
 pub use smooth::{cyclidic, darboux};
 pub use tools::{approximate, boundary, multipatch, optimise, panels, scan, symmetry};

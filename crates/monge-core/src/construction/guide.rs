@@ -7,14 +7,16 @@
 //! curved, planar within [`Tolerances::planarity`]), projects the samples onto
 //! the best-fit plane and computes the unit start tangent.
 //!
-//! B-splines are evaluated here with the rational de Boor algorithm written as
-//! a chain of convex combinations of points, so that clamped end points are
-//! reproduced exactly and the evaluation is accurate to a few ulps.
+//! B-splines are evaluated by [`crate::bspline::Nurbs`], the rational de Boor
+//! algorithm written as a chain of convex combinations of points, so that
+//! clamped end points are reproduced exactly and the evaluation is accurate to a
+//! few ulps.
 
 use std::fmt;
 
 use glam::DVec3;
 
+use crate::bspline::Nurbs;
 use crate::design::{ArcSpec, BSplineSpec, GuideSpec, ParabolaSpec, Tolerances, Xyz};
 
 /// Relative size (to the guide's bounding-box diagonal) below which an edge is
@@ -765,67 +767,6 @@ pub(crate) fn clamped_uniform_knots(count: usize, degree: usize) -> Vec<f64> {
     knots
 }
 
-/// A clamped NURBS curve ready for evaluation (validated).
-struct Nurbs<'a> {
-    degree: usize,
-    points: &'a [DVec3],
-    weights: &'a [f64],
-    knots: &'a [f64],
-    /// Whether the weights differ (else the curve is a polynomial B-spline).
-    rational: bool,
-}
-
-impl Nurbs<'_> {
-    /// The point at parameter `u` (clamped to the knot range), by the rational
-    /// de Boor algorithm in affine form: each step is the convex combination
-    /// `(1 − β) d_{j−1} + β d_j` with `β = α w_j / ((1 − α) w_{j−1} + α w_j)`,
-    /// which is exact at the clamped ends (where every `β` is 0, resp. 1).
-    /// With equal weights `β = α`: the polynomial de Boor algorithm, without
-    /// the weights' divisions.
-    ///
-    /// `span` is a guess of the knot span, such as the previous point's (from
-    /// which the search goes on when `u` increases, as samples do; any guess
-    /// gives the same point); it becomes this point's.
-    fn point(&self, u: f64, span: &mut usize, d: &mut Vec<DVec3>, w: &mut Vec<f64>) -> DVec3 {
-        let p = self.degree;
-        let n = self.points.len() - 1;
-        let u = u.clamp(self.knots[p], self.knots[n + 1]);
-        // The span k with knots[k] ≤ u < knots[k + 1] (the last one at the end).
-        let mut k = *span;
-        if !(p..=n).contains(&k) || self.knots[k] > u {
-            k = self.knots.partition_point(|&x| x <= u) - 1;
-        }
-        while k < n && self.knots[k + 1] <= u {
-            k += 1;
-        }
-        let k = k.min(n);
-        *span = k;
-        d.clear();
-        d.extend_from_slice(&self.points[k - p..=k]);
-        if self.rational {
-            w.clear();
-            w.extend_from_slice(&self.weights[k - p..=k]);
-        }
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = j + k - p;
-                let alpha = (u - self.knots[i]) / (self.knots[i + 1 + p - r] - self.knots[i]);
-                // Equal weights stay equal: β = α (the polynomial de Boor step).
-                let beta = if self.rational {
-                    let w_new = (1.0 - alpha) * w[j - 1] + alpha * w[j];
-                    let beta = alpha * w[j] / w_new;
-                    w[j] = w_new;
-                    beta
-                } else {
-                    alpha
-                };
-                d[j] = (1.0 - beta) * d[j - 1] + beta * d[j];
-            }
-        }
-        d[p]
-    }
-}
-
 /// The `bspline` kind: `samples` points at uniformly spaced parameters, or at
 /// the given `parameters` (§4.8).
 fn sample_bspline(
@@ -896,23 +837,12 @@ fn sample_bspline(
     let points: Vec<DVec3> = b.control_points.iter().map(|p| v(p) - origin).collect();
     let tangent = points[1] - points[0];
     let end = v(&b.control_points[count - 1]);
-    let curve = Nurbs {
-        degree,
-        points: &points,
-        weights: &weights,
-        knots: &knots,
-        rational: weights.iter().any(|&w| w != weights[0]),
-    };
+    let curve = Nurbs::new(degree, &points, &weights, &knots);
     let (lo, hi) = (knots[0], knots[knots.len() - 1]);
     if let Some(t) = parameters {
         check_parameters(t, b.samples, (lo, hi), name)?;
     }
     let last = (b.samples - 1) as f64;
-    let (mut span, mut d, mut w) = (
-        degree,
-        Vec::with_capacity(degree + 1),
-        Vec::with_capacity(degree + 1),
-    );
     let samples = (0..b.samples)
         .map(|k| {
             let s = k as f64 / last;
@@ -921,7 +851,7 @@ fn sample_bspline(
             if u >= hi {
                 end // the clamped end, exactly (P_n − P0 + P0 may round)
             } else {
-                curve.point(u, &mut span, &mut d, &mut w) + origin
+                curve.point(u) + origin
             }
         })
         .collect();
@@ -1176,40 +1106,8 @@ fn circle_tangent(points: &[DVec3]) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bspline::tests::cox_de_boor;
 
-    #[test]
-    fn a_nurbs_point_does_not_depend_on_the_span_guessed() {
-        let points: Vec<DVec3> = (0..7)
-            .map(|k| DVec3::new(k as f64, (k * k % 5) as f64, 0.0))
-            .collect();
-        let knots = clamped_uniform_knots(points.len(), 3);
-        let at = |weights: &[f64], u: f64, guess: usize| {
-            let curve = Nurbs {
-                degree: 3,
-                points: &points,
-                weights,
-                knots: &knots,
-                rational: weights.iter().any(|&w| w != weights[0]),
-            };
-            let mut span = guess;
-            let p = curve.point(u, &mut span, &mut Vec::new(), &mut Vec::new());
-            (p, span)
-        };
-        for weights in [vec![1.0; 7], vec![1.0, 2.0, 0.5, 1.0, 3.0, 1.0, 1.0]] {
-            for u in [0.0, 0.1, 0.25, 0.26, 0.5, 0.75, 0.99, 1.0, -1.0, 2.0] {
-                let first = at(&weights, u, 3);
-                for guess in [0, 3, 4, 5, 6, 7, 100] {
-                    assert_eq!(at(&weights, u, guess), first, "{u} {guess}");
-                }
-            }
-        }
-        // Equal weights, whatever their value, give the polynomial curve.
-        let (u, two) = (0.3, vec![2.0; 7]);
-        assert_eq!(at(&two, u, 3), at(&[1.0; 7], u, 3));
-        let near = at(&[1.0, 1.0, 1.0, 1.000001, 1.0, 1.0, 1.0], u, 3).0;
-        let gap = (at(&[1.0; 7], u, 3).0 - near).length();
-        assert!(gap > 0.0 && gap < 1e-5, "{gap}");
-    }
     use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
     const U: GuideName = GuideName::U;
@@ -2071,26 +1969,6 @@ mod tests {
         assert!(g.plane_normal.cross(n).length() < 1e-14);
     }
 
-    /// Cox–de Boor basis function `N_{i,p}(u)` (independent of the de Boor evaluation).
-    fn basis(knots: &[f64], i: usize, p: usize, u: f64) -> f64 {
-        if p == 0 {
-            let last = knots[knots.len() - 1];
-            let inside = knots[i] <= u && u < knots[i + 1];
-            let at_end = u == last && knots[i] < knots[i + 1] && knots[i + 1] == last;
-            return if inside || at_end { 1.0 } else { 0.0 };
-        }
-        let mut value = 0.0;
-        let d1 = knots[i + p] - knots[i];
-        if d1 > 0.0 {
-            value += (u - knots[i]) / d1 * basis(knots, i, p - 1, u);
-        }
-        let d2 = knots[i + p + 1] - knots[i + 1];
-        if d2 > 0.0 {
-            value += (knots[i + p + 1] - u) / d2 * basis(knots, i + 1, p - 1, u);
-        }
-        value
-    }
-
     #[test]
     fn bspline_matches_an_independent_evaluation() {
         let control = [
@@ -2116,7 +1994,7 @@ mod tests {
             let u = k as f64 / 40.0;
             let (mut num, mut den) = (DVec3::ZERO, 0.0);
             for i in 0..control.len() {
-                let nw = basis(&knots, i, 3, u) * weights[i];
+                let nw = cox_de_boor(&knots, i, 3, u) * weights[i];
                 num += nw * DVec3::from_array(control[i]);
                 den += nw;
             }

@@ -7,11 +7,13 @@
 //! §2.2.3) → a [`grid::QuadGrid`]; [`generate`](mod@generate) runs it whole. [`conical`] is its
 //! dual (§2.3), [`offset`] its offsets (§2.2, §2.3), [`developable`] the
 //! developable family (§2.1.3, §3.3). [`projective`] holds the homogeneous points,
-//! Plücker lines and planes that keep axes at infinity exact.
+//! Plücker lines and planes that keep axes at infinity exact; [`bspline`] evaluates
+//! B-spline and NURBS curves and basis functions.
 //!
 //! Nothing here depends on the other folders: measurement, the smooth surface,
 //! fabrication and the design tools build on it.
 
+pub mod bspline;
 pub mod combescure;
 pub mod conical;
 pub(crate) mod coords;

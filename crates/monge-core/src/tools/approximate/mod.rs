@@ -47,6 +47,7 @@ use nalgebra::{Matrix3, SymmetricEigen};
 use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
+use crate::bspline;
 use crate::conical::conical_dual;
 use crate::design::{Design, GuideSpec, MeshKind, Xyz};
 use crate::generate::{generate, GenerateOptions, MAX_SIZE, MIN_SIZE};
@@ -1032,29 +1033,12 @@ fn trace_boundary(
 /// points (those [`GuideSpec::bspline`] gives them).
 const GUIDE_KNOTS: [f64; CONTROL_POINTS + 4] = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
 
-/// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` (Cox–de Boor).
+/// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` (clamped to `[0, 1]`).
 fn guide_basis(u: f64) -> [f64; CONTROL_POINTS] {
-    let k = &GUIDE_KNOTS;
     let u = u.clamp(0.0, 1.0);
-    let mut n = [0.0; CONTROL_POINTS + 3];
-    n[if u < 0.5 { 3 } else { 4 }] = 1.0;
-    for p in 1..=3 {
-        for i in 0..CONTROL_POINTS + 3 - p {
-            let left = if k[i + p] > k[i] {
-                (u - k[i]) / (k[i + p] - k[i]) * n[i]
-            } else {
-                0.0
-            };
-            let right = if k[i + p + 1] > k[i + 1] {
-                (k[i + p + 1] - u) / (k[i + p + 1] - k[i + 1]) * n[i + 1]
-            } else {
-                0.0
-            };
-            n[i] = left + right;
-        }
-    }
+    let span = bspline::span(&GUIDE_KNOTS, 3, u);
     let mut out = [0.0; CONTROL_POINTS];
-    out.copy_from_slice(&n[..CONTROL_POINTS]);
+    bspline::basis(&GUIDE_KNOTS, span, u, &mut out[span - 3..=span]);
     out
 }
 
