@@ -1,5 +1,5 @@
 #!/bin/sh
-# Regenerates the "Speed" table of README.md from `monge bench --all` (release build):
+# Regenerates the speed table of docs/speed.md from `monge bench --all` (release build):
 # every command on 100², 400² and 1000² faces of the bundled design, three times each.
 # Usage: docs/speed/make.sh  (from the repository root; about five minutes).
 set -eu
@@ -27,11 +27,11 @@ def cell(r):
 for cmd in dict.fromkeys(r["command"] for r in rows):
     cells = [cell(r) for s in sizes for r in rows if r["command"] == cmd and r["faces"] == s]
     table.append("| `%s` | %s |" % (cmd, " | ".join(cells)))
-readme = open("README.md").read()
+readme = open("docs/speed.md").read()
 begin, end = "<!-- speed table: docs/speed/make.sh -->", "<!-- end of speed table -->"
 new = begin + "\n" + "\n".join(table) + "\n" + end
 readme, k = re.subn(re.escape(begin) + ".*?" + re.escape(end), lambda m: new, readme, flags=re.S)
 if k != 1:
-    sys.exit("README.md has no speed table markers")
-open("README.md", "w").write(readme)
+    sys.exit("docs/speed.md has no speed table markers")
+open("docs/speed.md", "w").write(readme)
 PY
