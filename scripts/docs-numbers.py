@@ -14,7 +14,7 @@ each command once in a fresh folder holding `examples/`, and rewrites the marker
 crates/monge-cli/tests/docs_commands.rs checks that the cheap numbers are what this
 script writes, and that no marker names a number this list does not make.
 """
-import glob, os, re, shutil, subprocess, sys, tempfile
+import glob, json, os, re, shutil, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
@@ -78,7 +78,10 @@ def main():
         subprocess.run(["docs/speed/make.sh"], check=True)
     profile = [] if cheap_only else ["--release"]
     subprocess.run(["cargo", "build", "-q", "--locked", "-p", "monge-cli"] + profile, check=True)
-    binary = os.path.join(ROOT, "target", "debug" if cheap_only else "release", "monge")
+    meta = subprocess.run(["cargo", "metadata", "--format-version", "1", "--no-deps"],
+                          check=True, capture_output=True, text=True).stdout
+    target = json.loads(meta)["target_directory"]  # CARGO_TARGET_DIR if set
+    binary = os.path.join(target, "debug" if cheap_only else "release", "monge")
     cache, values = {}, {}
     for row in spec():
         if cheap_only and row["cls"] != "cheap":
