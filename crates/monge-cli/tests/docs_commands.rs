@@ -424,3 +424,59 @@ fn crates_depend_one_way() {
         }
     }
 }
+
+#[test]
+fn every_relative_link_of_the_documents_exists() {
+    let mut pages = pages();
+    pages.push((
+        "ARCHITECTURE.md".to_owned(),
+        fs::read_to_string(root().join("ARCHITECTURE.md")).unwrap(),
+    ));
+    for (page, text) in pages {
+        let base = root().join(&page).parent().unwrap().to_owned();
+        for part in text.split("](").skip(1) {
+            let target = part.split(')').next().unwrap();
+            let file = target.split('#').next().unwrap();
+            if target.starts_with("http") || file.is_empty() {
+                continue;
+            }
+            assert!(
+                base.join(file).exists(),
+                "{page}: link to {target} leads nowhere"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_readme_and_architecture_list_every_command_of_monge_help() {
+    let help = Command::new(env!("CARGO_BIN_EXE_monge"))
+        .arg("--help")
+        .output()
+        .unwrap();
+    let help = String::from_utf8(help.stdout).unwrap();
+    let commands: Vec<&str> = help
+        .split("Commands:")
+        .nth(1)
+        .unwrap()
+        .split("\n\n")
+        .next()
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert_eq!(commands.len(), 14, "{commands:?}");
+    let readme = fs::read_to_string(root().join("README.md")).unwrap();
+    let architecture = fs::read_to_string(root().join("ARCHITECTURE.md")).unwrap();
+    for c in commands {
+        assert!(
+            readme.contains(&format!("| `monge {c}")),
+            "README.md's command table has no `monge {c}`"
+        );
+        assert!(
+            architecture.contains(&format!("`{c}`")),
+            "ARCHITECTURE.md does not list `{c}`"
+        );
+    }
+}
