@@ -7,7 +7,7 @@
 //! the same crate, outside `#[cfg(test)]` items and comments. A module's
 //! `pub use` re-exports are its table of contents, not a dependency: they are
 //! followed to the file that defines the item. Which crate may use which is
-//! Cargo's to enforce (front ends → monge-io → monge-core).
+//! checked from the manifests (front ends → monge-io, monge-render → monge-core).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -488,6 +488,31 @@ fn monge_core_folders_point_one_way() {
         "monge-core's folders must point one way (construction ← measure ← smooth, fabrication ← tools; measure uses only construction's grid):\n{}",
         wrong.join("\n")
     );
+}
+
+#[test]
+fn crates_depend_one_way() {
+    // front ends → io, render → core: a crate depends only on the ones listed.
+    let allowed: BTreeMap<&str, &[&str]> = BTreeMap::from([
+        ("monge-core", &[][..]),
+        ("monge-io", &["monge-core"][..]),
+        ("monge-render", &["monge-core"][..]),
+        ("monge-cli", &["monge-core", "monge-io", "monge-render"][..]),
+        ("monge-py", &["monge-core", "monge-io"][..]),
+        ("monge-wasm", &["monge-core", "monge-io"][..]),
+    ]);
+    for (krate, may) in allowed {
+        let manifest =
+            std::fs::read_to_string(workspace().join("crates").join(krate).join("Cargo.toml"))
+                .unwrap();
+        for line in manifest.lines() {
+            if let Some(dep) = line.split('=').next().map(str::trim) {
+                if dep.starts_with("monge-") && dep != krate {
+                    assert!(may.contains(&dep), "{krate} depends on {dep}");
+                }
+            }
+        }
+    }
 }
 
 #[test]
