@@ -1,0 +1,99 @@
+//! Distance from a point to a triangle, and to the nearest face of a mesh (§4.7,
+//! monge's extension: the approximation's objective).
+
+use glam::DVec3;
+use rstar::RTree;
+
+use crate::grid::QuadGrid;
+
+use super::index::Indexed;
+
+/// A mesh's vertices in a spatial index, to find the nearest face of a point.
+pub(super) struct MeshFaces<'a> {
+    grid: &'a QuadGrid,
+    tree: RTree<Indexed>,
+}
+
+/// Nearest vertices whose faces are searched for a point's nearest face.
+const FACE_CANDIDATES: usize = 4;
+
+impl<'a> MeshFaces<'a> {
+    pub(super) fn new(grid: &'a QuadGrid) -> Self {
+        let tree = RTree::bulk_load(
+            grid.vertices
+                .iter()
+                .enumerate()
+                .map(|(i, p)| Indexed::new(p.to_array(), i))
+                .collect(),
+        );
+        MeshFaces { grid, tree }
+    }
+
+    /// Distance from `p` to the nearest face around its nearest vertices (each planar
+    /// face split into two triangles), and the part of it along that face.
+    pub(super) fn distance_from(&self, p: DVec3) -> (f64, f64) {
+        let (rows, cols) = (self.grid.rows, self.grid.cols);
+        let mut best = (f64::INFINITY, f64::INFINITY);
+        for n in self
+            .tree
+            .nearest_neighbor_iter(p.to_array())
+            .take(FACE_CANDIDATES)
+        {
+            let (i, j) = (n.data / cols, n.data % cols);
+            for fi in i.saturating_sub(1)..=i.min(rows - 2) {
+                for fj in j.saturating_sub(1)..=j.min(cols - 2) {
+                    let [a, b, c, d] = self.grid.face(fi, fj);
+                    for (x, y, z) in [(a, b, c), (a, c, d)] {
+                        let offset = p - closest_on_triangle(p, x, y, z);
+                        let distance = offset.length();
+                        if distance < best.0 {
+                            let normal = (y - x).cross(z - x).normalize_or_zero();
+                            let along = offset - offset.dot(normal) * normal;
+                            best = (distance, along.length());
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Distance from `p` to the triangle `abc` (closest point by regions, Ericson,
+/// *Real-Time Collision Detection*, §5.1.5).
+pub fn point_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    p.distance(closest_on_triangle(p, a, b, c))
+}
+
+/// The point of the triangle `abc` nearest to `p` (Ericson, §5.1.5).
+fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}

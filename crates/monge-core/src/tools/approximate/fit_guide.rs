@@ -1,0 +1,299 @@
+//! A planar guide fitted to points (§4.7, monge's extension): the cubic B-spline of
+//! five control points nearest to a section or a boundary curve of the target, by
+//! least squares over its control points and the points' parameters.
+
+use glam::DVec3;
+
+use super::CONTROL_POINTS;
+
+/// Knots of the fitted guides: cubic, clamped uniform, [`CONTROL_POINTS`] control
+/// points (those [`GuideSpec::bspline`] gives them).
+const GUIDE_KNOTS: [f64; CONTROL_POINTS + 4] = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+
+/// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` (Cox–de Boor).
+fn guide_basis(u: f64) -> [f64; CONTROL_POINTS] {
+    let k = &GUIDE_KNOTS;
+    let u = u.clamp(0.0, 1.0);
+    let mut n = [0.0; CONTROL_POINTS + 3];
+    n[if u < 0.5 { 3 } else { 4 }] = 1.0;
+    for p in 1..=3 {
+        for i in 0..CONTROL_POINTS + 3 - p {
+            let left = if k[i + p] > k[i] {
+                (u - k[i]) / (k[i + p] - k[i]) * n[i]
+            } else {
+                0.0
+            };
+            let right = if k[i + p + 1] > k[i + 1] {
+                (k[i + p + 1] - u) / (k[i + p + 1] - k[i + 1]) * n[i + 1]
+            } else {
+                0.0
+            };
+            n[i] = left + right;
+        }
+    }
+    let mut out = [0.0; CONTROL_POINTS];
+    out.copy_from_slice(&n[..CONTROL_POINTS]);
+    out
+}
+
+/// Weight of the parameters' distance from chord lengths in [`fit_guide`].
+const EVEN_SAMPLING: f64 = 0.001;
+
+/// A guide's control polygon in its plane, `(along, up)`, from the corner `(0, 0)`.
+pub(super) type Polygon = [(f64, f64); CONTROL_POINTS];
+
+/// The cubic B-spline guide nearest to the points `(s, w)` of a curve in its plane,
+/// from `(0, 0)` to the last point, its start tangent along `s` unless `free_tangent`:
+/// the free control points and each point's parameter by Levenberg–Marquardt, from
+/// chord-length parameters, which also hold the parameters near chord lengths (weight
+/// [`EVEN_SAMPLING`]), so the guide is sampled evenly as a designer draws it. `None`
+/// for fewer points than unknowns.
+pub(super) fn fit_guide(section: &[(f64, f64)], free_tangent: bool) -> Option<Polygon> {
+    let m = section.len();
+    if m < CONTROL_POINTS + 1 {
+        return None;
+    }
+    let chords: Vec<f64> = std::iter::once(0.0)
+        .chain(section.windows(2).scan(0.0, |length, w| {
+            *length += (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+            Some(*length)
+        }))
+        .collect();
+    let total = chords[m - 1];
+    if total.is_nan() || total <= 0.0 {
+        return None;
+    }
+    let last = section[m - 1];
+    let inner = CONTROL_POINTS - 3;
+    // Unknowns: P₁ (along, and up if free), P₂ … P₃ (both), then the parameters of
+    // points 1 … m − 2 (the corner is at 0, the last point at 1: the curve ends there).
+    let free = 2 * inner + 1 + usize::from(free_tangent);
+    let polygon = |x: &[f64]| -> Polygon {
+        let mut p = [(0.0, 0.0); CONTROL_POINTS];
+        p[1] = (x[0], if free_tangent { x[1] } else { 0.0 });
+        let first = free - 2 * inner;
+        for k in 0..inner {
+            p[2 + k] = (x[first + 2 * k], x[first + 2 * k + 1]);
+        }
+        p[CONTROL_POINTS - 1] = last;
+        p
+    };
+    // The control points by linear least squares at chord-length parameters.
+    let u: Vec<f64> = chords.iter().map(|c| c / total).collect();
+    let basis: Vec<[f64; CONTROL_POINTS]> = u.iter().map(|x| guide_basis(*x)).collect();
+    let end = CONTROL_POINTS - 1;
+    let solve = |first: usize, coordinate: fn(&(f64, f64)) -> f64| {
+        let matrix = nalgebra::DMatrix::from_fn(m, end - first, |r, c| basis[r][first + c]);
+        let rhs = nalgebra::DVector::from_fn(m, |r, _| {
+            coordinate(&section[r]) - basis[r][end] * coordinate(&last)
+        });
+        matrix.svd(true, true).solve(&rhs, 1e-12).ok()
+    };
+    let along = solve(1, |p| p.0)?;
+    let up = solve(if free_tangent { 1 } else { 2 }, |p| p.1)?;
+    let mut x = vec![along[0]];
+    if free_tangent {
+        x.push(up[0]);
+    }
+    let up_first = usize::from(free_tangent);
+    for k in 0..inner {
+        x.extend([along[1 + k], up[up_first + k]]);
+    }
+    x.extend(&u[1..m - 1]);
+    let residuals = |x: &[f64]| -> nalgebra::DVector<f64> {
+        let p = polygon(x);
+        nalgebra::DVector::from_fn(3 * (m - 2), |r, _| {
+            let (k, coordinate) = (r / 3, r % 3);
+            let at = guide_point(&p, x[free + k]);
+            let q = section[k + 1];
+            match coordinate {
+                0 => at.0 - q.0,
+                1 => at.1 - q.1,
+                _ => EVEN_SAMPLING * (x[free + k] * total - chords[k + 1]),
+            }
+        })
+    };
+    let mut lambda = 1e-3;
+    let mut r = residuals(&x);
+    let mut cost = r.norm_squared();
+    for _ in 0..200 {
+        // The Jacobian by central differences.
+        let n = x.len();
+        let mut jacobian = nalgebra::DMatrix::zeros(r.len(), n);
+        for j in 0..n {
+            let h = 1e-6 * x[j].abs().max(1.0);
+            let (mut plus, mut minus) = (x.clone(), x.clone());
+            plus[j] += h;
+            minus[j] -= h;
+            jacobian.set_column(j, &((residuals(&plus) - residuals(&minus)) / (2.0 * h)));
+        }
+        let jtj = jacobian.transpose() * &jacobian;
+        let jtr = jacobian.transpose() * &r;
+        let mut improved = false;
+        while lambda < 1e12 {
+            let mut damped = jtj.clone();
+            for j in 0..n {
+                damped[(j, j)] += lambda * jtj[(j, j)].max(1e-12);
+            }
+            let Some(step) = damped.cholesky().map(|c| c.solve(&(-&jtr))) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let trial: Vec<f64> = x.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
+            // The points stay in their order along the curve, which leaves the corner
+            // forwards: no loops through stray points.
+            let ordered = trial[0] > 0.0
+                && trial[free..].windows(2).all(|w| w[0] < w[1])
+                && trial[free] > 0.0
+                && trial[trial.len() - 1] < 1.0;
+            let r_trial = residuals(&trial);
+            let c_trial = r_trial.norm_squared();
+            if ordered && c_trial < cost {
+                (x, r, lambda) = (trial, r_trial, (lambda / 3.0).max(1e-12));
+                improved = cost - c_trial > 1e-15 * cost.max(f64::MIN_POSITIVE);
+                cost = c_trial;
+                break;
+            }
+            lambda *= 4.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    let p = polygon(&x);
+    p.iter()
+        .all(|(a, b)| a.is_finite() && b.is_finite())
+        .then_some(p)
+}
+
+/// The point at `u` of the guide of control polygon `p` in its plane.
+pub(super) fn guide_point(p: &Polygon, u: f64) -> (f64, f64) {
+    let n = guide_basis(u);
+    p.iter()
+        .zip(n)
+        .fold((0.0, 0.0), |(a, b), (q, n)| (a + n * q.0, b + n * q.1))
+}
+
+/// A cubic guide in the plane through `corner` spanned by `t` and `n` (normal
+/// `other`), fitted to the target points near that plane: `w = c₂s² + c₃s³` by least
+/// squares, over `s` from 0 to the target's extent along `t`; as the control points of
+/// [`Start::guides`].
+pub(super) fn section_guide(
+    points: &[DVec3],
+    corner: DVec3,
+    t: DVec3,
+    other: DVec3,
+    n: DVec3,
+    size: f64,
+) -> Vec<f64> {
+    let length = points
+        .iter()
+        .map(|p| (*p - corner).dot(t))
+        .fold(0.0, f64::max)
+        .max(1e-3 * size);
+    let mut slab = 0.01 * size;
+    let mut section: Vec<(f64, f64)> = Vec::new();
+    while slab < size {
+        section = points
+            .iter()
+            .filter(|p| (**p - corner).dot(other).abs() <= slab)
+            .map(|p| ((*p - corner).dot(t), (*p - corner).dot(n)))
+            .filter(|(s, _)| *s > 0.0)
+            .collect();
+        if section.len() >= 12 {
+            break;
+        }
+        slab *= 2.0;
+    }
+    // Normal equations of w = c2 s² + c3 s³, in s / length.
+    let (mut a, mut b) = (
+        nalgebra::Matrix2::<f64>::zeros(),
+        nalgebra::Vector2::zeros(),
+    );
+    for (s, w) in &section {
+        let x = s / length;
+        let row = nalgebra::Vector2::new(x * x, x * x * x);
+        a += row * row.transpose();
+        b += row * *w;
+    }
+    let c = a
+        .try_inverse()
+        .map_or(nalgebra::Vector2::zeros(), |inv| inv * b);
+    // The cubic Bézier of (length·x, c2 x² + c3 x³), then the knot 1/2 inserted.
+    let bezier = [
+        (0.0, 0.0),
+        (length / 3.0, 0.0),
+        (2.0 * length / 3.0, c[0] / 3.0),
+        (length, c[0] + c[1]),
+    ];
+    let mid = |p: (f64, f64), q: (f64, f64)| (0.5 * (p.0 + q.0), 0.5 * (p.1 + q.1));
+    let control = [
+        mid(bezier[0], bezier[1]),
+        mid(bezier[1], bezier[2]),
+        mid(bezier[2], bezier[3]),
+        bezier[3],
+    ];
+    let mut out = vec![control[0].0];
+    for (s, w) in &control[1..] {
+        out.extend([*s, *w]);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::design::GuideSpec;
+    use crate::guide::{Guide, GuideName};
+
+    /// Points of a planar cubic B-spline sampled by the guide module's de Boor (not
+    /// [`guide_basis`]), in the plane's `(along, up)` coordinates.
+    fn sampled(polygon: &Polygon, samples: usize) -> Vec<(f64, f64)> {
+        let control = polygon.iter().map(|(s, w)| [*s, 0.0, *w]).collect();
+        let spec = GuideSpec::bspline(3, control, samples);
+        let guide = Guide::from_spec(&spec, GuideName::U, &Default::default()).unwrap();
+        guide.points.iter().map(|p| (p.x, p.z)).collect()
+    }
+
+    #[test]
+    fn a_guide_is_recovered_from_its_points() {
+        let truth = [
+            (0.0, 0.0),
+            (2.5, 0.0),
+            (5.0, -0.949),
+            (7.5, -1.686),
+            (10.0, -2.108),
+        ];
+        for samples in [26, 11] {
+            let points = sampled(&truth, samples);
+            let fitted = fit_guide(&points, false).unwrap();
+            // The curve, to 2e-4 of its length (~10.6): every point near the fitted curve.
+            let curve = sampled(&fitted, 4001);
+            let residual = points
+                .iter()
+                .map(|p| {
+                    curve
+                        .iter()
+                        .map(|q| (p.0 - q.0).hypot(p.1 - q.1))
+                        .fold(f64::INFINITY, f64::min)
+                })
+                .fold(0.0, f64::max);
+            assert!(residual < 2e-3, "{residual:e}");
+            // Its control polygon to 0.5 % of its length (the fit holds the parameters near chord
+            // lengths, which differ slightly from the truth's).
+            for (a, b) in fitted.iter().zip(&truth) {
+                assert!((a.0 - b.0).hypot(a.1 - b.1) < 0.05, "{fitted:?}");
+            }
+        }
+        // With the start tangent free, it is found too (turned by 0.1 rad here).
+        let (c, s) = (0.1f64.cos(), 0.1f64.sin());
+        let turned = truth.map(|(x, y)| (c * x - s * y, s * x + c * y));
+        let fitted = fit_guide(&sampled(&turned, 21), true).unwrap();
+        assert!(
+            (fitted[1].1.atan2(fitted[1].0) - 0.1).abs() < 1e-3,
+            "{fitted:?}"
+        );
+        // Too few points for the unknowns.
+        assert_eq!(fit_guide(&sampled(&truth, 5), false), None);
+    }
+}

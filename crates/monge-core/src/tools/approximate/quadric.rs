@@ -1,0 +1,166 @@
+//! Principal axes of a point set and the quadric fitted near a point, with its
+//! principal curvatures and directions (§4.7, monge's extension: the initial guess).
+
+use glam::DVec3;
+use nalgebra::{Matrix3, SymmetricEigen};
+
+use crate::grid::bbox_diagonal;
+
+use super::{ApproxError, FLAT_CURVATURE, UMBILIC_RATIO};
+
+/// Principal axes of a point set: the unit eigenvectors of its covariance, largest
+/// variance first (the last is the normal of the best-fit plane).
+pub(super) fn principal_axes(points: &[DVec3]) -> (DVec3, DVec3, DVec3) {
+    let n = points.len().max(1) as f64;
+    principal_axes_about(points, points.iter().copied().sum::<DVec3>() / n)
+}
+
+/// The unit eigenvectors of the second moments of `points` about `c`, largest first
+/// (the last is the normal of the plane through `c` nearest to the points).
+pub(super) fn principal_axes_about(points: &[DVec3], c: DVec3) -> (DVec3, DVec3, DVec3) {
+    let mut m = Matrix3::zeros();
+    for p in points {
+        let d = *p - c;
+        let v = nalgebra::Vector3::new(d.x, d.y, d.z);
+        m += v * v.transpose();
+    }
+    let eig = SymmetricEigen::new(m);
+    let mut order = [0, 1, 2];
+    order.sort_by(|&a, &b| eig.eigenvalues[b].total_cmp(&eig.eigenvalues[a]));
+    let axis = |k: usize| {
+        let v = eig.eigenvectors.column(order[k]);
+        DVec3::new(v[0], v[1], v[2])
+    };
+    (axis(0), axis(1), axis(2))
+}
+
+/// A height function `z = a x² + b xy + c y² + d x + e y + f` over a frame.
+pub(super) struct Quadric {
+    origin: DVec3,
+    x: DVec3,
+    y: DVec3,
+    z: DVec3,
+    k: [f64; 6],
+}
+
+/// A surface point with its principal curvatures and directions (larger first).
+pub(super) struct Principal {
+    pub(super) point: DVec3,
+    pub(super) normal: DVec3,
+    pub(super) k1: f64,
+    pub(super) k2: f64,
+    pub(super) d1: DVec3,
+    pub(super) d2: DVec3,
+}
+
+impl Quadric {
+    /// Least-squares fit of `points` in the frame at `origin` with normal `z`.
+    pub(super) fn fit(points: &[DVec3], origin: DVec3, z: DVec3) -> Quadric {
+        let x = z.any_orthonormal_vector();
+        let y = z.cross(x);
+        let scale = bbox_diagonal(points).max(f64::MIN_POSITIVE);
+        let mut ata = nalgebra::Matrix6::<f64>::zeros();
+        let mut atb = nalgebra::Vector6::<f64>::zeros();
+        for p in points {
+            let d = (*p - origin) / scale;
+            let (u, v, w) = (d.dot(x), d.dot(y), d.dot(z));
+            let row = nalgebra::Vector6::new(u * u, u * v, v * v, u, v, 1.0);
+            ata += row * row.transpose();
+            atb += row * w;
+        }
+        let c = ata
+            .svd(true, true)
+            .solve(&atb, 1e-14)
+            .unwrap_or_else(|_| nalgebra::Vector6::zeros());
+        // Back to model units: z = s·w(u/s, v/s).
+        let k = [
+            c[0] / scale,
+            c[1] / scale,
+            c[2] / scale,
+            c[3],
+            c[4],
+            c[5] * scale,
+        ];
+        Quadric { origin, x, y, z, k }
+    }
+
+    /// Local coordinates `(u, v)` of the projection of `p` on the frame's plane.
+    pub(super) fn uv(&self, p: DVec3) -> (f64, f64) {
+        let d = p - self.origin;
+        (d.dot(self.x), d.dot(self.y))
+    }
+
+    /// Principal curvatures and directions at `(u, v)` (shape operator `I⁻¹ II`).
+    pub(super) fn principal(&self, u: f64, v: f64) -> Principal {
+        let [a, b, c, d, e, f] = self.k;
+        let h = a * u * u + b * u * v + c * v * v + d * u + e * v + f;
+        let (p, q) = (2.0 * a * u + b * v + d, b * u + 2.0 * c * v + e);
+        let xu = self.x + p * self.z;
+        let xv = self.y + q * self.z;
+        let normal = xu.cross(xv).normalize();
+        let w = (1.0 + p * p + q * q).sqrt();
+        let first = nalgebra::Matrix2::new(1.0 + p * p, p * q, p * q, 1.0 + q * q);
+        let second = nalgebra::Matrix2::new(2.0 * a, b, b, 2.0 * c) / w;
+        let shape = first.try_inverse().unwrap_or_else(nalgebra::Matrix2::zeros) * second;
+        // Eigenvalues of the 2 × 2 shape operator, and eigenvectors in (u, v).
+        let (tr, det) = (shape.trace(), shape.determinant());
+        let disc = (0.25 * tr * tr - det).max(0.0).sqrt();
+        let (k1, k2) = (0.5 * tr + disc, 0.5 * tr - disc);
+        let direction = |k: f64| {
+            let (s11, s12, s21, s22) = (shape[(0, 0)], shape[(0, 1)], shape[(1, 0)], shape[(1, 1)]);
+            let (r1, r2) = ((s12, k - s11), (k - s22, s21));
+            let (du, dv) = if r1.0.hypot(r1.1) >= r2.0.hypot(r2.1) {
+                r1
+            } else {
+                r2
+            };
+            (du * xu + dv * xv).normalize_or_zero()
+        };
+        let d1 = direction(k1);
+        // Principal directions are orthogonal: take d2 from d1 so the frame is exact.
+        let d1 = if d1 == DVec3::ZERO {
+            xu.normalize()
+        } else {
+            d1
+        };
+        let d2 = normal.cross(d1);
+        Principal {
+            point: self.origin + u * self.x + v * self.y + h * self.z,
+            normal,
+            k1,
+            k2,
+            d1,
+            d2,
+        }
+    }
+}
+
+/// Refuses a flat or umbilic point of the target.
+pub(super) fn check_curvature(
+    p: &Principal,
+    size: f64,
+    where_: &'static str,
+) -> Result<(), ApproxError> {
+    let big = p.k1.abs().max(p.k2.abs());
+    if big * size <= FLAT_CURVATURE {
+        return Err(ApproxError::Flat {
+            where_,
+            point: p.point.to_array(),
+            k1: p.k1,
+            k2: p.k2,
+            limit: FLAT_CURVATURE,
+        });
+    }
+    let ratio = (p.k1 - p.k2).abs() / big;
+    if ratio < UMBILIC_RATIO {
+        return Err(ApproxError::Umbilic {
+            where_,
+            point: p.point.to_array(),
+            k1: p.k1,
+            k2: p.k2,
+            percent: 100.0 * ratio,
+            limit_percent: 100.0 * UMBILIC_RATIO,
+        });
+    }
+    Ok(())
+}
