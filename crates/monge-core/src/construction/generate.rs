@@ -14,6 +14,10 @@ use crate::gauss_map::{
 use crate::grid::QuadGrid;
 use crate::guide::{Guide, GuideError, GuideName};
 
+/// The accepted design sizes (the larger guide's bounding-box diagonal) are those of
+/// every model, defined with the grid.
+pub use crate::grid::{MAX_SIZE, MIN_SIZE};
+
 /// Options of [`generate`] and [`inspect`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GenerateOptions {
@@ -236,13 +240,6 @@ fn degenerate_cause(face: (usize, usize), sine: f64, zero_edge: bool) -> String 
         )
     }
 }
-
-/// Smallest accepted design size (the larger guide's bounding-box diagonal).
-/// Below it squared lengths approach the subnormal range (measured: 1e-160 loses
-/// exactness).
-pub const MIN_SIZE: f64 = 1e-100;
-/// Largest accepted design size.
-pub const MAX_SIZE: f64 = 1e100;
 
 /// Smallest accepted turn of the surface normal along a guide (the largest
 /// distance between two of its normals on the unit sphere). The mesh's error

@@ -505,6 +505,13 @@ impl Folds {
     }
 }
 
+/// Smallest accepted model size (a bounding-box diagonal: the larger guide's for a
+/// design, the grid's for a measured mesh). Below it squared lengths approach the
+/// subnormal range (measured: 1e-160 loses exactness).
+pub const MIN_SIZE: f64 = 1e-100;
+/// Largest accepted model size (a bounding-box diagonal, as for [`MIN_SIZE`]).
+pub const MAX_SIZE: f64 = 1e100;
+
 /// Diagonal of the axis-aligned bounding box of `points` (0 for none).
 pub fn bbox_diagonal(points: &[DVec3]) -> f64 {
     bounds(points).map_or(0.0, |b| (b.hi - b.lo).length())

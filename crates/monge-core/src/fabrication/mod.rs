@@ -100,7 +100,7 @@ pub enum FabricationError {
     /// No layer distance was given (§2.2).
     #[error("no layer: give at least one offset distance (0 for the mesh itself)")]
     NoLayers,
-    /// A layer distance is NaN, infinite or beyond [`MAX_SIZE`](crate::generate::MAX_SIZE) (§2.2).
+    /// A layer distance is NaN, infinite or beyond [`MAX_SIZE`](crate::grid::MAX_SIZE) (§2.2).
     #[error(
         "layer {index} has distance {value}; distances must be finite and at most 1e100 in \
          size (beyond, the offset's coordinates overflow double precision)"
@@ -442,7 +442,7 @@ fn validate(base: BaseMesh<'_>, options: &FabricationOptions) -> Result<(), Fabr
         .layers
         .iter()
         .enumerate()
-        .find(|(_, d)| d.is_nan() || d.abs() > crate::generate::MAX_SIZE)
+        .find(|(_, d)| d.is_nan() || d.abs() > crate::grid::MAX_SIZE)
     {
         return Err(FabricationError::NonFiniteLayer { index, value });
     }

@@ -6,8 +6,7 @@ use glam::DVec3;
 use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
-use crate::generate::{MAX_SIZE, MIN_SIZE};
-use crate::grid::{bbox_diagonal, QuadGrid};
+use crate::grid::{bbox_diagonal, QuadGrid, MAX_SIZE, MIN_SIZE};
 
 use super::distance::MeshFaces;
 use super::quadric::principal_axes;

@@ -176,9 +176,9 @@ pub enum ApproxError {
     ScaleOutOfRange {
         /// The bounding-box diagonal of the target points.
         size: f64,
-        /// [`crate::generate::MIN_SIZE`].
+        /// [`crate::grid::MIN_SIZE`].
         min: f64,
-        /// [`crate::generate::MAX_SIZE`].
+        /// [`crate::grid::MAX_SIZE`].
         max: f64,
     },
     /// The grid asked for is too small.
