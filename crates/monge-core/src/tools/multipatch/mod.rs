@@ -48,9 +48,12 @@ use crate::design::{Design, GuideSpec, MeshKind, Tolerances, Xyz};
 use crate::gauss_map::ThetaRange;
 use crate::generate::{check_grid_size, generate, GenerateError, GenerateOptions, Generated, Mode};
 use crate::guide::{Guide, GuideError, GuideName};
-use crate::optimise::FitSpec;
 use crate::symmetry::SymmetrySpec;
 use crate::QuadGrid;
+
+mod fit_spec;
+
+pub use fit_spec::{BoundaryRef, FitSpec, FreeParameter, GuideKey, Target};
 
 /// A side of a patch's grid whose line another patch takes as a guide (§4.7).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
