@@ -1,9 +1,91 @@
 //! The circular and straight segments of a beam (§4.6, Proposition 4): a beam's
-//! nodes in its plane cut into the arcs a roller bender makes (bi-arcs, n-arcs).
+//! nodes in its plane ([`PlaneFrame`]) cut into the arcs a roller bender makes
+//! (bi-arcs, n-arcs).
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
+use serde::Serialize;
 
-use super::beams::{BeamSegment, PlaneFrame, SegmentShape};
+/// A local orthonormal frame of a plane (§6): `point = origin + x·x_axis + y·y_axis`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PlaneFrame {
+    /// Origin of the plane coordinates.
+    pub origin: DVec3,
+    /// First axis (unit).
+    pub x_axis: DVec3,
+    /// Second axis (unit, orthogonal to the first).
+    pub y_axis: DVec3,
+    /// Unit normal, `x_axis × y_axis`.
+    pub normal: DVec3,
+}
+
+impl PlaneFrame {
+    /// A frame with origin `origin`, normal along `normal` and first axis along
+    /// the part of `x` orthogonal to it (§6). Both must be non-zero and not parallel.
+    pub(super) fn new(origin: DVec3, normal: DVec3, x: DVec3) -> Self {
+        let normal = normal.normalize();
+        let x_axis = (x - x.dot(normal) * normal).normalize();
+        PlaneFrame {
+            origin,
+            x_axis,
+            y_axis: normal.cross(x_axis),
+            normal,
+        }
+    }
+
+    /// Plane coordinates of `p` (its orthogonal projection) (§6).
+    pub fn to_plane(&self, p: DVec3) -> DVec2 {
+        let d = p - self.origin;
+        DVec2::new(d.dot(self.x_axis), d.dot(self.y_axis))
+    }
+
+    /// The 3D point at plane coordinates `q` (§6).
+    pub fn to_space(&self, q: DVec2) -> DVec3 {
+        self.origin + q.x * self.x_axis + q.y * self.y_axis
+    }
+
+    /// Signed distance of `p` from the plane (§6).
+    pub fn height(&self, p: DVec3) -> f64 {
+        (p - self.origin).dot(self.normal)
+    }
+}
+
+/// The shape of one piece of a beam between two split nodes (§4.6).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase", tag = "kind")]
+pub enum SegmentShape {
+    /// A circular arc through the segment's nodes.
+    Arc {
+        /// Centre in the beam's plane coordinates.
+        center: DVec2,
+        /// Centre in space.
+        center_3d: DVec3,
+        /// Radius.
+        radius: f64,
+        /// Signed sweep angle from the first to the last node, radians
+        /// (positive counter-clockwise about the plane normal).
+        sweep: f64,
+        /// Arc length, `radius · |sweep|`.
+        length: f64,
+    },
+    /// A straight piece: the nodes are collinear.
+    Straight {
+        /// Length from the first to the last node.
+        length: f64,
+    },
+}
+
+/// A piece of a beam that is one circular arc or one straight bar (§4.6).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct BeamSegment {
+    /// Index of its first node in the beam.
+    pub start: usize,
+    /// Index of its last node in the beam (the first node of the next segment).
+    pub end: usize,
+    /// Its shape.
+    pub shape: SegmentShape,
+    /// Largest distance of its nodes from the arc or line (absolute).
+    pub residual: f64,
+}
 
 /// A segment in plane coordinates, before its 3D centre is known.
 pub(super) struct PlaneSegment {

@@ -39,7 +39,8 @@ use nodes::{build_nodes, extreme_layers, node_at};
 use panels::{flat_panel, layer_panels, PanelSummary};
 use summary::summarise;
 
-pub use beams::{Beam, BeamSegment, LineFamily, PlaneFrame, SegmentShape};
+pub use arcs::{BeamSegment, PlaneFrame, SegmentShape};
+pub use beams::{Beam, LineFamily};
 pub use layers::LayerMesh;
 pub use nodes::Node;
 pub use panels::Panel;

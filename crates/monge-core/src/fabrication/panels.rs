@@ -7,7 +7,7 @@ use serde::Serialize;
 use crate::grid::quad_area;
 use crate::measure::{circularity, face_planarity};
 
-use super::beams::PlaneFrame;
+use super::arcs::PlaneFrame;
 use super::layers::LayerMesh;
 use super::FabricationError;
 

@@ -2,7 +2,8 @@
 
 use serde::Serialize;
 
-use super::beams::{beams_per_layer, nth_beam, Beam, LineFamily, SegmentShape};
+use super::arcs::SegmentShape;
+use super::beams::{beams_per_layer, nth_beam, Beam, LineFamily};
 use super::layers::{offset_deviation, LayerMesh};
 use super::nodes::{distinct, NodeSummary};
 use super::panels::PanelSummary;

@@ -2,11 +2,13 @@
 //! monge's extension: the approximation's objective).
 
 use glam::DVec3;
+use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
 use crate::grid::QuadGrid;
 
-use super::index::Indexed;
+/// A point (of a target or a mesh) in a spatial index, with its index.
+pub(super) type Indexed = GeomWithData<[f64; 3], usize>;
 
 /// A mesh's vertices in a spatial index, to find the nearest face of a point.
 pub(super) struct MeshFaces<'a> {

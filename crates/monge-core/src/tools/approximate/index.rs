@@ -3,17 +3,13 @@
 //! distances between it and a mesh both ways.
 
 use glam::DVec3;
-use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
 use crate::grid::{bbox_diagonal, QuadGrid, MAX_SIZE, MIN_SIZE};
 
-use super::distance::MeshFaces;
+use super::distance::{Indexed, MeshFaces};
 use super::quadric::principal_axes;
 use super::{ApproxError, Deviation, MIN_POINTS};
-
-/// A point of the target in the spatial index.
-pub(super) type Indexed = GeomWithData<[f64; 3], usize>;
 
 /// The target: its points, a spatial index, a normal for each point and an outward
 /// direction for each point of its boundary.

@@ -49,7 +49,6 @@ use crate::design::{Design, GuideSpec, MeshKind, Xyz};
 use crate::generate::{generate, GenerateOptions};
 use crate::grid::QuadGrid;
 
-mod boundary_trace;
 mod distance;
 mod fit_guide;
 mod index;
