@@ -67,7 +67,7 @@ impl Beam {
     }
 }
 
-/// Beam `n` of [`Fabrication::beams`]: every row, then every column, of
+/// Beam `n` of [`Fabrication::beams`](super::Fabrication::beams): every row, then every column, of
 /// every layer, layer by layer.
 pub(super) fn nth_beam(layers: &[LayerMesh], tol: f64, n: usize) -> Beam {
     let (k, b) = (n / beams_per_layer(layers), n % beams_per_layer(layers));

@@ -27,7 +27,7 @@ pub struct Node {
     pub axis_angles: Vec<f64>,
     /// Distance between the node's positions on the first and the last layer.
     pub height: f64,
-    /// Largest torsion of its edges (see [`Beam::torsion`]).
+    /// Largest torsion of its edges (see [`Beam::torsion`](super::Beam::torsion)).
     pub torsion: f64,
     /// Its node type: nodes of one type agree within `angle_tol`.
     pub node_type: usize,

@@ -220,8 +220,8 @@ pub enum MeasureError {
 
 /// Whether [`measure`] can measure `grid` (§2.2, §2.3): at least one face, every
 /// vertex and node axis finite, and a size (bounding-box diagonal) in the range
-/// the generator accepts, [`MIN_SIZE`](crate::grid::MIN_SIZE) to
-/// [`MAX_SIZE`](crate::grid::MAX_SIZE). A single point (size 0) passes.
+/// the generator accepts, [`MIN_SIZE`] to
+/// [`MAX_SIZE`]. A single point (size 0) passes.
 ///
 /// ```
 /// use glam::DVec3;

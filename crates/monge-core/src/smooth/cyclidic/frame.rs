@@ -75,7 +75,7 @@ impl Frame {
 }
 
 /// Largest angle, in degrees, accepted between the two Gauss-circle tangents
-/// and 90° in [`CyclidicNet::from_normals`].
+/// and 90° in [`CyclidicNet::from_normals`](super::CyclidicNet::from_normals).
 const GAUSS_ORTHOGONALITY_DEG: f64 = 1e-6;
 
 /// The frames of §4.4 from the Gauss map of a circular mesh with planar lines.

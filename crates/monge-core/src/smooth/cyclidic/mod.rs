@@ -47,16 +47,19 @@ impl fmt::Display for Family {
 }
 
 /// Why a quad is folded (§4.4, §5.2). In a net, whether a face is folded is
-/// decided as for every mesh, by [`QuadGrid::folds`] (crossed or turned over);
-/// the arc and weight reasons are those of a patch whose frame, not its face,
-/// turns it over.
+/// decided as for every mesh, by
+/// [`QuadGrid::folds`](crate::grid::QuadGrid::folds) (crossed or turned over); the
+/// arc and weight reasons are those of a patch whose frame, not its face, turns it
+/// over.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FoldReason {
-    /// The corners do not all turn the same way ([`Turn::Crossed`]): the quad is
-    /// a bow-tie (two of its edges cross) or is not convex.
+    /// The corners do not all turn the same way
+    /// ([`Turn::Crossed`](crate::grid::Turn::Crossed)): the quad is a bow-tie (two of
+    /// its edges cross) or is not convex.
     Crossed,
     /// The face turns the other way than most faces of its mesh about their
-    /// node axes: the mesh folds back over itself there ([`QuadGrid::folds`]).
+    /// node axes: the mesh folds back over itself there
+    /// ([`QuadGrid::folds`](crate::grid::QuadGrid::folds)).
     TurnedOver,
     /// The arc of an edge turns by 180° or more: the frame tangent at the
     /// edge's start points away from the edge (`tangent · edge = cos(half arc)` ≤ 0).

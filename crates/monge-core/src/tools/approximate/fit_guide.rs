@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::CONTROL_POINTS;
 
 /// Knots of the fitted guides: cubic, clamped uniform, [`CONTROL_POINTS`] control
-/// points (those [`GuideSpec::bspline`] gives them).
+/// points (those [`GuideSpec::bspline`](crate::design::GuideSpec::bspline) gives them).
 const GUIDE_KNOTS: [f64; CONTROL_POINTS + 4] = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
 
 /// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` (Cox–de Boor).
@@ -177,7 +177,7 @@ pub(super) fn guide_point(p: &Polygon, u: f64) -> (f64, f64) {
 /// A cubic guide in the plane through `corner` spanned by `t` and `n` (normal
 /// `other`), fitted to the target points near that plane: `w = c₂s² + c₃s³` by least
 /// squares, over `s` from 0 to the target's extent along `t`; as the control points of
-/// [`Start::guides`].
+/// [`Start::guides`](super::start::Start::guides).
 pub(super) fn section_guide(
     points: &[DVec3],
     corner: DVec3,

@@ -20,7 +20,7 @@ pub(super) struct Start {
     /// Per guide: the second control point's distance along the tangent, then
     /// `(along, up)` of each later control point.
     pub(super) guides: [Vec<f64>; 2],
-    /// Tilt of each guide's plane about its start tangent (see [`design_of`]).
+    /// Tilt of each guide's plane about its start tangent (see [`design_of`](super::design_of)).
     pub(super) tilts: [f64; 2],
     /// Whether the guides are the target's own boundary curves ([`boundary_start`]).
     pub(super) on_boundary: bool,
