@@ -5,8 +5,7 @@
 
 use glam::DVec3;
 
-use super::fit_guide::fit_guide;
-use super::fit_guide::section_guide;
+use super::fit_guide::{fit_guide, section_guide};
 use super::index::TargetCloud;
 use super::quadric::{check_curvature, principal_axes, principal_axes_about, Quadric};
 use super::{ApproxError, MIN_POINTS};
