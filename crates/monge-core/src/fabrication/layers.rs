@@ -5,7 +5,7 @@
 use crate::grid::QuadGrid;
 use crate::offset::{face_offset, vertex_offset};
 
-use super::{BaseMesh, FabricationError};
+use super::input::{BaseMesh, FabricationError};
 
 /// One layer of the gridshell: the base mesh offset by `distance` (§2.2, §2.3).
 #[derive(Clone, Debug, PartialEq)]

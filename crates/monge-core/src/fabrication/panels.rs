@@ -8,8 +8,8 @@ use crate::grid::quad_area;
 use crate::measure::{circularity, face_planarity};
 
 use super::arcs::PlaneFrame;
+use super::input::FabricationError;
 use super::layers::LayerMesh;
-use super::FabricationError;
 
 /// A face as a flat panel (§2.2, §6), numbered by its grid indices.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -4,10 +4,10 @@ use serde::Serialize;
 
 use super::arcs::SegmentShape;
 use super::beams::{beams_per_layer, nth_beam, Beam, LineFamily};
+use super::input::{BaseMesh, FabricationOptions};
 use super::layers::{offset_deviation, LayerMesh};
 use super::nodes::{distinct, NodeSummary};
 use super::panels::PanelSummary;
-use super::{BaseMesh, FabricationOptions};
 
 /// Worst values and counts of a fabrication (§6).
 #[derive(Clone, Debug, PartialEq, Serialize)]

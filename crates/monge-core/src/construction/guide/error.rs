@@ -255,7 +255,7 @@ pub enum GuideError {
         /// The guide.
         guide: GuideName,
     },
-    /// `bspline.degree` is above [`MAX_DEGREE`].
+    /// `bspline.degree` is above [`MAX_DEGREE`](super::MAX_DEGREE).
     #[error(
         "{guide}: `bspline.degree` is {degree}, above the largest accepted, {max}: a sample of a \
          B-spline costs about degree² operations (degree {degree}: {} per sample), and CAD \
@@ -268,7 +268,7 @@ pub enum GuideError {
         guide: GuideName,
         /// The degree given.
         degree: usize,
-        /// [`MAX_DEGREE`].
+        /// [`MAX_DEGREE`](super::MAX_DEGREE).
         max: usize,
     },
     /// Fewer than `degree + 1` control points.

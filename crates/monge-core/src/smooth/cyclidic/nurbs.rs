@@ -3,6 +3,8 @@
 
 use glam::DVec3;
 
+use crate::bspline;
+
 /// The whole net as one NURBS surface of degree (2, 2) with double interior knots (§4.4, §5.3).
 ///
 /// Control point `(a, b)` is `control_points[a * cols + b]`; vertex `(i, j)` of
@@ -54,27 +56,12 @@ impl NurbsSurface {
     }
 }
 
-/// The knot span `s` (`knots[s] ≤ t < knots[s+1]`, the last span at the end) and
-/// the three non-zero quadratic B-spline basis functions there (Cox–de Boor).
+/// The knot span `s` of `t` and the three quadratic B-spline basis functions
+/// non-zero there ([`bspline::span`], [`bspline::basis`]).
 fn basis(knots: &[f64], t: f64) -> (usize, [f64; 3]) {
-    let p = NURBS_DEGREE;
-    let last = knots.len() - p - 2;
-    let span = (p..=last).rev().find(|&s| knots[s] <= t).unwrap_or(p);
-    let mut n = [0.0; 3];
-    n[0] = 1.0;
-    let mut left = [0.0; 3];
-    let mut right = [0.0; 3];
-    for j in 1..=p {
-        left[j] = t - knots[span + 1 - j];
-        right[j] = knots[span + j] - t;
-        let mut saved = 0.0;
-        for r in 0..j {
-            let tmp = n[r] / (right[r + 1] + left[j - r]);
-            n[r] = saved + right[r + 1] * tmp;
-            saved = left[j - r] * tmp;
-        }
-        n[j] = saved;
-    }
+    let span = bspline::span(knots, NURBS_DEGREE, t);
+    let mut n = [0.0; NURBS_DEGREE + 1];
+    bspline::basis(knots, span, t, &mut n);
     (span, n)
 }
 

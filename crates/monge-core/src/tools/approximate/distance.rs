@@ -99,3 +99,37 @@ fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let denom = 1.0 / (va + vb + vc);
     a + ab * (vb * denom) + ac * (vc * denom)
 }
+
+/// Distances between a mesh and a target both ways, relative to the target's size.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Deviation {
+    /// Largest distance from a mesh vertex to the target.
+    pub mesh_to_target_max: f64,
+    /// Root-mean-square distance from the mesh vertices to the target.
+    pub mesh_to_target_rms: f64,
+    /// Largest distance from a target point to the mesh (one-sided Hausdorff).
+    pub target_to_mesh_max: f64,
+    /// Root-mean-square distance from the target points to the mesh.
+    pub target_to_mesh_rms: f64,
+    /// Root-mean-square distance by which the target points lie beyond the mesh's
+    /// boundary: the part of their distance to the nearest face along that face, what
+    /// the mesh fails to cover (zero inside, whatever the faces' sag).
+    pub beyond_mesh_rms: f64,
+    /// The target's size (bounding-box diagonal) the distances are divided by.
+    pub size: f64,
+}
+
+impl Deviation {
+    /// The larger of the two largest distances (the Hausdorff distance, relative).
+    pub fn max(&self) -> f64 {
+        self.mesh_to_target_max.max(self.target_to_mesh_max)
+    }
+
+    /// The objective: the mean of the mean squared distances from the mesh's vertices
+    /// to the target and of the target's points beyond the mesh (relative). Not the
+    /// target's distances to the faces: flat faces sag below a curved target by
+    /// `κh²/8`, and fitting that sag would move the vertices off the target.
+    pub(super) fn objective(&self) -> f64 {
+        0.5 * (self.mesh_to_target_rms.powi(2) + self.beyond_mesh_rms.powi(2))
+    }
+}

@@ -4,35 +4,22 @@
 
 use glam::DVec3;
 
-use super::CONTROL_POINTS;
+use crate::bspline;
+
+/// Number of control points of each fitted guide (a cubic B-spline).
+pub(super) const CONTROL_POINTS: usize = 5;
 
 /// Knots of the fitted guides: cubic, clamped uniform, [`CONTROL_POINTS`] control
 /// points (those [`GuideSpec::bspline`](crate::design::GuideSpec::bspline) gives them).
 const GUIDE_KNOTS: [f64; CONTROL_POINTS + 4] = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
 
-/// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` (Cox–de Boor).
+/// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` ([`bspline::span`],
+/// [`bspline::basis`]).
 fn guide_basis(u: f64) -> [f64; CONTROL_POINTS] {
-    let k = &GUIDE_KNOTS;
     let u = u.clamp(0.0, 1.0);
-    let mut n = [0.0; CONTROL_POINTS + 3];
-    n[if u < 0.5 { 3 } else { 4 }] = 1.0;
-    for p in 1..=3 {
-        for i in 0..CONTROL_POINTS + 3 - p {
-            let left = if k[i + p] > k[i] {
-                (u - k[i]) / (k[i + p] - k[i]) * n[i]
-            } else {
-                0.0
-            };
-            let right = if k[i + p + 1] > k[i + 1] {
-                (k[i + p + 1] - u) / (k[i + p + 1] - k[i + 1]) * n[i + 1]
-            } else {
-                0.0
-            };
-            n[i] = left + right;
-        }
-    }
+    let span = bspline::span(&GUIDE_KNOTS, 3, u);
     let mut out = [0.0; CONTROL_POINTS];
-    out.copy_from_slice(&n[..CONTROL_POINTS]);
+    bspline::basis(&GUIDE_KNOTS, span, u, &mut out[span - 3..=span]);
     out
 }
 

@@ -7,9 +7,9 @@ use rstar::RTree;
 
 use crate::grid::{bbox_diagonal, QuadGrid, MAX_SIZE, MIN_SIZE};
 
-use super::distance::{Indexed, MeshFaces};
+use super::distance::{Deviation, Indexed, MeshFaces};
+use super::error::{ApproxError, MIN_POINTS};
 use super::quadric::principal_axes;
-use super::{ApproxError, Deviation, MIN_POINTS};
 
 /// The target: its points, a spatial index, a normal for each point and an outward
 /// direction for each point of its boundary.

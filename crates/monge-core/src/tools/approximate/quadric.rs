@@ -6,7 +6,7 @@ use nalgebra::{Matrix3, SymmetricEigen};
 
 use crate::grid::bbox_diagonal;
 
-use super::{ApproxError, FLAT_CURVATURE, UMBILIC_RATIO};
+use super::error::{ApproxError, FLAT_CURVATURE, UMBILIC_RATIO};
 
 /// Principal axes of a point set: the unit eigenvectors of its covariance, largest
 /// variance first (the last is the normal of the best-fit plane).

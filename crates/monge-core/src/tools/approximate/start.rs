@@ -5,10 +5,10 @@
 
 use glam::DVec3;
 
+use super::error::{ApproxError, MIN_POINTS};
 use super::fit_guide::{fit_guide, section_guide};
 use super::index::TargetCloud;
 use super::quadric::{check_curvature, principal_axes, principal_axes_about, Quadric};
-use super::{ApproxError, MIN_POINTS};
 
 /// The initial guess: corner, frame and each guide's control points in its plane.
 #[derive(Clone, Debug)]

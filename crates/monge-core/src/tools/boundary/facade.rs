@@ -5,7 +5,8 @@ use glam::DVec3;
 
 use crate::design::{Design, GuideSpec};
 
-use super::{line_point, AlignError, BoundarySpec, Candidate, Rise, ANGLE_TOLERANCE, PLANE_NAMES};
+use super::candidate::{line_point, Candidate};
+use super::spec::{AlignError, BoundarySpec, Rise, ANGLE_TOLERANCE, PLANE_NAMES};
 
 /// The façade case: four vertical planes, a rectangle in plan (Figure 16).
 pub(super) struct Facade {

@@ -8,7 +8,8 @@ use crate::gauss_map::pencil_axes;
 use crate::generate::GenerateOptions;
 use crate::projective::Line;
 
-use super::{line_point, solve_gram, BoundarySpec, Candidate};
+use super::candidate::{line_point, solve_gram, Candidate};
+use super::spec::BoundarySpec;
 
 /// The general case: four planes with orthogonal intersection-line directions.
 pub(super) struct General {
