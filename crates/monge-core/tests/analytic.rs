@@ -243,16 +243,13 @@ fn one_circular_guide_makes_its_whole_family_circular() {
     ] {
         let (s, c) = phi.to_radians().sin_cos();
         // Centre at −r·d, d = (sin φ, 0, cos φ); normal −(y × d) gives start tangent +y.
-        let guide_v = GuideSpec {
-            arc: Some(ArcSpec {
-                center: [-RT * s, 0.0, -RT * c],
-                start: [0.0; 3],
-                normal: [-c, 0.0, s],
-                angle_deg: 75.0,
-                samples: 26,
-            }),
-            ..Default::default()
-        };
+        let guide_v = GuideSpec::Arc(ArcSpec {
+            center: [-RT * s, 0.0, -RT * c],
+            start: [0.0; 3],
+            normal: [-c, 0.0, s],
+            angle_deg: 75.0,
+            samples: 26,
+        });
         for theta in thetas {
             let g = mesh(&Design {
                 mesh: Default::default(),

@@ -144,7 +144,10 @@ fn a_noised_surface_with_planar_curvature_lines_is_recovered() {
         .grid;
     let mut design = r.design.clone();
     for guide in [&mut design.guide_u, &mut design.guide_v] {
-        guide.bspline.as_mut().unwrap().samples = 41;
+        let GuideSpec::BSpline { bspline, .. } = guide else {
+            panic!("a B-spline guide");
+        };
+        bspline.samples = 41;
     }
     let result = generate(&design, &GenerateOptions::default()).unwrap().grid;
     let (to_max, to_rms) = max_rms(
@@ -354,7 +357,10 @@ fn every_error_is_triggered() {
     assert_eq!(run(&target, &past), ApproxError::TimeLimit);
     // Five points along one side of every corner: too few to fit a boundary guide.
     let mut short = roof(11);
-    short.guide_u.bspline.as_mut().unwrap().samples = 5;
+    let GuideSpec::BSpline { bspline, .. } = &mut short.guide_u else {
+        panic!("a B-spline guide");
+    };
+    bspline.samples = 5;
     let target = generate(&short, &GenerateOptions::default())
         .unwrap()
         .grid

@@ -23,15 +23,15 @@ fn guide(t: DVec3, d: DVec3, bends: &[(f64, f64)], samples: usize) -> GuideSpec 
         along += step;
         cps.push((along * t + off * d).to_array());
     }
-    GuideSpec {
-        bspline: Some(BSplineSpec {
+    GuideSpec::BSpline {
+        bspline: BSplineSpec {
             degree: 3,
             control_points: cps,
             knots: None,
             weights: None,
             samples,
-        }),
-        ..Default::default()
+        },
+        parameters: None,
     }
 }
 

@@ -14,29 +14,26 @@ use nalgebra::DMatrix;
 
 /// An arc guide starting at the origin.
 fn arc(center: [f64; 3], normal: [f64; 3], angle_deg: f64, samples: usize) -> GuideSpec {
-    GuideSpec {
-        arc: Some(ArcSpec {
-            center,
-            start: [0.0; 3],
-            normal,
-            angle_deg,
-            samples,
-        }),
-        ..Default::default()
-    }
+    GuideSpec::Arc(ArcSpec {
+        center,
+        start: [0.0; 3],
+        normal,
+        angle_deg,
+        samples,
+    })
 }
 
 /// A clamped uniform cubic B-spline guide.
 fn bspline(control_points: Vec<[f64; 3]>, samples: usize) -> GuideSpec {
-    GuideSpec {
-        bspline: Some(BSplineSpec {
+    GuideSpec::BSpline {
+        bspline: BSplineSpec {
             degree: 3,
             control_points,
             knots: None,
             weights: None,
             samples,
-        }),
-        ..Default::default()
+        },
+        parameters: None,
     }
 }
 
@@ -139,10 +136,9 @@ fn biarc() -> Design {
     pts.extend((1..=4).map(|k| rot_y(junction, c2, step2 * k as f64)));
     design(
         20.0,
-        GuideSpec {
-            points: Some(pts.iter().map(|p| p.to_array()).collect()),
+        GuideSpec::Points {
+            points: pts.iter().map(|p| p.to_array()).collect(),
             tangent: Some([1.0, 0.0, 0.0]),
-            ..Default::default()
         },
         arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 60.0, 7),
     )

@@ -240,9 +240,9 @@ fn design(
     let s = linspace(s0, s0 + LENGTH, n);
     let t = linspace(t0, t0 + LENGTH, n);
     let (x_s, x_t) = e.derivatives(s0, t0);
-    let guide = |pts: Vec<DVec3>, tangent: DVec3| GuideSpec {
+    let guide = |pts: Vec<DVec3>, tangent: DVec3| GuideSpec::Points {
+        points: pts.iter().map(|p| p.to_array()).collect(),
         tangent: Some(tangent.to_array()),
-        ..GuideSpec::points(pts.iter().map(|p| p.to_array()).collect())
     };
     let d = Design {
         theta_deg,

@@ -477,8 +477,8 @@ fn a_normal_that_barely_turns_along_a_guide_is_refused() {
 /// Combescure transform cannot scale them to the guide's edges (§5.2).
 fn straight_run(rotation: DQuat) -> Design {
     let r = |p: [f64; 3]| (rotation * DVec3::from_array(p)).to_array();
-    let guide_u = GuideSpec {
-        bspline: Some(BSplineSpec {
+    let guide_u = GuideSpec::BSpline {
+        bspline: BSplineSpec {
             degree: 2,
             control_points: [
                 [0.0, 0.0, 0.0],
@@ -492,11 +492,11 @@ fn straight_run(rotation: DQuat) -> Design {
             knots: None,
             weights: None,
             samples: 17,
-        }),
-        ..Default::default()
+        },
+        parameters: None,
     };
-    let guide_v = GuideSpec {
-        bspline: Some(BSplineSpec {
+    let guide_v = GuideSpec::BSpline {
+        bspline: BSplineSpec {
             degree: 3,
             control_points: [
                 [0.0, 0.0, 0.0],
@@ -509,8 +509,8 @@ fn straight_run(rotation: DQuat) -> Design {
             knots: None,
             weights: None,
             samples: 13,
-        }),
-        ..Default::default()
+        },
+        parameters: None,
     };
     Design {
         mesh: Default::default(),
@@ -568,8 +568,8 @@ fn degenerate_on_a_straight_run_found_by_the_property_tests() {
     let design = Design {
         mesh: Default::default(),
         theta_deg: 57.63789537857576,
-        guide_u: GuideSpec {
-            bspline: Some(BSplineSpec {
+        guide_u: GuideSpec::BSpline {
+            bspline: BSplineSpec {
                 degree: 2,
                 control_points: vec![
                     [2.744654018319016, 2.566740551212795, 0.7370667486318613],
@@ -582,11 +582,11 @@ fn degenerate_on_a_straight_run_found_by_the_property_tests() {
                 knots: None,
                 weights: None,
                 samples: 20,
-            }),
-            ..Default::default()
+            },
+            parameters: None,
         },
-        guide_v: GuideSpec {
-            bspline: Some(BSplineSpec {
+        guide_v: GuideSpec::BSpline {
+            bspline: BSplineSpec {
                 degree: 4,
                 control_points: vec![
                     [2.744654018319016, 2.566740551212795, 0.7370667486318613],
@@ -600,8 +600,8 @@ fn degenerate_on_a_straight_run_found_by_the_property_tests() {
                 knots: None,
                 weights: None,
                 samples: 10,
-            }),
-            ..Default::default()
+            },
+            parameters: None,
         },
         tolerance: None,
     };
@@ -621,18 +621,15 @@ fn guide_errors_pass_through() {
     assert_eq!(inspect(&d, &opts()).unwrap_err(), e);
     assert_mentions(&e.to_string(), &["guide_u is a straight line", "bend it"]);
 
-    // No curve at all in guide_v.
+    // A single point in guide_v.
     let mut d = characteristic(30.0);
-    d.guide_v = GuideSpec::default();
+    d.guide_v = GuideSpec::points(vec![[0.0; 3]]);
     let e = refused(&d, &opts());
     assert!(
-        matches!(e, GenerateError::Guide(GuideError::NoKind { .. })),
+        matches!(e, GenerateError::Guide(GuideError::TooFewSamples { .. })),
         "{e:?}"
     );
-    assert_mentions(
-        &e.to_string(),
-        &["guide_v has no curve", "give exactly one of"],
-    );
+    assert_mentions(&e.to_string(), &["guide_v has 1 sample(s)", "at least 2"]);
 
     // A non-planar guide_v: control point 3 is 0.01 off the plane x = 0.
     let mut d = characteristic(30.0);
@@ -670,14 +667,14 @@ fn guide_errors_pass_through() {
 
     // Repeated points in guide_u.
     let mut d = characteristic(30.0);
-    d.guide_u = GuideSpec {
-        tangent: Some([1.0, 0.0, 0.0]),
-        ..GuideSpec::points(vec![
+    d.guide_u = GuideSpec::Points {
+        points: vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.2],
             [1.0, 0.0, 0.2],
             [2.0, 0.0, 0.7],
-        ])
+        ],
+        tangent: Some([1.0, 0.0, 0.0]),
     };
     let e = refused(&d, &opts());
     assert!(
@@ -737,11 +734,8 @@ fn garbage_points() -> impl Strategy<Value = Vec<[f64; 3]>> {
 }
 
 fn garbage_guide() -> impl Strategy<Value = GuideSpec> {
-    let points =
-        (garbage_points(), prop::option::of(garbage_point())).prop_map(|(p, tangent)| GuideSpec {
-            tangent,
-            ..GuideSpec::points(p)
-        });
+    let points = (garbage_points(), prop::option::of(garbage_point()))
+        .prop_map(|(p, tangent)| GuideSpec::Points { points: p, tangent });
     let bspline = (
         0usize..6,
         garbage_points(),
@@ -750,15 +744,15 @@ fn garbage_guide() -> impl Strategy<Value = GuideSpec> {
         0usize..30,
     )
         .prop_map(
-            |(degree, control_points, knots, weights, samples)| GuideSpec {
-                bspline: Some(BSplineSpec {
+            |(degree, control_points, knots, weights, samples)| GuideSpec::BSpline {
+                bspline: BSplineSpec {
                     degree,
                     control_points,
                     knots,
                     weights,
                     samples,
-                }),
-                ..Default::default()
+                },
+                parameters: None,
             },
         );
     let arc = (
@@ -768,15 +762,14 @@ fn garbage_guide() -> impl Strategy<Value = GuideSpec> {
         prop_oneof![garbage_f64(), -400.0..400.0f64],
         0usize..30,
     )
-        .prop_map(|(center, start, normal, angle_deg, samples)| GuideSpec {
-            arc: Some(ArcSpec {
+        .prop_map(|(center, start, normal, angle_deg, samples)| {
+            GuideSpec::Arc(ArcSpec {
                 center,
                 start,
                 normal,
                 angle_deg,
                 samples,
-            }),
-            ..Default::default()
+            })
         });
     let parabola = (
         garbage_point(),
@@ -784,39 +777,19 @@ fn garbage_guide() -> impl Strategy<Value = GuideSpec> {
         garbage_point(),
         0usize..30,
     )
-        .prop_map(|(start, tangent, quadratic, samples)| GuideSpec {
-            parabola: Some(ParabolaSpec {
+        .prop_map(|(start, tangent, quadratic, samples)| {
+            GuideSpec::Parabola(ParabolaSpec {
                 start,
                 tangent,
                 quadratic,
                 samples,
-            }),
-            ..Default::default()
-        });
-    let several = (
-        garbage_points(),
-        garbage_point(),
-        garbage_point(),
-        0usize..10,
-    )
-        .prop_map(|(p, center, normal, samples)| GuideSpec {
-            points: Some(p),
-            arc: Some(ArcSpec {
-                center,
-                start: [0.0; 3],
-                normal,
-                angle_deg: 90.0,
-                samples,
-            }),
-            ..Default::default()
+            })
         });
     prop_oneof![
         3 => points,
         3 => bspline,
         3 => arc,
         2 => parabola,
-        1 => several,
-        1 => Just(GuideSpec::default()),
     ]
 }
 
@@ -917,13 +890,13 @@ fn near_valid_design() -> impl Strategy<Value = Design> {
                 Design {
                     mesh: Default::default(),
                     theta_deg,
-                    guide_u: GuideSpec {
+                    guide_u: GuideSpec::Points {
+                        points: u,
                         tangent: tu,
-                        ..GuideSpec::points(u)
                     },
-                    guide_v: GuideSpec {
+                    guide_v: GuideSpec::Points {
+                        points: v,
                         tangent: tv,
-                        ..GuideSpec::points(v)
                     },
                     tolerance: tol.map(|(planarity, angle, start)| Tolerances {
                         planarity,
@@ -1003,7 +976,9 @@ fn garbage_never_panics() {
 fn scaled_is_refused_or_exact(s: f64) -> Result<String, String> {
     let mut d = characteristic(30.0);
     for g in [&mut d.guide_u, &mut d.guide_v] {
-        let b = g.bspline.as_mut().unwrap();
+        let GuideSpec::BSpline { bspline: b, .. } = g else {
+            panic!("a B-spline guide");
+        };
         b.control_points
             .iter_mut()
             .for_each(|p| p.iter_mut().for_each(|c| *c *= s));
@@ -1043,7 +1018,9 @@ fn scale_out_of_range_is_refused_with_the_limits() {
     for s in [1e-120, 1e120] {
         let mut d = characteristic(30.0);
         for g in [&mut d.guide_u, &mut d.guide_v] {
-            let b = g.bspline.as_mut().unwrap();
+            let GuideSpec::BSpline { bspline: b, .. } = g else {
+                panic!("a B-spline guide");
+            };
             b.control_points
                 .iter_mut()
                 .for_each(|p| p.iter_mut().for_each(|c| *c *= s));

@@ -83,8 +83,8 @@ fn errors(g: &QuadGrid, size: f64) -> f64 {
 }
 
 fn bspline(points: &[[f64; 3]], size: f64, corner: DVec3) -> GuideSpec {
-    GuideSpec {
-        bspline: Some(BSplineSpec {
+    GuideSpec::BSpline {
+        bspline: BSplineSpec {
             degree: 3,
             control_points: points
                 .iter()
@@ -93,8 +93,8 @@ fn bspline(points: &[[f64; 3]], size: f64, corner: DVec3) -> GuideSpec {
             knots: None,
             weights: None,
             samples: 81,
-        }),
-        ..Default::default()
+        },
+        parameters: None,
     }
 }
 

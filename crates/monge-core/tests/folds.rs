@@ -98,9 +98,13 @@ fn a_symmetric_bow_tie_is_a_folded_face() {
 /// What `monge optimise-panels` wrote for `examples/fig22-panels.json` before
 /// issue 10: its mesh has face (7, 11) crossed.
 fn crossed_figure22() -> Design {
-    let guide = |control_points, parameters: &[f64]| GuideSpec {
-        parameters: Some(parameters.to_vec()),
-        ..GuideSpec::bspline(3, control_points, 13)
+    let guide = |control_points, parameters: &[f64]| match GuideSpec::bspline(3, control_points, 13)
+    {
+        GuideSpec::BSpline { bspline, .. } => GuideSpec::BSpline {
+            bspline,
+            parameters: Some(parameters.to_vec()),
+        },
+        other => other,
     };
     Design {
         mesh: Default::default(),

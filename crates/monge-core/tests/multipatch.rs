@@ -335,10 +335,10 @@ fn error_boundary() {
 fn error_guide() {
     let e = err(&design(vec![
         first(30.0),
-        attached(10.0, 0, Side::LastRow, GuideSpec::default()),
+        attached(10.0, 0, Side::LastRow, GuideSpec::points(vec![])),
     ]));
     assert!(matches!(e, MultiPatchError::Guide { patch: 1, .. }), "{e}");
-    assert!(e.to_string().contains("no curve"), "{e}");
+    assert!(e.to_string().contains("has 0 sample(s)"), "{e}");
 }
 
 #[test]

@@ -159,13 +159,7 @@ fn fits_a_guide_coordinate() {
     let mut truth = hippo([30.0, -25.0, 40.0]);
     truth.patches.truncate(2);
     truth.patches[1].guide = Some(points(0.0));
-    let z_true = truth.patches[1]
-        .guide
-        .as_ref()
-        .unwrap()
-        .points
-        .as_ref()
-        .unwrap()[3][2];
+    let z_true = truth.patches[1].guide.as_ref().map(points_of).unwrap()[3][2];
     let target = build(&truth, &opts())
         .unwrap()
         .boundary(1, Side::LastRow)
@@ -188,13 +182,7 @@ fn fits_a_guide_coordinate() {
     d.fit.as_mut().unwrap().boundary.patch = 1;
     let r = fit(&d, &opts()).unwrap();
     assert!(r.after.relative <= 1e-6, "{:?}", r.after);
-    let z = r.design.patches[1]
-        .guide
-        .as_ref()
-        .unwrap()
-        .points
-        .as_ref()
-        .unwrap()[3][2];
+    let z = r.design.patches[1].guide.as_ref().map(points_of).unwrap()[3][2];
     assert!((z - z_true).abs() < 1e-5, "{z} vs {z_true}");
 }
 
@@ -357,4 +345,12 @@ fn fit_never_returns_a_folded_mesh() {
     assert_eq!(r.mesh.patches[0].folded_faces, 0, "θ = {theta}");
     assert_eq!(measure(&r.mesh.grid).folded_faces, 0, "θ = {theta}");
     assert!(r.after.max > 1e-3, "{:?}", r.after);
+}
+
+/// The points of a `points` guide.
+fn points_of(g: &GuideSpec) -> &[[f64; 3]] {
+    match g {
+        GuideSpec::Points { points, .. } => points,
+        other => panic!("a points guide, not {other:?}"),
+    }
 }

@@ -1,7 +1,7 @@
 //! Panel-size optimisation (§4.8, Figure 22) and the `parameters` of B-spline guides.
 
 use glam::DVec3;
-use monge_core::design::GuideSpec;
+use monge_core::design::{BSplineSpec, GuideSpec};
 use monge_core::grid::quad_area;
 use monge_core::guide::GuideError;
 use monge_core::measure::measure;
@@ -47,7 +47,13 @@ fn optimised_sampling_evens_out_the_panels_and_stays_exact() {
     assert_eq!(r.folded_faces, 0);
     // The optimised design carries the parameters; generating it gives the same panels.
     for g in [&r.design.guide_u, &r.design.guide_v] {
-        let t = g.parameters.as_ref().unwrap();
+        let GuideSpec::BSpline {
+            parameters: Some(t),
+            ..
+        } = g
+        else {
+            panic!("a B-spline guide with parameters");
+        };
         assert_eq!(t.len(), 9);
         assert_eq!((t[0], t[8]), (0.0, 1.0));
         assert!(t.windows(2).all(|w| w[1] > w[0]));
@@ -63,8 +69,10 @@ fn optimised_sampling_evens_out_the_panels_and_stays_exact() {
 #[test]
 fn panel_errors() {
     let mut d = figure22();
-    d.guide_u = GuideSpec::points(vec![[0.0; 3], [1.0, 0.0, 0.1], [2.0, 0.0, 0.5]]);
-    d.guide_u.tangent = Some([1.0, 0.0, 0.0]);
+    d.guide_u = GuideSpec::Points {
+        points: vec![[0.0; 3], [1.0, 0.0, 0.1], [2.0, 0.0, 0.5]],
+        tangent: Some([1.0, 0.0, 0.0]),
+    };
     d.guide_v = GuideSpec::points(vec![[0.0; 3], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]);
     let o = PanelOptions::default();
     assert_eq!(
@@ -72,19 +80,19 @@ fn panel_errors() {
         PanelError::NoBSplineGuide
     );
     let mut d = figure22();
-    d.guide_u.bspline.as_mut().unwrap().samples = 2;
-    d.guide_v.bspline.as_mut().unwrap().samples = 2;
+    bspline_of(&mut d.guide_u).samples = 2;
+    bspline_of(&mut d.guide_v).samples = 2;
     assert_eq!(
         optimise_panels(&d, &Default::default(), &o).unwrap_err(),
         PanelError::NothingToChoose
     );
     // 10 000 samples once took 3 GB of BOBYQA model before failing to allocate more.
     let mut d = figure22();
-    d.guide_u.bspline.as_mut().unwrap().samples = 10_000;
+    bspline_of(&mut d.guide_u).samples = 10_000;
     assert_eq!(
         optimise_panels(&d, &Default::default(), &o).unwrap_err(),
         PanelError::TooManySamples {
-            free: 9_998 + d.guide_v.bspline.as_ref().unwrap().samples - 2,
+            free: 9_998 + bspline_of(&mut d.guide_v.clone()).samples - 2,
             max: MAX_FREE_SAMPLES
         }
     );
@@ -128,9 +136,9 @@ fn guide_parameters_are_validated() {
         Err(GenerateError::Guide(e)) => e,
         other => panic!("{:?}", other.map(|g| g.grid.rows)),
     };
-    let with = |t: Vec<f64>| GuideSpec {
+    let with = |t: Vec<f64>| GuideSpec::BSpline {
+        bspline: bspline_of(&mut figure22().guide_u).clone(),
         parameters: Some(t),
-        ..figure22().guide_u
     };
     let nine = |k: usize, v: f64| {
         let mut t: Vec<f64> = (0..9).map(|i| i as f64 / 8.0).collect();
@@ -160,14 +168,6 @@ fn guide_parameters_are_validated() {
             index: Some(4),
             ..
         }
-    ));
-    let arc = GuideSpec {
-        parameters: Some(vec![0.0, 1.0]),
-        ..GuideSpec::arc([0.0, 0.0, -1.0], [0.0; 3], [0.0, -1.0, 0.0], 60.0, 2)
-    };
-    assert!(matches!(
-        check(arc),
-        GuideError::ParametersWithoutBSpline { kind: "arc", .. }
     ));
     // Uniform parameters given explicitly sample exactly like no parameters.
     let uniform = generate(
@@ -219,7 +219,7 @@ fn a_huge_design_is_optimised_as_at_unit_scale() {
     let unit = figure22();
     let mut huge = figure22();
     for g in [&mut huge.guide_u, &mut huge.guide_v] {
-        for p in g.bspline.as_mut().unwrap().control_points.iter_mut() {
+        for p in bspline_of(g).control_points.iter_mut() {
             *p = p.map(|c| c * 1e99);
         }
     }
@@ -232,4 +232,12 @@ fn a_huge_design_is_optimised_as_at_unit_scale() {
         r99.after
     );
     assert!((r99.after.spread() - r1.after.spread()).abs() < 1e-6 * r1.after.spread());
+}
+
+/// The curve of a B-spline guide.
+fn bspline_of(g: &mut GuideSpec) -> &mut BSplineSpec {
+    match g {
+        GuideSpec::BSpline { bspline, .. } => bspline,
+        other => panic!("a B-spline guide, not {other:?}"),
+    }
 }

@@ -211,19 +211,19 @@ fn spec(curve: &Curve2, f: &Frame) -> GuideSpec {
             degree,
             ctrl,
             samples,
-        } => GuideSpec {
-            bspline: Some(BSplineSpec {
+        } => GuideSpec::BSpline {
+            bspline: BSplineSpec {
                 degree: *degree,
                 control_points: ctrl.iter().map(|&p| arr(f.point(p))).collect(),
                 knots: None,
                 weights: None,
                 samples: *samples,
-            }),
-            ..Default::default()
+            },
+            parameters: None,
         },
-        Curve2::Points { pts, tangent_len } => GuideSpec {
+        Curve2::Points { pts, tangent_len } => GuideSpec::Points {
+            points: pts.iter().map(|&p| arr(f.point(p))).collect(),
             tangent: Some(arr(f.vector([*tangent_len, 0.0]))),
-            ..GuideSpec::points(pts.iter().map(|&p| arr(f.point(p))).collect())
         },
         Curve2::Arc {
             c,
@@ -233,26 +233,20 @@ fn spec(curve: &Curve2, f: &Frame) -> GuideSpec {
             // Tangent = normal × (start − centre)·sign(angle) must be +t:
             // with normal = ν (t × d), that is ν·c·sign(angle)·t.
             let nu = c.signum() * angle_deg.signum();
-            GuideSpec {
-                arc: Some(ArcSpec {
-                    center: arr(f.point([0.0, *c])),
-                    start: arr(f.point([0.0, 0.0])),
-                    normal: arr(f.motion.vector(nu * f.t.cross(f.d))),
-                    angle_deg: *angle_deg,
-                    samples: *samples,
-                }),
-                ..Default::default()
-            }
-        }
-        Curve2::Parabola { a, q, samples } => GuideSpec {
-            parabola: Some(ParabolaSpec {
+            GuideSpec::Arc(ArcSpec {
+                center: arr(f.point([0.0, *c])),
                 start: arr(f.point([0.0, 0.0])),
-                tangent: arr(f.vector([*a, 0.0])),
-                quadratic: arr(f.vector(*q)),
+                normal: arr(f.motion.vector(nu * f.t.cross(f.d))),
+                angle_deg: *angle_deg,
                 samples: *samples,
-            }),
-            ..Default::default()
-        },
+            })
+        }
+        Curve2::Parabola { a, q, samples } => GuideSpec::Parabola(ParabolaSpec {
+            start: arr(f.point([0.0, 0.0])),
+            tangent: arr(f.vector([*a, 0.0])),
+            quadratic: arr(f.vector(*q)),
+            samples: *samples,
+        }),
     }
 }
 
@@ -653,7 +647,8 @@ fn check(case: &Case, stats: &RefCell<Stats>) -> Result<(), TestCaseError> {
     let dev = max_rel(&col0, &case.u, guide_scale).max(max_rel(&row0, &case.v, guide_scale));
     st.record(6, dev, label);
     prop_assert!(dev <= TOL, "{label}: guide samples off by {dev:e}");
-    let exact_kind = case.design.guide_u.points.is_some() && case.design.guide_v.points.is_some();
+    let is_points = |g: &GuideSpec| matches!(g, GuideSpec::Points { .. });
+    let exact_kind = is_points(&case.design.guide_u) && is_points(&case.design.guide_v);
     if exact_kind && label.ends_with("rotated=false") {
         // Exactly planar, axis-aligned input is used bit for bit.
         prop_assert!(
@@ -840,19 +835,19 @@ fn placed(spec: &GuideSpec, s: f64, shift: DVec3) -> GuideSpec {
     let point = |p: &[f64; 3]| (s * DVec3::from_array(*p) + shift).to_array();
     let vector = |v: &[f64; 3]| (s * DVec3::from_array(*v)).to_array();
     let mut g = spec.clone();
-    if let Some(points) = &mut g.points {
-        points.iter_mut().for_each(|p| *p = point(p));
-    }
-    g.tangent = g.tangent.as_ref().map(vector);
-    if let Some(b) = &mut g.bspline {
-        b.control_points.iter_mut().for_each(|p| *p = point(p));
-    }
-    if let Some(a) = &mut g.arc {
-        (a.center, a.start) = (point(&a.center), point(&a.start));
-    }
-    if let Some(p) = &mut g.parabola {
-        (p.start, p.tangent, p.quadratic) =
-            (point(&p.start), vector(&p.tangent), vector(&p.quadratic));
+    match &mut g {
+        GuideSpec::Points { points, tangent } => {
+            points.iter_mut().for_each(|p| *p = point(p));
+            *tangent = tangent.as_ref().map(vector);
+        }
+        GuideSpec::BSpline { bspline: b, .. } => {
+            b.control_points.iter_mut().for_each(|p| *p = point(p));
+        }
+        GuideSpec::Arc(a) => (a.center, a.start) = (point(&a.center), point(&a.start)),
+        GuideSpec::Parabola(p) => {
+            (p.start, p.tangent, p.quadratic) =
+                (point(&p.start), vector(&p.tangent), vector(&p.quadratic));
+        }
     }
     g
 }

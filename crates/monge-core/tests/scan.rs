@@ -192,8 +192,12 @@ fn shoelace_area(q: &[glam::DVec3; 4]) -> f64 {
 #[test]
 fn scan_panel_areas_are_the_quads_areas() {
     let mut d = figure14();
-    d.guide_u.bspline.as_mut().unwrap().samples = 41;
-    d.guide_v.bspline.as_mut().unwrap().samples = 41;
+    for g in [&mut d.guide_u, &mut d.guide_v] {
+        let GuideSpec::BSpline { bspline, .. } = g else {
+            panic!("a B-spline guide");
+        };
+        bspline.samples = 41;
+    }
     let s = scan(
         &d,
         "theta",

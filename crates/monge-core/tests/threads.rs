@@ -14,10 +14,12 @@ fn example(name: &str) -> Design {
 /// `design` with its B-spline or arc guides sampled `samples` times.
 fn resampled(mut design: Design, samples: usize) -> Design {
     for g in [&mut design.guide_u, &mut design.guide_v] {
-        match (&mut g.bspline, &mut g.arc) {
-            (Some(b), _) => b.samples = samples,
-            (_, Some(a)) => a.samples = samples,
-            _ => panic!("a B-spline or arc guide"),
+        match g {
+            GuideSpec::BSpline { bspline, .. } => bspline.samples = samples,
+            GuideSpec::Arc(a) => a.samples = samples,
+            GuideSpec::Points { .. } | GuideSpec::Parabola(_) => {
+                panic!("a B-spline or arc guide")
+            }
         }
     }
     design
@@ -69,7 +71,9 @@ fn the_first_degenerate_face_does_not_depend_on_the_threads() {
     // The torus of errors.rs whose profile has a sample on the top circle, with
     // 401 rows: every row has a zero Gauss edge at column 18, in every task.
     let mut d = resampled(example("fig12-torus.json"), 401);
-    let profile = d.guide_v.arc.as_mut().unwrap();
+    let GuideSpec::Arc(profile) = &mut d.guide_v else {
+        panic!("an arc guide_v");
+    };
     (profile.angle_deg, profile.samples) = (150.0, 31);
     let answers = [1, 2, 3].map(|threads| match in_pool(threads, &d) {
         Err(GenerateError::Degenerate { face, sine, .. }) => (face, sine.to_bits()),

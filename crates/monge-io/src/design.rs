@@ -3,7 +3,7 @@
 use std::io::{self, Write};
 use std::path::Path;
 
-use monge_core::design::{Design, GuideSpec};
+use monge_core::design::{Design, GuideSpec, THIS_GUIDE};
 use monge_core::developable::DevelopableDesign;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -145,8 +145,15 @@ pub(crate) fn parse_as<T: DeserializeOwned>(
 }
 
 /// serde's `invalid type: string "20", expected f64` at `theta_deg` in words:
-/// `theta_deg must be a number, got the string "20"`; other messages as they are.
+/// `theta_deg must be a number, got the string "20"`; a guide that is not one
+/// curve named by its key (`guide_u has several curves …`,
+/// [`monge_core::design::GuideSpecError`]); other messages as they are.
 fn plain_message(message: &str, path: &str) -> String {
+    if let Some(rest) = message.strip_prefix(THIS_GUIDE) {
+        if !path.is_empty() && path != "." {
+            return format!("{path}{rest}");
+        }
+    }
     let wrong = message
         .strip_prefix("invalid type: ")
         .or_else(|| message.strip_prefix("invalid value: "))
@@ -356,37 +363,39 @@ fn visit_guide(name: &str, g: &GuideSpec, check: &mut Check<'_>) {
             xyz(check, &|| format!("{}[{n}]", key()), p);
         }
     }
-    if let Some(p) = &g.points {
-        list(check, &|| format!("{name}.points"), p);
-    }
-    if let Some(t) = &g.tangent {
-        xyz(check, &|| format!("{name}.tangent"), t);
-    }
-    if let Some(b) = &g.bspline {
-        list(
-            check,
-            &|| format!("{name}.bspline.control_points"),
-            &b.control_points,
-        );
-        for (key, values) in [("knots", &b.knots), ("weights", &b.weights)] {
-            for (n, &x) in values.iter().flatten().enumerate() {
-                check(&|| format!("{name}.bspline.{key}[{n}]"), x);
+    match g {
+        GuideSpec::Points { points, tangent } => {
+            list(check, &|| format!("{name}.points"), points);
+            if let Some(t) = tangent {
+                xyz(check, &|| format!("{name}.tangent"), t);
             }
         }
-    }
-    if let Some(a) = &g.arc {
-        xyz(check, &|| format!("{name}.arc.center"), &a.center);
-        xyz(check, &|| format!("{name}.arc.start"), &a.start);
-        xyz(check, &|| format!("{name}.arc.normal"), &a.normal);
-        check(&|| format!("{name}.arc.angle_deg"), a.angle_deg);
-    }
-    if let Some(p) = &g.parabola {
-        xyz(check, &|| format!("{name}.parabola.start"), &p.start);
-        xyz(check, &|| format!("{name}.parabola.tangent"), &p.tangent);
-        xyz(
-            check,
-            &|| format!("{name}.parabola.quadratic"),
-            &p.quadratic,
-        );
+        GuideSpec::BSpline { bspline: b, .. } => {
+            list(
+                check,
+                &|| format!("{name}.bspline.control_points"),
+                &b.control_points,
+            );
+            for (key, values) in [("knots", &b.knots), ("weights", &b.weights)] {
+                for (n, &x) in values.iter().flatten().enumerate() {
+                    check(&|| format!("{name}.bspline.{key}[{n}]"), x);
+                }
+            }
+        }
+        GuideSpec::Arc(a) => {
+            xyz(check, &|| format!("{name}.arc.center"), &a.center);
+            xyz(check, &|| format!("{name}.arc.start"), &a.start);
+            xyz(check, &|| format!("{name}.arc.normal"), &a.normal);
+            check(&|| format!("{name}.arc.angle_deg"), a.angle_deg);
+        }
+        GuideSpec::Parabola(p) => {
+            xyz(check, &|| format!("{name}.parabola.start"), &p.start);
+            xyz(check, &|| format!("{name}.parabola.tangent"), &p.tangent);
+            xyz(
+                check,
+                &|| format!("{name}.parabola.quadratic"),
+                &p.quadratic,
+            );
+        }
     }
 }

@@ -26,8 +26,8 @@ fn expected() -> Design {
         mesh: Default::default(),
         theta_deg: 30.0,
         guide_u: GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]]),
-        guide_v: GuideSpec {
-            bspline: Some(BSplineSpec {
+        guide_v: GuideSpec::BSpline {
+            bspline: BSplineSpec {
                 degree: 3,
                 control_points: vec![
                     [0.0, 0.0, 0.0],
@@ -38,8 +38,8 @@ fn expected() -> Design {
                 knots: None,
                 weights: None,
                 samples: 41,
-            }),
-            ..Default::default()
+            },
+            parameters: None,
         },
         tolerance: None,
     }
@@ -50,20 +50,19 @@ fn full() -> Design {
     Design {
         mesh: Default::default(),
         theta_deg: -12.5,
-        guide_u: GuideSpec {
-            points: Some(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.1]]),
+        guide_u: GuideSpec::Points {
+            points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.1]],
             tangent: Some([1.0, 0.0, 0.0]),
-            ..Default::default()
         },
-        guide_v: GuideSpec {
-            bspline: Some(BSplineSpec {
+        guide_v: GuideSpec::BSpline {
+            bspline: BSplineSpec {
                 degree: 2,
                 control_points: vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 2.0, 0.5]],
                 knots: Some(vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]),
                 weights: Some(vec![1.0, 0.5, 1.0]),
                 samples: 9,
-            }),
-            ..Default::default()
+            },
+            parameters: None,
         },
         tolerance: Some(Tolerances {
             planarity: 1e-8,
@@ -75,25 +74,19 @@ fn full() -> Design {
 
 fn others() -> [GuideSpec; 2] {
     [
-        GuideSpec {
-            arc: Some(ArcSpec {
-                center: [0.0, 0.0, -1.0],
-                start: [0.0, 0.0, 0.0],
-                normal: [-1.0, 0.0, 0.0],
-                angle_deg: 60.0,
-                samples: 5,
-            }),
-            ..Default::default()
-        },
-        GuideSpec {
-            parabola: Some(ParabolaSpec {
-                start: [0.0, 0.0, 0.0],
-                tangent: [1.0, 0.0, 0.0],
-                quadratic: [0.0, 0.0, 0.3],
-                samples: 7,
-            }),
-            ..Default::default()
-        },
+        GuideSpec::Arc(ArcSpec {
+            center: [0.0, 0.0, -1.0],
+            start: [0.0, 0.0, 0.0],
+            normal: [-1.0, 0.0, 0.0],
+            angle_deg: 60.0,
+            samples: 5,
+        }),
+        GuideSpec::Parabola(ParabolaSpec {
+            start: [0.0, 0.0, 0.0],
+            tangent: [1.0, 0.0, 0.0],
+            quadratic: [0.0, 0.0, 0.3],
+            samples: 7,
+        }),
     ]
 }
 
@@ -258,6 +251,54 @@ fn wrong_types_are_said_in_words_with_their_key() {
     }
 }
 
+/// A guide that is not exactly one curve is refused as the file is read, named
+/// by its key, in both formats.
+#[test]
+fn a_guide_that_is_not_one_curve_is_refused_with_its_name() {
+    const KINDS: &str = "give exactly one of `points`, `bspline`, `arc` or `parabola`.";
+    let points = "[[0, 0, 0], [1, 0, 0.2], [2, 0, 0.7]]";
+    let arc = r#"{"center": [0, 0, -1], "start": [0, 0, 0], "normal": [0, 1, 0], "angle_deg": 30, "samples": 5}"#;
+    let parabola =
+        r#"{"start": [0, 0, 0], "tangent": [1, 0, 0], "quadratic": [0, 0, 1], "samples": 3}"#;
+    let json = |u: String, v: String| {
+        format!(r#"{{"theta_deg": 30, "guide_u": {{{u}}}, "guide_v": {{{v}}}}}"#)
+    };
+    let one = format!(r#""points": {points}"#);
+    let cases = [
+        (
+            json(one.clone(), r#""tangent": [0, 1, 0]"#.to_owned()),
+            format!("guide_v has no curve: {KINDS}"),
+        ),
+        (
+            json(format!(r#""points": {points}, "arc": {arc}, "parabola": {parabola}"#), one.clone()),
+            format!("guide_u has several curves (points, arc, parabola): {KINDS}"),
+        ),
+        (
+            json(one.clone(), format!(r#""arc": {arc}, "tangent": [1, 0, 0]"#)),
+            "guide_v: `tangent` is only allowed with `points`; this guide is a `arc`, whose start tangent is given by the curve itself. Remove `tangent`.".to_owned(),
+        ),
+        (
+            json(format!(r#""parabola": {parabola}, "parameters": [0, 0.5, 1]"#), one.clone()),
+            "guide_u: `parameters` (sample parameters, §4.8) is only allowed with `bspline`; this guide is a `parabola`. Remove `parameters`.".to_owned(),
+        ),
+    ];
+    for (text, expected) in cases {
+        let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let toml_text = toml::to_string(&value).unwrap();
+        for (text, format) in [
+            (text.clone(), DesignFormat::Json),
+            (toml_text, DesignFormat::Toml),
+        ] {
+            let err = parse_design(&text, format).unwrap_err();
+            let IoError::Parse { message, line, .. } = &err else {
+                panic!("{err:?}")
+            };
+            assert_eq!(message, &expected, "{text}");
+            assert!(*line >= 1, "{text}: located");
+        }
+    }
+}
+
 #[test]
 fn a_file_of_another_kind_names_the_command_that_takes_it() {
     let dir = tempfile::tempdir().unwrap();
@@ -357,7 +398,10 @@ fn writing_a_non_finite_design_is_refused_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("nan.json");
     let mut design = full();
-    design.guide_v.bspline.as_mut().unwrap().control_points[1][0] = f64::NAN;
+    let GuideSpec::BSpline { bspline, .. } = &mut design.guide_v else {
+        panic!("a B-spline guide_v");
+    };
+    bspline.control_points[1][0] = f64::NAN;
     let err = write_design(&design, &path).unwrap_err();
     assert!(
         matches!(&err, IoError::NonFinite { key, .. } if key == "guide_v.bspline.control_points[1][0]"),

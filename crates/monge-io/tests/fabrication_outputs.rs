@@ -25,9 +25,9 @@ fn design() -> Design {
         mesh: Default::default(),
         theta_deg: 30.0,
         guide_u: GuideSpec::arc([0.0, 0.0, -10.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, 6),
-        guide_v: GuideSpec {
+        guide_v: GuideSpec::Points {
+            points,
             tangent: Some([0.0, 1.0, 0.0]),
-            ..GuideSpec::points(points)
         },
         tolerance: None,
     }

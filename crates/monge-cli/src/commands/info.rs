@@ -120,14 +120,14 @@ fn developable_info(
 /// A guide's name, its spec and the validated guide.
 type GuideRow<'a> = (&'static str, &'a GuideSpec, &'a Guide);
 
-/// The kind of a guide spec that [`inspect`] accepted (exactly one is set).
+/// The kind of a guide spec, in words: its key, and whether a B-spline is rational.
 fn kind(spec: &GuideSpec) -> &'static str {
-    match (&spec.points, &spec.bspline, &spec.arc) {
-        (Some(_), ..) => "points",
-        (_, Some(b), _) if b.weights.is_some() => "bspline (NURBS)",
-        (_, Some(_), _) => "bspline",
-        (_, _, Some(_)) => "arc",
-        _ => "parabola",
+    match spec {
+        GuideSpec::BSpline { bspline, .. } if bspline.weights.is_some() => "bspline (NURBS)",
+        GuideSpec::Points { .. }
+        | GuideSpec::BSpline { .. }
+        | GuideSpec::Arc(_)
+        | GuideSpec::Parabola(_) => spec.kind(),
     }
 }
 
@@ -262,22 +262,16 @@ mod tests {
             quadratic: [0.0, 1.0, 0.0],
             samples: 3,
         };
-        let with = |b: BSplineSpec| GuideSpec {
-            bspline: Some(b),
-            ..GuideSpec::default()
+        let with = |b: BSplineSpec| GuideSpec::BSpline {
+            bspline: b,
+            parameters: None,
         };
         assert_eq!(kind(&GuideSpec::points(vec![[0.0; 3]])), "points");
         assert_eq!(kind(&with(bspline)), "bspline");
         assert_eq!(kind(&with(nurbs)), "bspline (NURBS)");
-        let arc = GuideSpec {
-            arc: Some(arc),
-            ..GuideSpec::default()
-        };
+        let arc = GuideSpec::Arc(arc);
         assert_eq!(kind(&arc), "arc");
-        let parabola = GuideSpec {
-            parabola: Some(parabola),
-            ..GuideSpec::default()
-        };
+        let parabola = GuideSpec::Parabola(parabola);
         assert_eq!(kind(&parabola), "parabola");
     }
 }

@@ -41,9 +41,8 @@ pub struct ConicalMesh {
 /// ```
 /// use monge_core::{conical::conical_dual, generate, Design, GenerateOptions, GuideSpec};
 /// use monge_core::design::ArcSpec;
-/// let arc = |center: [f64; 3], normal: [f64; 3], angle_deg: f64| GuideSpec {
-///     arc: Some(ArcSpec { center, start: [0.0; 3], normal, angle_deg, samples: 9 }),
-///     ..Default::default()
+/// let arc = |center: [f64; 3], normal: [f64; 3], angle_deg: f64| {
+///     GuideSpec::Arc(ArcSpec { center, start: [0.0; 3], normal, angle_deg, samples: 9 })
 /// };
 /// let design = Design {
 ///     mesh: Default::default(),

@@ -91,36 +91,169 @@ impl Default for Tolerances {
     }
 }
 
-/// One guide curve as written in a design file: exactly one of `points`,
-/// `bspline`, `arc` or `parabola`.
+/// One guide curve (§3): a polyline, a B-spline, an arc or a parabola.
 ///
-/// `tangent` is only allowed with `points`: the start tangent of a polyline
-/// (without it, the tangent of the circle through the first three points, or
-/// the first chord if there are only two).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// In a design file it is a table with exactly one of `points`, `bspline`,
+/// `arc` or `parabola`; `tangent` is only allowed with `points` (the start
+/// tangent of a polyline: without it, the tangent of the circle through the
+/// first three points, or the first chord if there are only two), and
+/// `parameters` only with `bspline`. Anything else is refused when the file is
+/// read ([`GuideSpecError`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawGuideSpec", into = "RawGuideSpec")]
+pub enum GuideSpec {
+    /// A polyline, used exactly as given (`points`).
+    Points {
+        /// The points.
+        points: Vec<Xyz>,
+        /// Its start tangent (`tangent`), if given.
+        tangent: Option<Xyz>,
+    },
+    /// A clamped B-spline or NURBS curve (`bspline`).
+    BSpline {
+        /// The curve.
+        bspline: BSplineSpec,
+        /// The parameter values at which it is sampled (§4.8), instead of
+        /// `samples` uniformly spaced ones: strictly increasing, within the knot
+        /// range, one per sample (its length must equal `bspline.samples`).
+        /// Chosen by the panel-size optimisation (`monge optimise-panels`).
+        parameters: Option<Vec<f64>>,
+    },
+    /// A circular arc (`arc`).
+    Arc(ArcSpec),
+    /// A parabola arc (`parabola`).
+    Parabola(ParabolaSpec),
+}
+
+/// The words for "the guide" that begin every [`GuideSpecError`] message: a
+/// reader that knows the guide's key (`guide_u`) puts it in their place.
+pub const THIS_GUIDE: &str = "this guide";
+
+/// Why a guide's table in a design file is not one guide curve (§3).
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum GuideSpecError {
+    /// None of `points`, `bspline`, `arc`, `parabola` is given.
+    #[error(
+        "this guide has no curve: give exactly one of `points`, `bspline`, `arc` or `parabola`."
+    )]
+    NoKind,
+    /// More than one of `points`, `bspline`, `arc`, `parabola` is given.
+    #[error(
+        "this guide has several curves ({}): give exactly one of `points`, `bspline`, `arc` or `parabola`.",
+        .found.join(", ")
+    )]
+    SeveralKinds {
+        /// The keys found, in the order `points`, `bspline`, `arc`, `parabola`.
+        found: Vec<&'static str>,
+    },
+    /// `tangent` is given with a kind other than `points`.
+    #[error(
+        "this guide: `tangent` is only allowed with `points`; this guide is a `{kind}`, whose start tangent is given by the curve itself. Remove `tangent`."
+    )]
+    TangentWithoutPoints {
+        /// The kind given (`bspline`, `arc` or `parabola`).
+        kind: &'static str,
+    },
+    /// `parameters` is given with a kind other than `bspline`.
+    #[error(
+        "this guide: `parameters` (sample parameters, §4.8) is only allowed with `bspline`; this guide is a `{kind}`. Remove `parameters`."
+    )]
+    ParametersWithoutBSpline {
+        /// The kind given (`points`, `arc` or `parabola`).
+        kind: &'static str,
+    },
+}
+
+/// A guide as written in a design file: the keys of every kind, each optional.
+#[derive(Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct GuideSpec {
-    /// A polyline, used exactly as given.
+struct RawGuideSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub points: Option<Vec<Xyz>>,
-    /// Start tangent of a `points` guide.
+    points: Option<Vec<Xyz>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub tangent: Option<Xyz>,
-    /// The parameter values at which a `bspline` guide is sampled (§4.8), instead
-    /// of `samples` uniformly spaced ones: strictly increasing, within the knot
-    /// range, one per sample (its length must equal `bspline.samples`). Chosen by
-    /// the panel-size optimisation (`monge optimise-panels`).
+    tangent: Option<Xyz>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub parameters: Option<Vec<f64>>,
-    /// A clamped B-spline or NURBS curve.
+    parameters: Option<Vec<f64>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub bspline: Option<BSplineSpec>,
-    /// A circular arc.
+    bspline: Option<BSplineSpec>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub arc: Option<ArcSpec>,
-    /// A parabola arc.
+    arc: Option<ArcSpec>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub parabola: Option<ParabolaSpec>,
+    parabola: Option<ParabolaSpec>,
+}
+
+impl TryFrom<RawGuideSpec> for GuideSpec {
+    type Error = GuideSpecError;
+
+    fn try_from(raw: RawGuideSpec) -> Result<Self, GuideSpecError> {
+        let found: Vec<&'static str> = [
+            ("points", raw.points.is_some()),
+            ("bspline", raw.bspline.is_some()),
+            ("arc", raw.arc.is_some()),
+            ("parabola", raw.parabola.is_some()),
+        ]
+        .iter()
+        .filter(|k| k.1)
+        .map(|k| k.0)
+        .collect();
+        if found.len() > 1 {
+            return Err(GuideSpecError::SeveralKinds { found });
+        }
+        let RawGuideSpec {
+            points,
+            tangent,
+            parameters,
+            bspline,
+            arc,
+            parabola,
+        } = raw;
+        let (has_tangent, has_parameters) = (tangent.is_some(), parameters.is_some());
+        let spec = match (points, bspline, arc, parabola) {
+            (Some(points), ..) => GuideSpec::Points { points, tangent },
+            (_, Some(bspline), ..) => GuideSpec::BSpline {
+                bspline,
+                parameters,
+            },
+            (_, _, Some(a), _) => GuideSpec::Arc(a),
+            (.., Some(p)) => GuideSpec::Parabola(p),
+            (None, None, None, None) => return Err(GuideSpecError::NoKind),
+        };
+        if has_tangent && !matches!(spec, GuideSpec::Points { .. }) {
+            return Err(GuideSpecError::TangentWithoutPoints { kind: spec.kind() });
+        }
+        if has_parameters && !matches!(spec, GuideSpec::BSpline { .. }) {
+            return Err(GuideSpecError::ParametersWithoutBSpline { kind: spec.kind() });
+        }
+        Ok(spec)
+    }
+}
+
+impl From<GuideSpec> for RawGuideSpec {
+    fn from(spec: GuideSpec) -> Self {
+        match spec {
+            GuideSpec::Points { points, tangent } => RawGuideSpec {
+                points: Some(points),
+                tangent,
+                ..Default::default()
+            },
+            GuideSpec::BSpline {
+                bspline,
+                parameters,
+            } => RawGuideSpec {
+                bspline: Some(bspline),
+                parameters,
+                ..Default::default()
+            },
+            GuideSpec::Arc(arc) => RawGuideSpec {
+                arc: Some(arc),
+                ..Default::default()
+            },
+            GuideSpec::Parabola(parabola) => RawGuideSpec {
+                parabola: Some(parabola),
+                ..Default::default()
+            },
+        }
+    }
 }
 
 /// A clamped B-spline / NURBS guide, sampled at `samples` uniformly spaced
@@ -179,11 +312,11 @@ pub struct ParabolaSpec {
 }
 
 impl GuideSpec {
-    /// A polyline guide given point by point.
+    /// A polyline guide given point by point, without `tangent`.
     pub fn points(points: Vec<Xyz>) -> Self {
-        GuideSpec {
-            points: Some(points),
-            ..Default::default()
+        GuideSpec::Points {
+            points,
+            tangent: None,
         }
     }
 
@@ -196,42 +329,47 @@ impl GuideSpec {
     /// assert_eq!(g.sample_count(), 11);
     /// ```
     pub fn bspline(degree: usize, control_points: Vec<Xyz>, samples: usize) -> Self {
-        GuideSpec {
-            bspline: Some(BSplineSpec {
+        GuideSpec::BSpline {
+            bspline: BSplineSpec {
                 degree,
                 control_points,
                 knots: None,
                 weights: None,
                 samples,
-            }),
-            ..Default::default()
+            },
+            parameters: None,
         }
     }
 
     /// A circular-arc guide (§3): see [`ArcSpec`].
     pub fn arc(center: Xyz, start: Xyz, normal: Xyz, angle_deg: f64, samples: usize) -> Self {
-        GuideSpec {
-            arc: Some(ArcSpec {
-                center,
-                start,
-                normal,
-                angle_deg,
-                samples,
-            }),
-            ..Default::default()
+        GuideSpec::Arc(ArcSpec {
+            center,
+            start,
+            normal,
+            angle_deg,
+            samples,
+        })
+    }
+
+    /// The key of its kind in a design file: `points`, `bspline`, `arc` or `parabola`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            GuideSpec::Points { .. } => "points",
+            GuideSpec::BSpline { .. } => "bspline",
+            GuideSpec::Arc(_) => "arc",
+            GuideSpec::Parabola(_) => "parabola",
         }
     }
 
     /// Number of samples the guide will have, known without sampling it
     /// (so that a grid too large for memory is refused before any allocation).
-    /// For a malformed spec (no kind, or several), 0.
     pub fn sample_count(&self) -> usize {
-        match (&self.points, &self.bspline, &self.arc, &self.parabola) {
-            (Some(p), None, None, None) => p.len(),
-            (None, Some(b), None, None) => b.samples,
-            (None, None, Some(a), None) => a.samples,
-            (None, None, None, Some(p)) => p.samples,
-            _ => 0,
+        match self {
+            GuideSpec::Points { points, .. } => points.len(),
+            GuideSpec::BSpline { bspline, .. } => bspline.samples,
+            GuideSpec::Arc(a) => a.samples,
+            GuideSpec::Parabola(p) => p.samples,
         }
     }
 }
@@ -244,14 +382,13 @@ fn minus(p: Xyz, by: Xyz) -> Xyz {
 impl GuideSpec {
     /// The guide's first point, known without sampling it: the first point, the
     /// first control point (a clamped B-spline starts there), or the `start` of
-    /// an arc or a parabola. `None` for a malformed spec (no kind, or no point).
+    /// an arc or a parabola. `None` for a guide without points.
     pub fn start_point(&self) -> Option<Xyz> {
-        match (&self.points, &self.bspline, &self.arc, &self.parabola) {
-            (Some(p), ..) => p.first().copied(),
-            (_, Some(b), ..) => b.control_points.first().copied(),
-            (_, _, Some(a), _) => Some(a.start),
-            (.., Some(p)) => Some(p.start),
-            _ => None,
+        match self {
+            GuideSpec::Points { points, .. } => points.first().copied(),
+            GuideSpec::BSpline { bspline, .. } => bspline.control_points.first().copied(),
+            GuideSpec::Arc(a) => Some(a.start),
+            GuideSpec::Parabola(p) => Some(p.start),
         }
     }
 
@@ -261,20 +398,22 @@ impl GuideSpec {
     /// moved guide is the same curve to rounding of its own size.
     pub fn translated(&self, by: Xyz) -> GuideSpec {
         let mut g = self.clone();
-        for p in g.points.iter_mut().flatten() {
-            *p = minus(*p, by);
-        }
-        if let Some(b) = &mut g.bspline {
-            for p in &mut b.control_points {
-                *p = minus(*p, by);
+        match &mut g {
+            GuideSpec::Points { points, .. } => {
+                for p in points {
+                    *p = minus(*p, by);
+                }
             }
-        }
-        if let Some(a) = &mut g.arc {
-            a.center = minus(a.center, by);
-            a.start = minus(a.start, by);
-        }
-        if let Some(p) = &mut g.parabola {
-            p.start = minus(p.start, by);
+            GuideSpec::BSpline { bspline, .. } => {
+                for p in &mut bspline.control_points {
+                    *p = minus(*p, by);
+                }
+            }
+            GuideSpec::Arc(a) => {
+                a.center = minus(a.center, by);
+                a.start = minus(a.start, by);
+            }
+            GuideSpec::Parabola(p) => p.start = minus(p.start, by),
         }
         g
     }
@@ -292,9 +431,9 @@ impl Design {
     /// let d = Design {
     ///     mesh: Default::default(),
     ///     theta_deg: 30.0,
-    ///     guide_u: GuideSpec {
+    ///     guide_u: GuideSpec::Points {
+    ///         points: vec![at(0.0, 0.0, 0.0), at(1.0, 0.0, 0.2), at(2.0, 0.0, 0.7)],
     ///         tangent: Some([1.0, 0.0, 0.0]),
-    ///         ..GuideSpec::points(vec![at(0.0, 0.0, 0.0), at(1.0, 0.0, 0.2), at(2.0, 0.0, 0.7)])
     ///     },
     ///     guide_v: GuideSpec::points(vec![at(0.0, 0.0, 0.0), at(0.0, 1.0, 0.1), at(0.0, 2.0, 0.5)]),
     ///     tolerance: None,
@@ -313,7 +452,7 @@ impl Design {
     }
 
     /// The guides' common start point: guide_u's first point
-    /// ([`GuideSpec::start_point`]); `None` for a malformed guide_u.
+    /// ([`GuideSpec::start_point`]); `None` for a guide_u without points.
     pub fn start_point(&self) -> Option<Xyz> {
         self.guide_u.start_point()
     }
@@ -333,7 +472,7 @@ pub enum BasePoint {
 
 impl BasePoint {
     /// The point for `design`: `None` only for [`BasePoint::Start`] of a
-    /// malformed guide_u (which generation then refuses with its own words).
+    /// guide_u without points (which generation then refuses with its own words).
     pub fn of(&self, design: &Design) -> Option<Xyz> {
         match self {
             BasePoint::Start => design.start_point(),
@@ -380,6 +519,98 @@ impl std::str::FromStr for BasePoint {
                 "`{s}` has {} number(s): give `start` or X,Y,Z (three numbers)",
                 numbers.len()
             )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The guide of the JSON table `json`, or why it is refused.
+    fn parse(json: &str) -> Result<GuideSpec, String> {
+        serde_json::from_str(json).map_err(|e| e.to_string())
+    }
+
+    const POINTS: &str = r#""points": [[0, 0, 0], [1, 0, 0.2], [2, 0, 0.7]]"#;
+    const ARC: &str = r#""arc": {"center": [0, 0, -1], "start": [0, 0, 0], "normal": [0, 1, 0], "angle_deg": 30, "samples": 5}"#;
+    const PARABOLA: &str = r#""parabola": {"start": [0, 0, 0], "tangent": [1, 0, 0], "quadratic": [0, 0, 1], "samples": 3}"#;
+
+    #[test]
+    fn no_kind() {
+        for json in ["{}", r#"{"tangent": [1, 0, 0]}"#] {
+            let e = parse(json).unwrap_err();
+            assert!(e.starts_with("this guide has no curve: give exactly one of `points`, `bspline`, `arc` or `parabola`."), "{e}");
+        }
+    }
+
+    #[test]
+    fn several_kinds() {
+        let e = parse(&format!("{{{POINTS}, {ARC}, {PARABOLA}}}")).unwrap_err();
+        assert!(
+            e.starts_with(
+                "this guide has several curves (points, arc, parabola): give exactly one of"
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn tangent_without_points() {
+        let e = parse(&format!(r#"{{{ARC}, "tangent": [1, 0, 0]}}"#)).unwrap_err();
+        assert!(
+            e.starts_with(
+                "this guide: `tangent` is only allowed with `points`; this guide is a `arc`"
+            ),
+            "{e}"
+        );
+        assert!(e.contains("Remove `tangent`"), "{e}");
+    }
+
+    #[test]
+    fn parameters_without_bspline() {
+        for (kind, json) in [("points", POINTS), ("arc", ARC), ("parabola", PARABOLA)] {
+            let e = parse(&format!(r#"{{{json}, "parameters": [0, 1]}}"#)).unwrap_err();
+            let expected = format!("this guide: `parameters` (sample parameters, §4.8) is only allowed with `bspline`; this guide is a `{kind}`. Remove `parameters`.");
+            assert!(e.starts_with(&expected), "{e}");
+        }
+    }
+
+    #[test]
+    fn messages_begin_with_the_guide() {
+        let errors = [
+            GuideSpecError::NoKind,
+            GuideSpecError::SeveralKinds {
+                found: vec!["points", "arc"],
+            },
+            GuideSpecError::TangentWithoutPoints { kind: "arc" },
+            GuideSpecError::ParametersWithoutBSpline { kind: "arc" },
+        ];
+        for e in errors {
+            assert!(e.to_string().starts_with(THIS_GUIDE), "{e}");
+        }
+    }
+
+    #[test]
+    fn every_kind_is_written_with_the_keys_it_is_read_from() {
+        let tangent = format!(r#"{{{POINTS}, "tangent": [1, 0, 0]}}"#);
+        let bspline = r#"{"parameters": [0, 0.5, 1], "bspline": {"degree": 1, "control_points": [[0, 0, 0], [1, 0, 0]], "samples": 3}}"#;
+        let keys = |json: &str| -> Vec<String> {
+            let value: serde_json::Value = serde_json::from_str(json).unwrap();
+            value.as_object().unwrap().keys().cloned().collect()
+        };
+        let tables = [
+            format!("{{{POINTS}}}"),
+            tangent,
+            bspline.to_owned(),
+            format!("{{{ARC}}}"),
+            format!("{{{PARABOLA}}}"),
+        ];
+        for json in tables {
+            let spec = parse(&json).unwrap();
+            let written = serde_json::to_string(&spec).unwrap();
+            assert_eq!(keys(&written), keys(&json), "{written}");
+            assert_eq!(parse(&written).unwrap(), spec);
         }
     }
 }

@@ -302,9 +302,9 @@ pub struct Generated {
 /// let d = Design {
 ///     mesh: Default::default(),
 ///     theta_deg: 30.0,
-///     guide_u: GuideSpec {
+///     guide_u: GuideSpec::Points {
+///         points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]],
 ///         tangent: Some([1.0, 0.0, 0.0]), // orthogonal to guide_v's start tangent
-///         ..GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]])
 ///     },
 ///     guide_v: GuideSpec::points(vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]),
 ///     tolerance: None,
@@ -457,9 +457,9 @@ fn normal_turn(normals: &[DVec3]) -> f64 {
 /// let d = Design {
 ///     mesh: Default::default(),
 ///     theta_deg: 30.0,
-///     guide_u: GuideSpec {
+///     guide_u: GuideSpec::Points {
+///         points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]],
 ///         tangent: Some([1.0, 0.0, 0.0]), // orthogonal to guide_v's start tangent
-///         ..GuideSpec::points(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [2.0, 0.0, 0.7]])
 ///     },
 ///     guide_v: GuideSpec::points(vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [0.0, 2.0, 0.5]]),
 ///     tolerance: None,

@@ -339,9 +339,20 @@ fn guide_of(design: &MultiPatchDesign, patch: usize, key: GuideKey) -> Option<&G
 
 /// The editable point list of a guide: `points` or `bspline.control_points`.
 fn point_list(g: &GuideSpec) -> Option<&Vec<Xyz>> {
-    g.points
-        .as_ref()
-        .or(g.bspline.as_ref().map(|b| &b.control_points))
+    match g {
+        GuideSpec::Points { points, .. } => Some(points),
+        GuideSpec::BSpline { bspline, .. } => Some(&bspline.control_points),
+        GuideSpec::Arc(_) | GuideSpec::Parabola(_) => None,
+    }
+}
+
+/// [`point_list`], to edit.
+fn point_list_mut(g: &mut GuideSpec) -> Option<&mut Vec<Xyz>> {
+    match g {
+        GuideSpec::Points { points, .. } => Some(points),
+        GuideSpec::BSpline { bspline, .. } => Some(&mut bspline.control_points),
+        GuideSpec::Arc(_) | GuideSpec::Parabola(_) => None,
+    }
 }
 
 /// The start value of a parameter, checking that it exists.
@@ -479,11 +490,7 @@ fn with_values(
                     GuideKey::Guide => spec.guide.as_mut(),
                 };
                 if let Some(g) = g {
-                    let list = match (&mut g.points, &mut g.bspline) {
-                        (Some(p), _) => Some(p),
-                        (None, Some(b)) => Some(&mut b.control_points),
-                        _ => None,
-                    };
+                    let list = point_list_mut(g);
                     if let Some(q) = list.and_then(|l| l.get_mut(*index)) {
                         q[*coordinate] = v;
                     }

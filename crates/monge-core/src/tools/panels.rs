@@ -106,7 +106,9 @@ pub struct PanelResult {
 
 /// Parameter range and count of a `bspline` guide with at least 3 samples.
 fn free_guide(g: &GuideSpec) -> Option<(f64, f64, usize)> {
-    let b = g.bspline.as_ref()?;
+    let GuideSpec::BSpline { bspline: b, .. } = g else {
+        return None;
+    };
     if b.samples < 3 || b.degree == 0 || b.control_points.len() <= b.degree {
         return None;
     }
@@ -174,7 +176,8 @@ pub fn optimise_panels(
     if !(ratio.is_finite() && ratio > 1.0) {
         return Err(PanelError::BadGapRatio(ratio));
     }
-    if design.guide_u.bspline.is_none() && design.guide_v.bspline.is_none() {
+    let is_bspline = |g: &GuideSpec| matches!(g, GuideSpec::BSpline { .. });
+    if !is_bspline(&design.guide_u) && !is_bspline(&design.guide_v) {
         return Err(PanelError::NoBSplineGuide);
     }
     let guides = [free_guide(&design.guide_u), free_guide(&design.guide_v)];
@@ -204,8 +207,10 @@ pub fn optimise_panels(
             .zip(guides)
             .zip([yu, yv])
         {
-            if let Some((lo, hi, samples)) = free {
-                guide.parameters = Some(parameters(lo, hi, samples, y));
+            if let (Some((lo, hi, samples)), GuideSpec::BSpline { parameters: p, .. }) =
+                (free, guide)
+            {
+                *p = Some(parameters(lo, hi, samples, y));
             }
         }
         d

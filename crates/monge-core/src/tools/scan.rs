@@ -176,7 +176,8 @@ fn parse_path(path: &str) -> Result<Vec<Step>, ScanError> {
 ///     tolerance: None,
 /// };
 /// let e = set_parameter(&d, "guide_v.bspline.control_points[2][2]", 1.5).unwrap();
-/// assert_eq!(e.guide_v.bspline.unwrap().control_points[2][2], 1.5);
+/// let GuideSpec::BSpline { bspline, .. } = e.guide_v else { panic!("a B-spline") };
+/// assert_eq!(bspline.control_points[2][2], 1.5);
 /// assert_eq!(set_parameter(&d, "theta", -20.0).unwrap().theta_deg, -20.0);
 /// assert!(set_parameter(&d, "guide_u.points[7][0]", 1.0).is_err());
 /// ```

@@ -65,43 +65,6 @@ impl TangentSource {
 /// how to fix it.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum GuideError {
-    /// None of `points`, `bspline`, `arc`, `parabola` is given.
-    #[error("{guide} has no curve: give exactly one of `points`, `bspline`, `arc` or `parabola`.")]
-    NoKind {
-        /// The guide.
-        guide: GuideName,
-    },
-    /// More than one of `points`, `bspline`, `arc`, `parabola` is given.
-    #[error(
-        "{guide} has several curves ({}): give exactly one of `points`, `bspline`, `arc` or `parabola`.",
-        .found.join(", ")
-    )]
-    SeveralKinds {
-        /// The guide.
-        guide: GuideName,
-        /// The keys found, in the order `points`, `bspline`, `arc`, `parabola`.
-        found: Vec<&'static str>,
-    },
-    /// `tangent` is given with a kind other than `points`.
-    #[error(
-        "{guide}: `tangent` is only allowed with `points`; this guide is a `{kind}`, whose start tangent is given by the curve itself. Remove `tangent`."
-    )]
-    TangentWithoutPoints {
-        /// The guide.
-        guide: GuideName,
-        /// The kind given (`bspline`, `arc` or `parabola`).
-        kind: &'static str,
-    },
-    /// `parameters` is given with a kind other than `bspline`.
-    #[error(
-        "{guide}: `parameters` (sample parameters, §4.8) is only allowed with `bspline`; this guide is a `{kind}`. Remove `parameters`."
-    )]
-    ParametersWithoutBSpline {
-        /// The guide.
-        guide: GuideName,
-        /// The kind given (`points`, `arc` or `parabola`).
-        kind: &'static str,
-    },
     /// `parameters` does not have one value per sample.
     #[error(
         "{guide}: `parameters` has {count} values but `bspline.samples` is {samples}: give one parameter per sample."

@@ -104,36 +104,14 @@ impl Guide {
         name: GuideName,
         tol: &Tolerances,
     ) -> Result<Guide, GuideError> {
-        let kinds = [
-            ("points", spec.points.is_some()),
-            ("bspline", spec.bspline.is_some()),
-            ("arc", spec.arc.is_some()),
-            ("parabola", spec.parabola.is_some()),
-        ];
-        let found: Vec<&'static str> = kinds.iter().filter(|k| k.1).map(|k| k.0).collect();
-        match found.len() {
-            0 => return Err(GuideError::NoKind { guide: name }),
-            1 => {}
-            _ => return Err(GuideError::SeveralKinds { guide: name, found }),
-        }
-        if spec.tangent.is_some() && found[0] != "points" {
-            return Err(GuideError::TangentWithoutPoints {
-                guide: name,
-                kind: found[0],
-            });
-        }
-        if spec.parameters.is_some() && found[0] != "bspline" {
-            return Err(GuideError::ParametersWithoutBSpline {
-                guide: name,
-                kind: found[0],
-            });
-        }
-        let (samples, tangent) = match (&spec.points, &spec.bspline, &spec.arc, &spec.parabola) {
-            (Some(points), ..) => points::polyline(points, spec.tangent, name)?,
-            (_, Some(b), ..) => bspline::sample_bspline(b, spec.parameters.as_deref(), name)?,
-            (_, _, Some(a), _) => arc::sample_arc(a, name, tol)?,
-            (.., Some(p)) => parabola::sample_parabola(p, name)?,
-            _ => unreachable!("exactly one kind was found above"),
+        let (samples, tangent) = match spec {
+            GuideSpec::Points { points, tangent } => points::polyline(points, *tangent, name)?,
+            GuideSpec::BSpline {
+                bspline,
+                parameters,
+            } => bspline::sample_bspline(bspline, parameters.as_deref(), name)?,
+            GuideSpec::Arc(a) => arc::sample_arc(a, name, tol)?,
+            GuideSpec::Parabola(p) => parabola::sample_parabola(p, name)?,
         };
         finish(samples, tangent, name, tol)
     }

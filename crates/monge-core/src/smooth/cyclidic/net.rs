@@ -18,9 +18,8 @@ use super::{CyclidicError, CyclidicOptions, Family, FoldReason};
 /// use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 /// use monge_core::design::ArcSpec;
 /// use monge_core::{generate, Design, GenerateOptions, GuideSpec};
-/// let arc = |center, normal, angle_deg| GuideSpec {
-///     arc: Some(ArcSpec { center, start: [0.0; 3], normal, angle_deg, samples: 4 }),
-///     ..Default::default()
+/// let arc = |center, normal, angle_deg| {
+///     GuideSpec::Arc(ArcSpec { center, start: [0.0; 3], normal, angle_deg, samples: 4 })
 /// };
 /// let design = Design {
 ///     mesh: Default::default(),

@@ -84,13 +84,13 @@ pub fn approximate_patches(
     let cut = |k: usize| k * segments / patches;
     let specs: Vec<PatchSpec> = (0..patches)
         .map(|k| {
-            let piece = GuideSpec::points(guide[cut(k)..=cut(k + 1)].to_vec());
+            let piece = guide[cut(k)..=cut(k + 1)].to_vec();
             if k == 0 {
                 PatchSpec {
                     theta_deg: single.design.theta_deg,
-                    guide_u: Some(GuideSpec {
+                    guide_u: Some(GuideSpec::Points {
+                        points: piece,
                         tangent: Some(tangent),
-                        ..piece
                     }),
                     guide_v: Some(single.design.guide_v.clone()),
                     attach: None,
@@ -105,7 +105,7 @@ pub fn approximate_patches(
                         patch: k - 1,
                         side: Side::LastRow,
                     }),
-                    guide: Some(piece),
+                    guide: Some(GuideSpec::points(piece)),
                 }
             }
         })

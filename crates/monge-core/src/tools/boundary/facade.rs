@@ -119,13 +119,13 @@ impl Facade {
         Ok(vec![Candidate {
             design: Design {
                 theta_deg: theta,
-                guide_u: GuideSpec {
+                guide_u: GuideSpec::Points {
+                    points: pts(&self.guide_u),
                     tangent: Some(self.t_u.to_array()),
-                    ..GuideSpec::points(pts(&self.guide_u))
                 },
-                guide_v: GuideSpec {
+                guide_v: GuideSpec::Points {
+                    points: pts(&self.guide_v),
                     tangent: Some(self.t_v.to_array()),
-                    ..GuideSpec::points(pts(&self.guide_v))
                 },
                 mesh: Default::default(),
                 tolerance: None,

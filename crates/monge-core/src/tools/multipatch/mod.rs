@@ -676,7 +676,8 @@ fn attach_patch(
     } else {
         GuideName::U
     };
-    let boundary_spec = GuideSpec::points(line.iter().map(|p| p.to_array()).collect());
+    let boundary_points: Vec<Xyz> = line.iter().map(|p| p.to_array()).collect();
+    let boundary_spec = GuideSpec::points(boundary_points.clone());
     let boundary = Guide::from_spec(&boundary_spec, boundary_name, tol).map_err(|source| {
         MultiPatchError::Boundary {
             patch: k,
@@ -754,13 +755,13 @@ fn attach_patch(
         .to_degrees();
     let mut cont_points: Vec<Xyz> = cont.points.iter().map(|p| p.to_array()).collect();
     cont_points[0] = corner.to_array();
-    let cont_guide = GuideSpec {
+    let cont_guide = GuideSpec::Points {
+        points: cont_points,
         tangent: Some(t_cont.to_array()),
-        ..GuideSpec::points(cont_points)
     };
-    let boundary_guide = GuideSpec {
+    let boundary_guide = GuideSpec::Points {
+        points: boundary_points,
         tangent: Some(t_b.to_array()),
-        ..boundary_spec
     };
     let (guide_u, guide_v) = if side.is_row() {
         (cont_guide, boundary_guide)

@@ -47,9 +47,9 @@ fn bspline(control_points: Vec<Xyz>, degree: usize, samples: usize) -> BSplineSp
 }
 
 fn bspline_spec(b: BSplineSpec) -> GuideSpec {
-    GuideSpec {
-        bspline: Some(b),
-        ..Default::default()
+    GuideSpec::BSpline {
+        bspline: b,
+        parameters: None,
     }
 }
 
@@ -78,22 +78,16 @@ fn arc(angle_deg: f64, samples: usize) -> ArcSpec {
 }
 
 fn arc_spec(a: ArcSpec) -> GuideSpec {
-    GuideSpec {
-        arc: Some(a),
-        ..Default::default()
-    }
+    GuideSpec::Arc(a)
 }
 
 fn parabola(tangent: Xyz, quadratic: Xyz, samples: usize) -> GuideSpec {
-    GuideSpec {
-        parabola: Some(ParabolaSpec {
-            start: [0.5, -1.0, 2.0],
-            tangent,
-            quadratic,
-            samples,
-        }),
-        ..Default::default()
-    }
+    GuideSpec::Parabola(ParabolaSpec {
+        start: [0.5, -1.0, 2.0],
+        tangent,
+        quadratic,
+        samples,
+    })
 }
 
 fn unit_of(x: Xyz) -> DVec3 {
@@ -104,6 +98,6 @@ fn unit_of(x: Xyz) -> DVec3 {
 fn guide_names_display() {
     assert_eq!(GuideName::U.to_string(), "guide_u");
     assert_eq!(GuideName::V.to_string(), "guide_v");
-    let e = Guide::from_spec(&GuideSpec::default(), GuideName::V, &tol()).unwrap_err();
+    let e = Guide::from_spec(&GuideSpec::points(vec![]), GuideName::V, &tol()).unwrap_err();
     assert!(e.to_string().starts_with("guide_v"));
 }
