@@ -32,6 +32,10 @@ execFileSync('cargo', ['build', '--release', '--locked', '-p', 'monge-wasm', '--
   env: {
     ...process.env,
     CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS: `--remap-path-prefix=${repo}=monge --remap-path-prefix=${cargoHome}=cargo`,
+    // The shipped binary is stripped (Cargo.toml); the module must not be:
+    // stripping drops its `target_features` section, from which wasm-bindgen
+    // learns that reference types are on, and it would bind the module the old way.
+    CARGO_PROFILE_RELEASE_STRIP: 'false',
   },
 });
 rmSync(wasmOut, { recursive: true, force: true });
