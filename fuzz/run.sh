@@ -5,7 +5,8 @@
 #
 #   fuzz/run.sh build                  build every target
 #   fuzz/run.sh TARGET [LIBFUZZER_ARGS] run one target on its seed corpus
-#   fuzz/run.sh all SECONDS            every target for SECONDS each (CI)
+#   fuzz/run.sh all SECONDS            every target for SECONDS each (CI), as many
+#                                      at a time as there are cores
 #
 # New inputs go to fuzz/target/corpus/TARGET (not committed); crashes to
 # fuzz/artifacts/TARGET/. Targets: design_json design_toml mesh_obj mesh_ply
@@ -36,7 +37,25 @@ case "${1:-}" in
   build) build ;;
   all)
     build
-    for t in $TARGETS; do run "$t" -max_total_time="${2:-10}" -print_final_stats=1; done ;;
+    # One libFuzzer process per core; each target's output is printed whole
+    # when it ends, and any failing target fails the run.
+    mkdir -p target/logs
+    cores="$(nproc)" pids=() names=() failed=0
+    finish() {
+      local i=$1
+      wait "${pids[$i]}" || { echo "fuzz target ${names[$i]} failed" >&2; failed=1; }
+      cat "target/logs/${names[$i]}.log"
+    }
+    for t in $TARGETS; do
+      run "$t" -max_total_time="${2:-10}" -print_final_stats=1 >"target/logs/$t.log" 2>&1 &
+      pids+=($!) names+=("$t")
+      if [ "${#pids[@]}" -ge "$cores" ]; then
+        for i in "${!pids[@]}"; do finish "$i"; done
+        pids=() names=()
+      fi
+    done
+    for i in "${!pids[@]}"; do finish "$i"; done
+    exit "$failed" ;;
   "") sed -n '2,12p' "$0"; exit 2 ;;
   *) build; run "$@" ;;
 esac

@@ -3,6 +3,9 @@
 # maturin in a virtual environment (target/venv, created if missing), installs
 # it, and runs pytest over crates/monge-py/tests against the `monge` binary
 # built by cargo (the tests compare the package's output with the command's).
+#
+#   scripts/pytest.sh [PYTEST_ARGS]   set up the venv, build and install the wheel, run pytest
+#   scripts/pytest.sh --setup         only set up the venv (CI does it while Rust compiles)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -17,6 +20,7 @@ fi
 "$venv/bin/python" -m pip install --quiet bpy ||
   echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
 "$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask mypy
+[ "${1:-}" = --setup ] && exit 0
 
 # A debug wheel by default: it reuses what `cargo test` just built, and the tests
 # are small (MONGE_WHEEL_PROFILE=--release builds the wheel that users get). It
