@@ -17,7 +17,7 @@ use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{check_output, read_points, write_design_into, write_multipatch_into, Outputs};
 use monge_render::{RenderOptions, Scene};
 
-use crate::shared::args::KindArg;
+use crate::shared::args::{Named, KINDS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{num, print};
 use crate::shared::picture::{distance_panel, sheet, Picture};
@@ -44,8 +44,8 @@ pub struct ApproximateArgs {
     #[arg(long, value_name = "UxV", default_value = "40x40", value_parser = parse_grid)]
     pub grid: (usize, usize),
     /// Circular (default) or conical mesh (§2.3).
-    #[arg(long, value_enum, default_value_t = KindArg::Circular)]
-    pub kind: KindArg,
+    #[arg(long, value_parser = KINDS, default_value = MeshKind::Circular.name())]
+    pub kind: MeshKind,
     /// Number of starts, at least 1 (best θ at each corner of the target first).
     #[arg(
         long,
@@ -162,10 +162,9 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         None => None,
     };
     let points = read_points(&args.target)?;
-    let kind = MeshKind::from(args.kind);
     let options = ApproxOptions {
         faces: args.grid,
-        kind,
+        kind: args.kind,
         starts: args.starts,
         max_evaluations: args.max_evaluations,
         deadline,
@@ -224,7 +223,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     }
     out.commit()?;
     let m = measure(&r.grid);
-    let exactness = match kind {
+    let exactness = match args.kind {
         MeshKind::Circular => m.max_error(),
         MeshKind::Conical => m.max_error_conical(conical_error(&r.grid)),
     };

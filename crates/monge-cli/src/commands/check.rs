@@ -7,13 +7,14 @@ use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::conical::conical_folds;
 use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
-use monge_core::QuadGrid;
+use monge_core::{MeshKind, QuadGrid};
+use monge_io::generated::kind_name;
 use monge_io::{
     is_stdio, read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, MeshFormat,
 };
 use serde_json::{json, Map, Value};
 
-use crate::shared::args::{parse_tolerance, KindArg, READ_FORMATS};
+use crate::shared::args::{parse_tolerance, KINDS, READ_FORMATS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{eprint, far_from_origin_warning, num, print};
 use crate::shared::Outcome;
@@ -62,8 +63,8 @@ pub struct CheckArgs {
     pub json: bool,
     /// What MESH is: which properties to measure (default: the `kind` a JSON mesh
     /// written by monge names, else circular).
-    #[arg(long, value_enum)]
-    pub kind: Option<KindArg>,
+    #[arg(long, value_parser = KINDS)]
+    pub kind: Option<MeshKind>,
     /// MESH is an offset of BASE (same grid): also measure how far the offset distance varies
     /// (vertex distances for a circular mesh, face-plane distances for a conical one).
     #[arg(long, value_name = "BASE")]
@@ -90,8 +91,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     measurable(&grid).with_context(|| name.clone())?;
     let m = measure(&grid);
     // Said on the command line, else by the file, else circular.
-    let named_kind = named_kind.map(KindArg::from);
-    let kind = args.kind.or(named_kind).unwrap_or(KindArg::Circular);
+    let kind = args.kind.or(named_kind).unwrap_or(MeshKind::Circular);
     // A conical mesh's faces are turned over against their normals when the
     // file gives them, else against the vertex cones.
     let face_normals = if is_stdio(path) {
@@ -118,23 +118,27 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
             offset_metric(&base, &grid, kind, m.scale),
         );
     }
-    let pass = metrics.iter().all(|r| r.passes(args.tol));
-    let text = if args.json {
-        format!(
-            "{}\n",
-            json_report(&name, &grid, &m, kind, &metrics, args.tol, pass)
-        )
-    } else {
-        text_report(&name, &grid, &m, kind, &metrics, args.tol, pass)
+    let report = Report {
+        name: &name,
+        grid: &grid,
+        scale: m.scale,
+        kind,
+        metrics,
+        tol: args.tol,
     };
-    print(&text)?;
+    print(&if args.json {
+        format!("{}\n", report.json())
+    } else {
+        report.text()
+    })?;
     eprint(&far_from_origin_warning(&grid.vertices).unwrap_or_default());
     // Failed as circular for want of saying what it is: perhaps a conical mesh.
-    let circularity_failed = metrics
+    let circularity_failed = report
+        .metrics
         .iter()
         .any(|r| r.key == "circularity" && !r.passes(args.tol));
     if circularity_failed && args.kind.is_none() && named_kind.is_none() {
-        let as_conical = metrics_of(&grid, &m, KindArg::Conical, face_normals.as_deref());
+        let as_conical = metrics_of(&grid, &m, MeshKind::Conical, face_normals.as_deref());
         eprint(&if as_conical.iter().all(|r| r.passes(args.tol)) {
             format!(
                 "note: `{name}` fails as a circular mesh but passes as a conical one (§2.3): \
@@ -147,7 +151,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
             )
         });
     }
-    Ok(if pass {
+    Ok(if report.passes() {
         Outcome::Success
     } else {
         Outcome::Failed
@@ -181,13 +185,13 @@ impl Metric {
 fn metrics_of(
     grid: &QuadGrid,
     m: &Measurements,
-    kind: KindArg,
+    kind: MeshKind,
     face_normals: Option<&[DVec3]>,
 ) -> Vec<Metric> {
     let mut v = metrics(grid, m, kind);
     let (folded, first) = match kind {
-        KindArg::Circular => (m.folded_faces, m.first_fold),
-        KindArg::Conical => {
+        MeshKind::Circular => (m.folded_faces, m.first_fold),
+        MeshKind::Conical => {
             let folds = conical_folds(grid, face_normals);
             (folds.count(), folds.first())
         }
@@ -208,7 +212,7 @@ fn metrics_of(
 /// The metrics of `grid` (measured as `m`) for a mesh of `kind`, in print order: for
 /// a circular mesh torsion and normal length only with normals (§2.2); for a conical
 /// mesh the conical condition instead of circularity (§2.3).
-fn metrics(grid: &QuadGrid, m: &Measurements, kind: KindArg) -> Vec<Metric> {
+fn metrics(grid: &QuadGrid, m: &Measurements, kind: MeshKind) -> Vec<Metric> {
     let metric = |key, label, element, worst| Metric {
         key,
         label,
@@ -223,8 +227,8 @@ fn metrics(grid: &QuadGrid, m: &Measurements, kind: KindArg) -> Vec<Metric> {
         m.face_planarity,
     )];
     match kind {
-        KindArg::Circular => v.push(metric("circularity", "circularity", "face", m.circularity)),
-        KindArg::Conical => {
+        MeshKind::Circular => v.push(metric("circularity", "circularity", "face", m.circularity)),
+        MeshKind::Conical => {
             if let Some(c) = conical_error(grid) {
                 v.push(metric("conical", "conical vertices", "vertex", c));
             }
@@ -242,7 +246,7 @@ fn metrics(grid: &QuadGrid, m: &Measurements, kind: KindArg) -> Vec<Metric> {
         "vertex",
         m.column_planarity,
     ));
-    if kind == KindArg::Circular {
+    if kind == MeshKind::Circular {
         if let Some(t) = m.torsion {
             v.push(metric("torsion", "torsion", "edge from", t));
         }
@@ -257,17 +261,17 @@ fn metrics(grid: &QuadGrid, m: &Measurements, kind: KindArg) -> Vec<Metric> {
 /// scale (§2.2, §2.3): for circular meshes the distance between corresponding
 /// vertices, for conical meshes the signed distance of each offset face's corners
 /// from the plane of the base face (its normal from the base face's diagonals).
-fn offset_metric(base: &QuadGrid, grid: &QuadGrid, kind: KindArg, scale: f64) -> Metric {
+fn offset_metric(base: &QuadGrid, grid: &QuadGrid, kind: MeshKind, scale: f64) -> Metric {
     let mut distances: Vec<(f64, (usize, usize))> = Vec::new();
     match kind {
-        KindArg::Circular => {
+        MeshKind::Circular => {
             for i in 0..grid.rows {
                 for j in 0..grid.cols {
                     distances.push((grid.vertex(i, j).distance(base.vertex(i, j)), (i, j)));
                 }
             }
         }
-        KindArg::Conical => {
+        MeshKind::Conical => {
             for i in 0..grid.rows.saturating_sub(1) {
                 for j in 0..grid.cols.saturating_sub(1) {
                     let [a, b, c, d] = base.face(i, j);
@@ -304,18 +308,13 @@ fn offset_metric(base: &QuadGrid, grid: &QuadGrid, kind: KindArg, scale: f64) ->
         count: false,
         key: "offset_distance",
         label: "offset distance",
-        element: if kind == KindArg::Circular {
+        element: if kind == MeshKind::Circular {
             "vertex"
         } else {
             "face"
         },
         worst,
     }
-}
-
-/// `"circular"` or `"conical"`, as a JSON mesh names its kind.
-fn kind_name(kind: KindArg) -> &'static str {
-    monge_io::generated::kind_name(kind.into())
 }
 
 /// `value ≤ tol`; NaN fails.
@@ -332,95 +331,105 @@ fn verdict(pass: bool) -> &'static str {
     }
 }
 
-/// The table.
-fn text_report(
-    name: &str,
-    grid: &QuadGrid,
-    m: &Measurements,
-    kind: KindArg,
-    metrics: &[Metric],
+/// What `monge check` found, as the table and the JSON object both tell it.
+struct Report<'a> {
+    /// The mesh's file name, `<stdin>` for standard input.
+    name: &'a str,
+    /// The mesh.
+    grid: &'a QuadGrid,
+    /// The bounding-box diagonal the lengths are relative to.
+    scale: f64,
+    /// What the mesh was measured as.
+    kind: MeshKind,
+    /// The metrics, in print order.
+    metrics: Vec<Metric>,
+    /// Largest accepted error (`--tol`).
     tol: f64,
-    pass: bool,
-) -> String {
-    let mut s = format!(
-        "{name}: {} × {} vertices, {} faces, {}, measured as a {} mesh\n\
-         lengths and torsion relative to the bounding-box diagonal {}; normal length is dimensionless\n",
-        grid.rows,
-        grid.cols,
-        grid.face_count(),
-        if grid.normals.is_empty() {
-            "no normals"
-        } else {
-            "with normals"
-        },
-        kind_name(kind),
-        num(m.scale)
-    );
-    for r in metrics {
-        let (i, j) = r.worst.at;
-        let at = format!("at {} ({i}, {j})", r.element);
-        let (value, at) = match (r.count, r.worst.value) {
-            (true, 0.0) => ("0".to_owned(), String::new()),
-            (true, n) => (n.to_string(), at),
-            (false, e) => (format!("{e:.3e}"), at),
-        };
-        s.push_str(&format!(
-            "{:<17} {value:>10}  {at:<23} {}\n",
-            r.label,
-            verdict(r.passes(tol))
-        ));
-    }
-    let failed = metrics.iter().filter(|r| !r.passes(tol)).count();
-    if pass {
-        s.push_str(&format!("PASS: every metric ≤ {tol:e}, no folded face\n"));
-    } else {
-        s.push_str(&format!(
-            "FAIL: {failed} of {} metrics fail (errors must be ≤ {tol:e}, folded faces 0)\n",
-            metrics.len()
-        ));
-    }
-    s
 }
 
-/// The JSON object.
-fn json_report(
-    name: &str,
-    grid: &QuadGrid,
-    m: &Measurements,
-    kind: KindArg,
-    metrics: &[Metric],
-    tol: f64,
-    pass: bool,
-) -> Value {
-    let mut all = Map::new();
-    for r in metrics {
-        all.insert(
-            r.key.to_owned(),
-            if r.count {
-                let at = (r.worst.value > 0.0).then_some([r.worst.at.0, r.worst.at.1]);
-                json!({ "value": r.worst.value as usize, "at": at, "pass": r.passes(tol) })
-            } else {
-                json!({
-                    "value": r.worst.value,
-                    "at": [r.worst.at.0, r.worst.at.1],
-                    "pass": r.passes(tol),
-                })
-            },
-        );
+impl Report<'_> {
+    /// Whether every metric passes.
+    fn passes(&self) -> bool {
+        self.metrics.iter().all(|r| r.passes(self.tol))
     }
-    json!({
-        "file": name,
-        "rows": grid.rows,
-        "cols": grid.cols,
-        "faces": grid.face_count(),
-        "normals": !grid.normals.is_empty(),
-        "kind": kind_name(kind),
-        "scale": m.scale,
-        "tol": tol,
-        "max_error": largest(metrics.iter().filter(|r| !r.count).map(|r| r.worst.value)),
-        "pass": pass,
-        "metrics": all,
-    })
+
+    /// The table.
+    fn text(&self) -> String {
+        let (grid, tol) = (self.grid, self.tol);
+        let mut s = format!(
+            "{}: {} × {} vertices, {} faces, {}, measured as a {} mesh\n\
+             lengths and torsion relative to the bounding-box diagonal {}; normal length is dimensionless\n",
+            self.name,
+            grid.rows,
+            grid.cols,
+            grid.face_count(),
+            if grid.normals.is_empty() {
+                "no normals"
+            } else {
+                "with normals"
+            },
+            kind_name(self.kind),
+            num(self.scale)
+        );
+        for r in &self.metrics {
+            let (i, j) = r.worst.at;
+            let at = format!("at {} ({i}, {j})", r.element);
+            let (value, at) = match (r.count, r.worst.value) {
+                (true, 0.0) => ("0".to_owned(), String::new()),
+                (true, n) => (n.to_string(), at),
+                (false, e) => (format!("{e:.3e}"), at),
+            };
+            s.push_str(&format!(
+                "{:<17} {value:>10}  {at:<23} {}\n",
+                r.label,
+                verdict(r.passes(tol))
+            ));
+        }
+        let failed = self.metrics.iter().filter(|r| !r.passes(tol)).count();
+        if self.passes() {
+            s.push_str(&format!("PASS: every metric ≤ {tol:e}, no folded face\n"));
+        } else {
+            s.push_str(&format!(
+                "FAIL: {failed} of {} metrics fail (errors must be ≤ {tol:e}, folded faces 0)\n",
+                self.metrics.len()
+            ));
+        }
+        s
+    }
+
+    /// The JSON object.
+    fn json(&self) -> Value {
+        let (grid, tol) = (self.grid, self.tol);
+        let mut all = Map::new();
+        for r in &self.metrics {
+            all.insert(
+                r.key.to_owned(),
+                if r.count {
+                    let at = (r.worst.value > 0.0).then_some([r.worst.at.0, r.worst.at.1]);
+                    json!({ "value": r.worst.value as usize, "at": at, "pass": r.passes(tol) })
+                } else {
+                    json!({
+                        "value": r.worst.value,
+                        "at": [r.worst.at.0, r.worst.at.1],
+                        "pass": r.passes(tol),
+                    })
+                },
+            );
+        }
+        json!({
+            "file": self.name,
+            "rows": grid.rows,
+            "cols": grid.cols,
+            "faces": grid.face_count(),
+            "normals": !grid.normals.is_empty(),
+            "kind": kind_name(self.kind),
+            "scale": self.scale,
+            "tol": tol,
+            "max_error": largest(self.metrics.iter().filter(|r| !r.count).map(|r| r.worst.value)),
+            "pass": self.passes(),
+            "metrics": all,
+        })
+    }
 }
 
 #[cfg(test)]

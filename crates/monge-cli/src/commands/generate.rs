@@ -13,7 +13,7 @@ use monge_io::{
 };
 use serde_json::{json, Map, Value};
 
-use crate::shared::args::{output_format, parse_finite, WRITTEN_FORMATS};
+use crate::shared::args::{parse_finite, MeshOutput};
 use crate::shared::help::{EXIT, THETA};
 use crate::shared::output::{eprint, far_from_origin_warning, inexact_warning, millis, num};
 use crate::shared::warnings::{generation_warnings, range_text};
@@ -46,13 +46,8 @@ pub struct GenerateArgs {
     /// The design file (`.json` or `.toml`).
     #[arg(value_name = "DESIGN")]
     pub design: PathBuf,
-    /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
-    #[arg(short, long, value_name = "OUT")]
-    pub output: PathBuf,
-    /// Output format, for `-o -` (default json) or an OUT whose extension names none; it must
-    /// agree with OUT's extension.
-    #[arg(long, value_parser = WRITTEN_FORMATS)]
-    pub format: Option<MeshFormat>,
+    #[command(flatten)]
+    pub out: MeshOutput,
     /// Refuse grids of more than N vertices (rows × cols; of a developable design, rulings ×
     /// heights), before allocating anything.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
@@ -74,10 +69,9 @@ pub struct GenerateArgs {
 
 /// Runs `monge generate`.
 pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
-    let out = args.output.as_path();
+    let out = args.out.output.as_path();
     // Everything about the output is checked before the (possibly long) generation.
-    let format = output_format(args.format, out)?;
-    check_output(out, &[&args.design])?;
+    let format = args.out.checked_format(&[&args.design])?;
     if is_stdio(out) && !args.offsets.is_empty() {
         bail!("--offset writes one file per offset next to OUT: give a file for -o, not `-`");
     }
@@ -234,7 +228,7 @@ fn run_developable(
     let mut extra = Map::new();
     extra.insert("alpha_deg".into(), json!(mesh.alpha_deg));
     let start = Instant::now();
-    write_layers(&args.output, format, extra, &layers, None)?;
+    write_layers(&args.out.output, format, extra, &layers, None)?;
     let g = &mesh.grid;
     eprint(&format!(
         "{}: developable circular mesh (§3.3), slope α = {}°: {} rulings × {} cutting planes, \
@@ -246,7 +240,7 @@ fn run_developable(
         g.face_count(),
         millis(generation),
         format.extension().to_uppercase(),
-        args.output.display(),
+        args.out.output.display(),
         millis(start.elapsed().as_secs_f64()),
     ));
     eprint(&far_from_origin_warning(&g.vertices).unwrap_or_default());

@@ -8,12 +8,10 @@ use monge_core::measure::measure;
 use monge_core::multipatch::{build, MultiPatch};
 use monge_core::symmetry::{assemble, isometries};
 use monge_core::GenerateOptions;
-use monge_io::{
-    check_output, read_multipatch, write_mesh, write_output, write_quad_mesh, MeshFormat,
-};
+use monge_io::{read_multipatch, write_mesh, write_output, write_quad_mesh, MeshFormat};
 use serde_json::{json, Map, Value};
 
-use crate::shared::args::{output_format, WRITTEN_FORMATS};
+use crate::shared::args::MeshOutput;
 use crate::shared::help::{EXIT, THETA};
 use crate::shared::output::{eprint, num};
 use crate::shared::warnings::patch_warnings;
@@ -55,13 +53,8 @@ pub struct PatchesArgs {
     /// The multi-patch design file (`.json` or `.toml`).
     #[arg(value_name = "DESIGN")]
     pub design: PathBuf,
-    /// Output file (`.obj`, `.ply` or `.json`), or `-` for standard output.
-    #[arg(short, long, value_name = "OUT")]
-    pub output: PathBuf,
-    /// Output format, for `-o -` (default json) or an OUT whose extension names none; it must
-    /// agree with OUT's extension.
-    #[arg(long, value_parser = WRITTEN_FORMATS)]
-    pub format: Option<MeshFormat>,
+    #[command(flatten)]
+    pub out: MeshOutput,
     /// Refuse patches of more than N grid vertices each.
     #[arg(long, value_name = "N", default_value_t = GenerateOptions::default().max_vertices)]
     pub max_vertices: usize,
@@ -70,8 +63,8 @@ pub struct PatchesArgs {
 /// Runs `monge patches`.
 pub fn run(args: &PatchesArgs) -> anyhow::Result<Outcome> {
     let file = args.design.display().to_string();
-    let format = output_format(args.format, &args.output)?;
-    check_output(&args.output, &[&args.design])?;
+    let format = args.out.checked_format(&[&args.design])?;
+    let out = args.out.output.as_path();
     let design = read_multipatch(&args.design)?;
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
@@ -86,11 +79,9 @@ pub fn run(args: &PatchesArgs) -> anyhow::Result<Outcome> {
                 "line_planes".into(),
                 serde_json::to_value(mp.line_planes())?,
             );
-            write_output(&args.output, |w| {
-                monge_io::write_mesh_json(&mp.grid, &extra, w)
-            })?;
+            write_output(out, |w| monge_io::write_mesh_json(&mp.grid, &extra, w))?;
         } else {
-            write_mesh(&mp.grid, &args.output, Some(format))?;
+            write_mesh(&mp.grid, out, Some(format))?;
         }
     } else {
         let copy = mp.grid.rows * mp.grid.cols;
@@ -115,7 +106,7 @@ pub fn run(args: &PatchesArgs) -> anyhow::Result<Outcome> {
             num(a.max_axis_gap),
             num(worst)
         ));
-        write_quad_mesh(&a.mesh, &args.output, Some(format))?;
+        write_quad_mesh(&a.mesh, out, Some(format))?;
     }
     eprint(&summary);
     eprint(&patch_warnings(&mp));
