@@ -9,7 +9,7 @@ use serde_json::Value;
 use tempfile::TempDir;
 
 mod common;
-use common::{check_json, example, monge, read_json, refuses, write};
+use common::{check_json, example, monge, monge_to, read_json, refuses, write};
 
 /// A 3 × 3 JSON mesh of the unit grid in the plane z = 0, with vertex (1, 1) lifted by `lift`.
 fn grid_json(lift: f64) -> String {
@@ -149,11 +149,7 @@ fn check_reports_a_malformed_mesh_as_an_error() {
 fn check_conical_max_error_is_the_largest_required_metric() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("c.obj");
-    monge()
-        .arg("generate")
-        .arg(example("fig13-conical.json"))
-        .arg("-o")
-        .arg(&out)
+    monge_to("generate", example("fig13-conical.json"), &out)
         .assert()
         .success();
     let (code, v) = check_json(&out, &["--kind", "conical"]);
@@ -248,15 +244,9 @@ fn a_conical_mesh_turned_over_is_reported_folded_everywhere() {
     ] {
         let (obj, json) = (dir.path().join("m.obj"), dir.path().join("m.json"));
         for out in [&obj, &json] {
-            monge()
-                .arg("generate")
-                .arg(input)
-                .arg("-o")
-                .arg(out)
-                .assert()
-                .success();
+            monge_to("generate", input, out).assert().success();
         }
-        let mesh: Value = serde_json::from_str(&fs::read_to_string(&json).unwrap()).unwrap();
+        let mesh = read_json(&json);
         let reported = mesh["report"]["folded_faces"].as_u64().unwrap() as usize;
         let check = monge()
             .arg("check")
@@ -281,11 +271,7 @@ fn a_conical_mesh_turned_over_is_reported_folded_everywhere() {
             assert_eq!(reported, 0);
         }
     }
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(dir.path().join("m.obj"))
+    monge_to("generate", &design, dir.path().join("m.obj"))
         .assert()
         .stderr(predicate::str::contains("in 4 faces, first at face (3, 0)"));
 }
@@ -298,11 +284,7 @@ fn check_takes_a_json_mesh_s_kind_and_suggests_kind_conical_otherwise() {
     let dir = TempDir::new().unwrap();
     let (json, obj) = (dir.path().join("c.json"), dir.path().join("c.obj"));
     for out in [&json, &obj] {
-        monge()
-            .arg("generate")
-            .arg(example("fig13-conical.json"))
-            .arg("-o")
-            .arg(out)
+        monge_to("generate", example("fig13-conical.json"), out)
             .assert()
             .success();
     }
@@ -351,8 +333,7 @@ fn check_takes_a_json_mesh_s_kind_and_suggests_kind_conical_otherwise() {
     let first = text.find("\nv ").unwrap() + 1;
     let end = first + text[first..].find('\n').unwrap();
     let moved = format!("{}v 0.5 0.25 0.125{}", &text[..first], &text[end..]);
-    let bent = dir.path().join("bent.obj");
-    fs::write(&bent, moved).unwrap();
+    let bent = write(&dir, "bent.obj", &moved);
     monge()
         .arg("check")
         .arg(&bent)

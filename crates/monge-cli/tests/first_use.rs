@@ -8,7 +8,7 @@ use predicates::prelude::*;
 use tempfile::TempDir;
 
 mod common;
-use common::{example, monge, refuses};
+use common::{example, monge, monge_to, refuses, write};
 
 /// Every command that writes a file, with its input file and `OUT` in place of
 /// the output path.
@@ -151,13 +151,7 @@ fn a_file_of_the_wrong_kind_names_the_command_that_takes_it() {
     let design = example("fig13-freeform.json");
     let design_toml = example("fig14-family.toml");
     let mesh = dir.path().join("mesh.json");
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&mesh)
-        .assert()
-        .success();
+    monge_to("generate", &design, &mesh).assert().success();
     let out = dir.path().join("out.json").display().to_string();
     let png = dir.path().join("out.png").display().to_string();
     let to_patches = "a multi-patch design (§4.7), not a design (two guides and θ): use `monge \
@@ -277,11 +271,7 @@ fn the_readme_smooth_usage_on_a_mesh_runs() {
     );
     let dir = TempDir::new().unwrap();
     let mesh = dir.path().join("m.json");
-    monge()
-        .arg("generate")
-        .arg(example("fig12-dupin-theta30.json"))
-        .arg("-o")
-        .arg(&mesh)
+    monge_to("generate", example("fig12-dupin-theta30.json"), &mesh)
         .assert()
         .success();
     let out = dir.path().join("net.obj");
@@ -380,7 +370,6 @@ fn small_messages_say_the_limit_and_one_list() {
          and arcs), `.igs` or `.iges` (the exact NURBS surface), or `.obj`, `.ply` or `.glb` \
          (a dense mesh)\n"
     );
-    let toml = dir.path().join("d.toml");
     let text = fs::read_to_string(example("fig14-family.toml")).unwrap();
     let (line, _) = text
         .lines()
@@ -392,7 +381,7 @@ fn small_messages_say_the_limit_and_one_list() {
         .enumerate()
         .map(|(k, l)| if k == line { "theta_deg = \"20\"" } else { l })
         .collect();
-    fs::write(&toml, lines.join("\n")).unwrap();
+    let toml = write(&dir, "d.toml", &lines.join("\n"));
     refuses(
         monge().arg("info").arg(&toml),
         &[&format!(
@@ -428,8 +417,7 @@ fn an_admissible_range_from_zero_is_one_interval() {
         "guide_v": {"points": v, "tangent": [0, 1, 0]},
     });
     let dir = TempDir::new().unwrap();
-    let path = dir.path().join("zero.json");
-    fs::write(&path, design.to_string()).unwrap();
+    let path = write(&dir, "zero.json", &design.to_string());
     let max = 180.0 - 2.0 * 0.5f64.atan().to_degrees();
     assert_eq!(format!("{max:.2}"), "126.87");
     monge()

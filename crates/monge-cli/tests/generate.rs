@@ -11,7 +11,8 @@ use tempfile::TempDir;
 
 mod common;
 use common::{
-    check_json, example, examples, generate_and_check, monge, read_json, refuses, vertex, write,
+    check_json, example, examples, generate_and_check, monge, monge_to, read_json, refuses, vertex,
+    write,
 };
 
 /// Examples that must generate and pass `check`.
@@ -39,18 +40,8 @@ fn binary_ply_generates_and_passes_check_and_a_wrong_extension_is_refused() {
     let dir = TempDir::new().unwrap();
     let design = example("fig13-freeform.json");
     let (ascii, binary) = (dir.path().join("a.ply"), dir.path().join("b.ply"));
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&ascii)
-        .assert()
-        .success();
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&binary)
+    monge_to("generate", &design, &ascii).assert().success();
+    monge_to("generate", &design, &binary)
         .args(["--format", "ply-binary"])
         .assert()
         .success();
@@ -79,12 +70,7 @@ fn binary_ply_generates_and_passes_check_and_a_wrong_extension_is_refused() {
     assert!(out.status.success());
     assert!(out.stdout.windows(17).any(|w| w == b"property float x\n"));
     refuses(
-        monge()
-            .arg("generate")
-            .arg(&design)
-            .arg("-o")
-            .arg(dir.path().join("c.obj"))
-            .args(["--format", "ply-binary"]),
+        monge_to("generate", &design, dir.path().join("c.obj")).args(["--format", "ply-binary"]),
         &["--format ply-binary but OUT", "name it `.ply`"],
         &[],
     );
@@ -100,14 +86,7 @@ fn every_other_example_either_passes_check_or_fails_cleanly() {
             continue;
         }
         let out = dir.path().join(format!("{name}.obj"));
-        let status = monge()
-            .arg("generate")
-            .arg(&path)
-            .arg("-o")
-            .arg(&out)
-            .output()
-            .unwrap()
-            .status;
+        let status = monge_to("generate", &path, &out).output().unwrap().status;
         match status.code() {
             Some(0) => {
                 let conical = fs::read_to_string(&path).unwrap().contains("\"conical\"");
@@ -130,13 +109,7 @@ fn json_output_follows_the_contract() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("contract.json");
     let design_path = example("contract.json");
-    monge()
-        .arg("generate")
-        .arg(&design_path)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .success();
+    monge_to("generate", &design_path, &out).assert().success();
     let mesh = read_json(&out);
     assert_eq!(mesh["rows"], 3);
     assert_eq!(mesh["cols"], 41);
@@ -148,7 +121,7 @@ fn json_output_follows_the_contract() {
     assert_eq!(mesh["report"]["first_fold"], Value::Null);
     assert!(mesh["report"]["min_crossing_sine"].as_f64().unwrap() > 1e-3);
     // guide_u is given point by point: column 0 is exactly those points.
-    let design: Value = serde_json::from_str(&fs::read_to_string(&design_path).unwrap()).unwrap();
+    let design = read_json(&design_path);
     for (i, p) in design["guide_u"]["points"]
         .as_array()
         .unwrap()
@@ -171,11 +144,7 @@ fn json_output_starts_with_the_guides_for_a_characteristic_design() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("fig13.json");
     let design_path = example("fig13-freeform.json");
-    monge()
-        .arg("generate")
-        .arg(&design_path)
-        .arg("-o")
-        .arg(&out)
+    monge_to("generate", &design_path, &out)
         .assert()
         .success()
         .stderr(predicate::str::contains("characteristic"));
@@ -243,11 +212,7 @@ fn dash_writes_json_to_stdout_by_default_and_other_formats_on_request() {
 fn conical_meshes_and_offsets_are_written_and_pass_check() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("c.json");
-    monge()
-        .arg("generate")
-        .arg(example("fig13-conical.json"))
-        .arg("-o")
-        .arg(&out)
+    monge_to("generate", example("fig13-conical.json"), &out)
         .args(["--offset", "0.25", "--offset", "-0.5"])
         .assert()
         .success()
@@ -275,11 +240,7 @@ fn conical_meshes_and_offsets_are_written_and_pass_check() {
     }
     // A circular mesh is not conical, and the conical check says so.
     let circular = dir.path().join("m.json");
-    monge()
-        .arg("generate")
-        .arg(example("fig13-freeform.json"))
-        .arg("-o")
-        .arg(&circular)
+    monge_to("generate", example("fig13-freeform.json"), &circular)
         .args(["--offset", "0.1"])
         .assert()
         .success();
@@ -321,11 +282,7 @@ fn conical_meshes_and_offsets_are_written_and_pass_check() {
 fn developable_designs_generate_check_and_report() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("d.json");
-    monge()
-        .arg("generate")
-        .arg(example("fig11-helix.developable.json"))
-        .arg("-o")
-        .arg(&out)
+    monge_to("generate", example("fig11-helix.developable.json"), &out)
         .args(["--offset", "0.5"])
         .assert()
         .success()
@@ -350,22 +307,14 @@ fn developable_designs_generate_check_and_report() {
             "heights": [1, 2]}}"#,
     );
     let bad = dir.path().join("flat.obj");
-    refuses(
-        monge().arg("generate").arg(&flat).arg("-o").arg(&bad),
-        &["α"],
-        &[&bad],
-    );
+    refuses(&mut monge_to("generate", &flat, &bad), &["α"], &[&bad]);
 }
 
 #[test]
 fn meshes_also_go_to_gltf_for_viewers_but_are_not_measured_from_it() {
     let dir = TempDir::new().unwrap();
     let glb = dir.path().join("m.glb");
-    monge()
-        .arg("generate")
-        .arg(example("fig13-freeform.json"))
-        .arg("-o")
-        .arg(&glb)
+    monge_to("generate", example("fig13-freeform.json"), &glb)
         .assert()
         .success();
     assert!(fs::read(&glb).unwrap().starts_with(b"glTF"));
@@ -406,8 +355,7 @@ fn designs_too_far_from_the_origin_for_f64_output_are_warned_about() {
         // 4e-3 at 5e5: 2.5e-8 of the size, which no f64 file can hold to 1e-9.
         ("far", [5e5, 3e5, 1e3], true),
     ] {
-        let design = dir.path().join(format!("{name}.json"));
-        fs::write(&design, small_design(corner)).unwrap();
+        let design = write(&dir, &format!("{name}.json"), &small_design(corner));
         let mesh = dir.path().join(format!("{name}.obj"));
         let runs = [
             monge().arg("info").arg(&design).assert().success(),
@@ -439,17 +387,11 @@ fn designs_too_far_from_the_origin_for_f64_output_are_warned_about() {
 fn an_offsets_report_counts_its_own_folds() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("d.json");
-    monge()
-        .arg("generate")
-        .arg(example("fig12-dupin-theta30.json"))
-        .arg("-o")
-        .arg(&out)
+    monge_to("generate", example("fig12-dupin-theta30.json"), &out)
         .args(["--offset", "-5"])
         .assert()
         .success();
-    let report = |path: &Path| -> Value {
-        serde_json::from_str::<Value>(&fs::read_to_string(path).unwrap()).unwrap()["report"].clone()
-    };
+    let report = |path: &Path| -> Value { read_json(path)["report"].clone() };
     assert_eq!(report(&out)["folded_faces"], 0);
     let offset = dir.path().join("d.offset-5.json");
     let (code, checked) = check_json(&offset, &[]);
@@ -474,11 +416,7 @@ fn a_measured_error_above_the_tolerance_is_never_silent() {
    [-0.007441484123705624,1.9927520724723893,-0.0996294952040866],[6.193939782998956e-5,3.0061583164315824,0.0008292688442872063]]}}}"#,
     );
     let obj = dir.path().join("m.obj");
-    monge()
-        .arg("generate")
-        .arg(&turned)
-        .arg("-o")
-        .arg(&obj)
+    monge_to("generate", &turned, &obj)
         .assert()
         .success()
         .stderr(predicate::str::contains(format!(
@@ -497,11 +435,7 @@ fn a_measured_error_above_the_tolerance_is_never_silent() {
         (check["max_error"].as_f64().unwrap() - 2.0).abs() < 0.05,
         "{check}"
     );
-    monge()
-        .arg("fabricate")
-        .arg(&turned)
-        .arg("-o")
-        .arg(dir.path().join("fab"))
+    monge_to("fabricate", &turned, dir.path().join("fab"))
         .assert()
         .stderr(predicate::str::contains(
             "measures an error of 2.0e0 of its size, above the tolerance 1e-9: likely cause: its 4 \
@@ -514,13 +448,7 @@ fn a_measured_error_above_the_tolerance_is_never_silent() {
         .replace("[0, 0, -3]", "[1e10, 0, -3]")
         .replace("[0, 0, 0]", "[1e10, 0, 0]");
     let far = write(&dir, "far.json", &far);
-    let out = monge()
-        .arg("generate")
-        .arg(&far)
-        .arg("-o")
-        .arg(&obj)
-        .output()
-        .unwrap();
+    let out = monge_to("generate", &far, &obj).output().unwrap();
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(
         stderr.contains("likely cause: its coordinates, 5.3e8 times its size away from the origin"),
@@ -541,11 +469,7 @@ fn a_measured_error_above_the_tolerance_is_never_silent() {
         "{measured:e}: {stderr}"
     );
     // An exact mesh: no such warning.
-    monge()
-        .arg("generate")
-        .arg(example("fig12-dupin-theta30.json"))
-        .arg("-o")
-        .arg(&obj)
+    monge_to("generate", example("fig12-dupin-theta30.json"), &obj)
         .assert()
         .success()
         .stderr(predicate::str::contains("measures an error").not());

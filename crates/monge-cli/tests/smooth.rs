@@ -6,19 +6,19 @@ use predicates::prelude::*;
 use tempfile::TempDir;
 
 mod common;
-use common::{example, monge, read_json, refuses, vertex, write};
+use common::{example, monge, monge_to, read_json, refuses, vertex, write};
 
 #[test]
 fn smooth_refuses_an_output_above_max_output() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("net.json");
     refuses(
-        monge()
-            .arg("smooth")
-            .arg(example("fig13-freeform.json"))
-            .arg("-o")
-            .arg(&out)
-            .args(["--samples", "200", "--max-output", "1"]),
+        monge_to("smooth", example("fig13-freeform.json"), &out).args([
+            "--samples",
+            "200",
+            "--max-output",
+            "1",
+        ]),
         &[
             "60 × 40 patches of 200 × 200 points and 4900 arcs, would be about 5.8 GB, above the \
              limit of 1 GB: lower --samples",
@@ -32,22 +32,12 @@ fn smooth_writes_the_cyclidic_net_contract() {
     let dir = TempDir::new().unwrap();
     let design = example("fig12-dupin-theta30.json");
     let (net, mesh) = (dir.path().join("net.json"), dir.path().join("m.json"));
-    monge()
-        .arg("smooth")
-        .arg(&design)
-        .arg("-o")
-        .arg(&net)
+    monge_to("smooth", &design, &net)
         .args(["--samples", "4"])
         .assert()
         .success()
         .stderr(predicate::str::contains("cyclidic net (§4.4)"));
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&mesh)
-        .assert()
-        .success();
+    monge_to("generate", &design, &mesh).assert().success();
     let (net, mesh) = (read_json(&net), read_json(&mesh));
     let (rows, cols) = (
         mesh["rows"].as_u64().unwrap() as usize,
@@ -90,11 +80,7 @@ fn smooth_writes_the_cyclidic_net_contract() {
         .all(|l| l["arcs"].as_array().unwrap().len() == 1));
     // The dense mesh opens as a mesh and is itself circular with planar lines.
     let obj = dir.path().join("smooth.obj");
-    monge()
-        .arg("smooth")
-        .arg(example("fig13-freeform.json"))
-        .arg("-o")
-        .arg(&obj)
+    monge_to("smooth", example("fig13-freeform.json"), &obj)
         .assert()
         .success();
     monge().arg("check").arg(&obj).assert().success();
@@ -108,13 +94,7 @@ fn smooth_writes_the_cyclidic_net_contract() {
     );
     // The exact surface as IGES: read back independently, it passes through the mesh vertices.
     let igs = dir.path().join("net.igs");
-    monge()
-        .arg("smooth")
-        .arg(&design)
-        .arg("-o")
-        .arg(&igs)
-        .assert()
-        .success();
+    monge_to("smooth", &design, &igs).assert().success();
     let surfaces = monge_io::read_iges_surfaces(&fs::read_to_string(&igs).unwrap()).unwrap();
     assert_eq!(surfaces.len(), 1);
     for (i, j) in [
@@ -162,11 +142,7 @@ fn smooth_refuses_a_conical_design() {
     for ext in ["json", "igs", "obj"] {
         let out = dir.path().join(format!("net.{ext}"));
         refuses(
-            monge()
-                .arg("smooth")
-                .arg(example("fig13-conical.json"))
-                .arg("-o")
-                .arg(&out),
+            &mut monge_to("smooth", example("fig13-conical.json"), &out),
             &[
                 "fig13-conical.json",
                 "built on circular meshes",
@@ -203,12 +179,12 @@ fn smooth_takes_a_circularity_tolerance_and_refuses_a_nan_frame() {
     smooth(&["--circularity-tol", "1e-7"]).assert().success();
     refuses(&mut smooth(&["--circularity-tol", "-1"]), &[], &[]);
     refuses(
-        monge()
-            .arg("smooth")
-            .arg(example("fig12-dupin-theta30.json"))
-            .arg("-o")
-            .arg(dir.path().join("nan.json"))
-            .arg("--frame=nan,0,0,0,1,0"),
+        monge_to(
+            "smooth",
+            example("fig12-dupin-theta30.json"),
+            dir.path().join("nan.json"),
+        )
+        .arg("--frame=nan,0,0,0,1,0"),
         &["not orthonormal"],
         &[],
     );
@@ -245,11 +221,7 @@ fn smooth_refuses_the_folded_mesh_that_check_finds_folded() {
     let dir = TempDir::new().unwrap();
     let design = write(&dir, "dupin.json", &sampled_dupin_design());
     let mesh = dir.path().join("m.obj");
-    monge()
-        .arg("generate")
-        .arg(&design)
-        .arg("-o")
-        .arg(&mesh)
+    monge_to("generate", &design, &mesh)
         .assert()
         .success()
         .stderr(predicate::str::contains(

@@ -4,6 +4,7 @@
 //! some of it, hence the `allow`.
 #![allow(dead_code)]
 
+use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -27,6 +28,13 @@ pub fn monge() -> Command {
     Command::new(env!("CARGO_BIN_EXE_monge"))
 }
 
+/// `monge COMMAND INPUT -o OUT`, to which a test adds its flags and assertions.
+pub fn monge_to(command: &str, input: impl AsRef<OsStr>, out: impl AsRef<OsStr>) -> Command {
+    let mut cmd = monge();
+    cmd.arg(command).arg(input).arg("-o").arg(out);
+    cmd
+}
+
 /// Runs `cmd` and asserts that `monge` refuses it: exit status 2, nothing on
 /// standard output, standard error starting with `error: ` and containing each
 /// of `expected`, and none of `absent` written. Returns standard error.
@@ -45,11 +53,7 @@ pub fn refuses(cmd: &mut Command, expected: &[&str], absent: &[&Path]) -> String
 
 /// Generates `design` into `out` and checks the result, both with exit status 0.
 pub fn generate_and_check(design: &Path, out: &Path) {
-    monge()
-        .arg("generate")
-        .arg(design)
-        .arg("-o")
-        .arg(out)
+    monge_to("generate", design, out)
         .assert()
         .success()
         .stderr(predicate::str::contains("vertices"));
@@ -117,7 +121,7 @@ pub fn variance_and_spread(values: &[f64]) -> (f64, f64) {
     (variance, max / min)
 }
 
-/// Parses the JSON mesh written by `monge generate`.
+/// Parses a JSON file (a mesh, a design, a net).
 pub fn read_json(path: &Path) -> Value {
     serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap()
 }
