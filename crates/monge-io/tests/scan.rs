@@ -1,8 +1,10 @@
 //! Design-space scans (§4.3, Figure 14; §5.2) written as a CSV table and an SVG plot.
 
 use monge_core::scan::{parse_range, scan, PanelStats, Scan, ScanRow, Status};
-use monge_core::{Design, GuideSpec};
-use monge_io::{write_scan_csv, write_scan_svg, SCAN_CSV_HEADER};
+use std::path::Path;
+
+use monge_core::Design;
+use monge_io::{read_design, write_scan_csv, write_scan_svg, SCAN_CSV_HEADER};
 
 fn csv(s: &Scan) -> String {
     let mut out = Vec::new();
@@ -16,16 +18,11 @@ fn svg(s: &Scan) -> String {
     String::from_utf8(out).unwrap()
 }
 
-/// The two guides of Figure 14 (`examples/fig14-family.toml`, fewer samples):
-/// their θ family folds over itself between about 80° and 110°.
+/// The θ family of Figure 14 (`examples/fig14-family.toml`), read as a design
+/// file is: it folds over itself between about 80° and 110°.
 fn figure14() -> Design {
-    Design {
-        mesh: Default::default(),
-        theta_deg: 20.0,
-        guide_u: GuideSpec::bspline(2, vec![[0.0; 3], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]], 21),
-        guide_v: GuideSpec::bspline(2, vec![[0.0; 3], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]], 21),
-        tolerance: None,
-    }
+    read_design(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/fig14-family.toml"))
+        .unwrap()
 }
 
 #[test]
