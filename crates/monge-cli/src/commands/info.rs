@@ -55,22 +55,19 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
         AnyDesign::Developable(d) => return developable_info(args, &d.developable, &options),
     };
     let info = inspect(&design, &options).with_context(|| args.design.display().to_string())?;
-    let planarity_tol = design.tolerance.unwrap_or_default().planarity;
-    let guides = [
-        ("guide_u", &design.guide_u, &info.guide_u),
-        ("guide_v", &design.guide_v, &info.guide_v),
-    ];
+    let report = Report {
+        file: args.design.display().to_string(),
+        info: &info,
+        planarity_tol: design.tolerance.unwrap_or_default().planarity,
+        guides: [
+            ("guide_u", &design.guide_u, &info.guide_u),
+            ("guide_v", &design.guide_v, &info.guide_v),
+        ],
+    };
     let text = if args.json {
-        let mut v = json_report(&info, planarity_tol, &guides);
-        v["file"] = json!(args.design.display().to_string());
-        format!("{v}\n")
+        format!("{}\n", report.json())
     } else {
-        text_report(
-            &args.design.display().to_string(),
-            &info,
-            planarity_tol,
-            &guides,
-        )
+        report.text()
     };
     print(&text)?;
     let guide_points = [info.guide_u.points.as_slice(), &info.guide_v.points].concat();
@@ -131,34 +128,46 @@ fn kind(spec: &GuideSpec) -> &'static str {
     }
 }
 
-/// The human-readable report.
-fn text_report(
-    file: &str,
-    info: &DesignInfo,
+/// What `monge info` reports of a valid design, as text or as JSON.
+struct Report<'a> {
+    /// The design file, as named on the command line.
+    file: String,
+    info: &'a DesignInfo,
+    /// The design's planarity tolerance (its `tolerance.planarity`, or the default).
     planarity_tol: f64,
-    guides: &[GuideRow<'_>; 2],
-) -> String {
-    let mut s = format!("{file}: valid design\n");
-    for (name, spec, g) in guides {
-        s.push_str(&format!(
-            "{name}: {}, {} samples, size {} (bounding-box diagonal)\n  \
+    guides: [GuideRow<'a>; 2],
+}
+
+impl Report<'_> {
+    /// The human-readable report.
+    fn text(&self) -> String {
+        let Report {
+            file,
+            info,
+            planarity_tol,
+            guides,
+        } = self;
+        let mut s = format!("{file}: valid design\n");
+        for (name, spec, g) in guides {
+            s.push_str(&format!(
+                "{name}: {}, {} samples, size {} (bounding-box diagonal)\n  \
              planarity deviation {:.3e} absolute, {:.3e} relative (tolerance {:.0e})\n  \
              start tangent {}, plane normal {}\n",
-            kind(spec),
-            g.points.len(),
-            num(g.size),
-            g.planarity,
-            g.planarity / g.size,
-            planarity_tol,
-            xyz(g.tangent.to_array()),
-            xyz(g.plane_normal.to_array()),
+                kind(spec),
+                g.points.len(),
+                num(g.size),
+                g.planarity,
+                g.planarity / g.size,
+                planarity_tol,
+                xyz(g.tangent.to_array()),
+                xyz(g.plane_normal.to_array()),
+            ));
+        }
+        s.push_str(&format!(
+            "start point {}\n",
+            xyz(info.guide_u.points[0].to_array())
         ));
-    }
-    s.push_str(&format!(
-        "start point {}\n",
-        xyz(info.guide_u.points[0].to_array())
-    ));
-    s.push_str(&format!(
+        s.push_str(&format!(
         "mode: {}\n",
         match info.mode {
             Mode::Characteristic =>
@@ -167,68 +176,76 @@ fn text_report(
             Mode::Arbitrary => "arbitrary (§3.2): θ is restricted to an admissible range",
         }
     ));
-    s.push_str(&format!(
-        "admissible θ: {}\n",
-        range_text(info.mode, &info.theta_range)
-    ));
-    let admissible = info.theta_range.contains(info.theta_deg);
-    s.push_str(&format!(
-        "design θ = {}°: {}\n",
-        num(info.theta_deg),
-        if !admissible {
-            "NOT admissible; `monge generate` will refuse it"
-        } else if near_singular(info.theta_deg) {
-            "admissible, but at or near the singular θ = +90°: expect a degenerate mesh"
-        } else {
-            "admissible"
-        }
-    ));
-    s.push_str(
+        s.push_str(&format!(
+            "admissible θ: {}\n",
+            range_text(info.mode, &info.theta_range)
+        ));
+        let admissible = info.theta_range.contains(info.theta_deg);
+        s.push_str(&format!(
+            "design θ = {}°: {}\n",
+            num(info.theta_deg),
+            if !admissible {
+                "NOT admissible; `monge generate` will refuse it"
+            } else if near_singular(info.theta_deg) {
+                "admissible, but at or near the singular θ = +90°: expect a degenerate mesh"
+            } else {
+                "admissible"
+            }
+        ));
+        s.push_str(
         "singular θ = +90°: every Gauss circle passes through the corner normal N_p and the corner \
          face collapses\n",
     );
-    let (rows, cols) = info.grid_size();
-    s.push_str(&format!(
-        "grid: {rows} × {cols} vertices ({}), {} faces\n",
-        rows * cols,
-        (rows - 1) * (cols - 1)
-    ));
-    s
-}
-
-/// The JSON report (without the `file` key).
-fn json_report(info: &DesignInfo, planarity_tol: f64, guides: &[GuideRow<'_>; 2]) -> Value {
-    let mut v = json!({});
-    for (name, spec, g) in guides {
-        v[*name] = json!({
-            "kind": kind(spec),
-            "samples": g.points.len(),
-            "planarity_abs": g.planarity,
-            "planarity_rel": g.planarity / g.size,
-            "planarity_tolerance": planarity_tol,
-            "size": g.size,
-            "start_tangent": g.tangent.to_array(),
-            "plane_normal": g.plane_normal.to_array(),
-        });
+        let (rows, cols) = info.grid_size();
+        s.push_str(&format!(
+            "grid: {rows} × {cols} vertices ({}), {} faces\n",
+            rows * cols,
+            (rows - 1) * (cols - 1)
+        ));
+        s
     }
-    let (rows, cols) = info.grid_size();
-    let r = info.theta_range;
-    v["start_point"] = json!(info.guide_u.points[0].to_array());
-    v["mode"] = json!(mode_name(info.mode));
-    v["theta_deg"] = json!(info.theta_deg);
-    v["theta_admissible"] = json!(info.theta_range.contains(info.theta_deg));
-    v["admissible_theta_deg"] = json!({
-        "abs_min": r.min_deg,
-        "abs_max": r.max_deg,
-        "intervals": [[-r.max_deg, -r.min_deg], [r.min_deg, r.max_deg]],
-    });
-    v["singular_theta_deg"] = json!(SINGULAR_DEG);
-    v["theta_singular"] = json!(near_singular(info.theta_deg));
-    v["rows"] = json!(rows);
-    v["cols"] = json!(cols);
-    v["vertices"] = json!(rows * cols);
-    v["faces"] = json!((rows - 1) * (cols - 1));
-    v
+
+    /// The JSON report (`file` is its last key).
+    fn json(&self) -> Value {
+        let Report {
+            file,
+            info,
+            planarity_tol,
+            guides,
+        } = self;
+        let mut v = json!({});
+        for (name, spec, g) in guides {
+            v[*name] = json!({
+                "kind": kind(spec),
+                "samples": g.points.len(),
+                "planarity_abs": g.planarity,
+                "planarity_rel": g.planarity / g.size,
+                "planarity_tolerance": planarity_tol,
+                "size": g.size,
+                "start_tangent": g.tangent.to_array(),
+                "plane_normal": g.plane_normal.to_array(),
+            });
+        }
+        let (rows, cols) = info.grid_size();
+        let r = info.theta_range;
+        v["start_point"] = json!(info.guide_u.points[0].to_array());
+        v["mode"] = json!(mode_name(info.mode));
+        v["theta_deg"] = json!(info.theta_deg);
+        v["theta_admissible"] = json!(info.theta_range.contains(info.theta_deg));
+        v["admissible_theta_deg"] = json!({
+            "abs_min": r.min_deg,
+            "abs_max": r.max_deg,
+            "intervals": [[-r.max_deg, -r.min_deg], [r.min_deg, r.max_deg]],
+        });
+        v["singular_theta_deg"] = json!(SINGULAR_DEG);
+        v["theta_singular"] = json!(near_singular(info.theta_deg));
+        v["rows"] = json!(rows);
+        v["cols"] = json!(cols);
+        v["vertices"] = json!(rows * cols);
+        v["faces"] = json!((rows - 1) * (cols - 1));
+        v["file"] = json!(file);
+        v
+    }
 }
 
 #[cfg(test)]
