@@ -9,27 +9,13 @@
 use glam::DVec3;
 use monge_core::design::ArcSpec;
 use monge_core::measure::measure;
-use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
+use monge_core::{Design, GuideSpec, QuadGrid};
 use nalgebra::DMatrix;
 
-/// Every property must hold to this, relative to the model size.
-const TOL: f64 = 1e-9;
-
-fn mesh(design: &Design) -> QuadGrid {
-    generate(design, &GenerateOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
-        .grid
-}
-
-/// An arc guide starting at the origin.
-fn arc(center: [f64; 3], normal: [f64; 3], angle_deg: f64, samples: usize) -> GuideSpec {
-    GuideSpec::arc(center, [0.0; 3], normal, angle_deg, samples)
-}
-
-/// A cubic B-spline guide.
-fn bspline(control_points: Vec<[f64; 3]>, samples: usize) -> GuideSpec {
-    GuideSpec::bspline(3, control_points, samples)
-}
+mod common;
+use common::{
+    bspline, design, freeform, mesh, two_circles, PROFILE_RADIUS as RT, RAIL_RADIUS as R, TOL,
+};
 
 /// All measurements of `measure` within the tolerance; returns the largest.
 fn assert_exact(grid: &QuadGrid, what: &str) -> f64 {
@@ -85,27 +71,6 @@ fn inscribed(points: &[DVec3]) -> ((DVec3, f64, DVec3), f64) {
 // ---------------------------------------------------------------------------
 // Torus (§4.1.1) and Dupin cyclides (§4.1.3, §4.6).
 // ---------------------------------------------------------------------------
-
-const R: f64 = 10.0;
-const RT: f64 = 3.0;
-
-/// guide_u: arc of radius R in y = 0 centred at (0, 0, −R) (start tangent ±x);
-/// guide_v: arc of radius r in x = 0 centred at (0, 0, −r) (start tangent ±y).
-fn two_circles(
-    theta_deg: f64,
-    rail_deg: f64,
-    rows: usize,
-    profile_deg: f64,
-    cols: usize,
-) -> Design {
-    Design {
-        mesh: Default::default(),
-        theta_deg,
-        guide_u: arc([0.0, 0.0, -R], [0.0, 1.0, 0.0], rail_deg, rows),
-        guide_v: arc([0.0, 0.0, -RT], [-1.0, 0.0, 0.0], profile_deg, cols),
-        tolerance: None,
-    }
-}
 
 /// The torus with axis through (0, 0, −R) along y, core radius R − r, tube r:
 /// for a point, its signed distance from the torus and the unit outward
@@ -251,13 +216,7 @@ fn one_circular_guide_makes_its_whole_family_circular() {
             samples: 26,
         });
         for theta in thetas {
-            let g = mesh(&Design {
-                mesh: Default::default(),
-                theta_deg: theta,
-                guide_u: spline_u.clone(),
-                guide_v: guide_v.clone(),
-                tolerance: None,
-            });
+            let g = mesh(&design(theta, spline_u.clone(), guide_v.clone()));
             let m = assert_exact(&g, &format!("φ = {phi}, θ = {theta}"));
             let (circ, plane) = rows_off_circles(&g);
             eprintln!(
@@ -275,33 +234,6 @@ fn one_circular_guide_makes_its_whole_family_circular() {
 // ---------------------------------------------------------------------------
 // Moulding surfaces (§4.1.2).
 // ---------------------------------------------------------------------------
-
-fn freeform(theta_deg: f64, rows: usize, cols: usize) -> Design {
-    Design {
-        mesh: Default::default(),
-        theta_deg,
-        guide_u: bspline(
-            vec![
-                [0.0, 0.0, 0.0],
-                [4.0, 0.0, 0.0],
-                [8.0, 0.0, 2.5],
-                [12.0, 0.0, 1.0],
-                [16.0, 0.0, 3.5],
-            ],
-            rows,
-        ),
-        guide_v: bspline(
-            vec![
-                [0.0, 0.0, 0.0],
-                [0.0, 3.0, 0.0],
-                [0.0, 6.0, -1.5],
-                [0.0, 10.0, 1.0],
-            ],
-            cols,
-        ),
-        tolerance: None,
-    }
-}
 
 /// The mirror image of `p` in the perpendicular bisector plane of `a b`.
 fn mirror(p: DVec3, a: DVec3, b: DVec3) -> DVec3 {

@@ -14,6 +14,9 @@ use monge_core::approximate::{
 use monge_core::measure::measure;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 
+mod common;
+use common::design;
+
 /// A deterministic noise in [−1, 1] (splitmix64).
 fn noise(k: u64) -> f64 {
     let mut z = k.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -25,9 +28,9 @@ fn noise(k: u64) -> f64 {
 
 /// The 10 m roof of `examples/targets/roof.design.json` (arbitrary mode, §3.2).
 fn roof(samples: usize) -> Design {
-    Design {
-        theta_deg: 50.0,
-        guide_u: GuideSpec::bspline(
+    design(
+        50.0,
+        GuideSpec::bspline(
             3,
             vec![
                 [0.0; 3],
@@ -38,7 +41,7 @@ fn roof(samples: usize) -> Design {
             ],
             samples,
         ),
-        guide_v: GuideSpec::bspline(
+        GuideSpec::bspline(
             3,
             vec![
                 [0.0; 3],
@@ -49,9 +52,7 @@ fn roof(samples: usize) -> Design {
             ],
             samples,
         ),
-        mesh: Default::default(),
-        tolerance: None,
-    }
+    )
 }
 
 /// Distance from `p` to the nearest triangle of `grid` (every face, two triangles each).

@@ -12,7 +12,8 @@ use std::cell::{Cell, RefCell};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-const TOL: f64 = 1e-9;
+mod common;
+use common::TOL;
 
 /// A cubic B-spline guide from the origin with start tangent `t`, bending in the
 /// plane spanned by `t` and `d`.

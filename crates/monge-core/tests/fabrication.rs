@@ -8,20 +8,15 @@ use monge_core::fabrication::{
     fabricate, BaseMesh, Fabrication, FabricationError, FabricationOptions, LineFamily,
     SegmentShape,
 };
-use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
+use monge_core::{Design, GuideSpec, QuadGrid};
 use nalgebra::DMatrix;
 
-const TOL: f64 = 1e-9;
+mod common;
+use common::{arc, design, freeform, mesh, two_circles, TOL};
 
 /// The discrete Dupin cyclide of Figure 12 (θ = 30°), smaller than the example file.
 fn dupin(theta_deg: f64) -> Design {
-    Design {
-        mesh: Default::default(),
-        theta_deg,
-        guide_u: GuideSpec::arc([0.0, 0.0, -10.0], [0.0; 3], [0.0, 1.0, 0.0], 90.0, 13),
-        guide_v: GuideSpec::arc([0.0, 0.0, -3.0], [0.0; 3], [-1.0, 0.0, 0.0], 80.0, 11),
-        tolerance: None,
-    }
+    two_circles(theta_deg, 90.0, 13, 80.0, 11)
 }
 
 /// Number of edges on each arc of the bi-arc guide.
@@ -42,20 +37,14 @@ fn biarc() -> Design {
         let phi = (40.0 + 30.0 * k as f64 / BIARC_EDGES as f64).to_radians();
         points.push(on(c2, 6.0, phi).to_array());
     }
-    Design {
-        mesh: Default::default(),
-        theta_deg: 30.0,
-        guide_u: GuideSpec::arc([0.0, 0.0, -10.0], [0.0; 3], [0.0, 1.0, 0.0], 60.0, 13),
-        guide_v: GuideSpec::Points {
+    design(
+        30.0,
+        arc([0.0, 0.0, -10.0], [0.0, 1.0, 0.0], 60.0, 13),
+        GuideSpec::Points {
             points,
             tangent: Some([0.0, 1.0, 0.0]),
         },
-        tolerance: None,
-    }
-}
-
-fn mesh(design: &Design) -> QuadGrid {
-    generate(design, &GenerateOptions::default()).unwrap().grid
+    )
 }
 
 fn options(layers: &[f64]) -> FabricationOptions {
@@ -509,26 +498,7 @@ fn node_types_agree_with_brute_force_grouping() {
     // The Figure 13 guides on a fine grid: every interior beam angle is near 90°,
     // the case where a one-angle lookup degenerates. Tolerances from none merged
     // to most merged.
-    let cubic = |control_points: Vec<[f64; 3]>| GuideSpec::bspline(3, control_points, 41);
-    let design = Design {
-        mesh: Default::default(),
-        theta_deg: -30.0,
-        guide_u: cubic(vec![
-            [0.0, 0.0, 0.0],
-            [4.0, 0.0, 0.0],
-            [8.0, 0.0, 2.5],
-            [12.0, 0.0, 1.0],
-            [16.0, 0.0, 3.5],
-        ]),
-        guide_v: cubic(vec![
-            [0.0, 0.0, 0.0],
-            [0.0, 3.0, 0.0],
-            [0.0, 6.0, -1.5],
-            [0.0, 10.0, 1.0],
-        ]),
-        tolerance: None,
-    };
-    let base = mesh(&design);
+    let base = mesh(&freeform(-30.0, 41, 41));
     let mut counts = Vec::new();
     for angle_tol in [1e-9, 1e-3, 5e-3, 2e-2, 1e-1] {
         let opts = FabricationOptions {

@@ -10,19 +10,25 @@
 //!
 //! Run with `-- --nocapture` to see the table of errors.
 
+use std::cell::RefCell;
+
 use glam::DVec3;
 use monge_core::design::BSplineSpec;
 use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::grid::{bbox_diagonal, origin_ratio};
 use monge_core::guide::GuideError;
+use monge_core::measure::measure;
 use monge_core::{
     generate, inspect, Design, GenerateError, GenerateOptions, GuideSpec, Mode, QuadGrid,
     Tolerances,
 };
 use nalgebra::{DMatrix, Vector2};
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-/// Where every property must hold (relative to the size) when f64 can hold it.
-const TOL: f64 = 1e-9;
+mod common;
+use common::random_designs::{bbox, characteristic_case, own_face_planarity};
+use common::{ulp, TOL};
 
 /// Largest distance of `points` from their least-squares plane, relative to the first point.
 fn plane_distance(points: &[DVec3]) -> f64 {
@@ -141,15 +147,6 @@ fn design(arbitrary: bool, size: f64, corner: DVec3) -> Design {
             angle: slack,
             start: slack,
         }),
-    }
-}
-
-/// ulp of `x`.
-fn ulp(x: f64) -> f64 {
-    if x == 0.0 {
-        0.0
-    } else {
-        (f64::from_bits(x.to_bits() + 1) - x).abs()
     }
 }
 
@@ -556,4 +553,106 @@ fn refusals_far_from_the_origin_blame_the_precision_of_the_coordinates() {
 /// A design size from 1e-2 to 1e2.
 fn rng_size(rng: &mut Rng) -> f64 {
     10f64.powf(rng.uniform(-2.0, 2.0))
+}
+
+/// `spec` scaled by `s` about the origin, then moved by `shift`.
+fn placed(spec: &GuideSpec, s: f64, shift: DVec3) -> GuideSpec {
+    let point = |p: &[f64; 3]| (s * DVec3::from_array(*p) + shift).to_array();
+    let vector = |v: &[f64; 3]| (s * DVec3::from_array(*v)).to_array();
+    let mut g = spec.clone();
+    match &mut g {
+        GuideSpec::Points { points, tangent } => {
+            points.iter_mut().for_each(|p| *p = point(p));
+            *tangent = tangent.as_ref().map(vector);
+        }
+        GuideSpec::BSpline { bspline: b, .. } => {
+            b.control_points.iter_mut().for_each(|p| *p = point(p));
+        }
+        GuideSpec::Arc(a) => (a.center, a.start) = (point(&a.center), point(&a.start)),
+        GuideSpec::Parabola(p) => {
+            (p.start, p.tangent, p.quadratic) =
+                (point(&p.start), vector(&p.tangent), vector(&p.quadratic));
+        }
+    }
+    g
+}
+
+/// Random characteristic designs in axis-aligned planes (every kind of guide,
+/// any θ), scaled to 1e-3 … 5 and moved up to 5e5 from the origin in any
+/// direction: every measure (relative to the size) stays within 1e-9 plus a few
+/// ulps of the coordinates (the rounding of the output itself), relative to the
+/// size. Axis-aligned planes keep the input itself exact when moved (a tilted
+/// plane's points round by ε |corner|, which bends the guides and the angle
+/// between them by ε |corner| / size: another design;
+/// `error_stays_relative_to_the_size_far_from_the_origin` covers the arbitrary
+/// mode with a tilted plane).
+#[test]
+fn designs_far_from_the_origin_stay_exact_relative_to_their_size() {
+    let case = characteristic_case().prop_filter("axis-aligned planes", |c| {
+        c.label.ends_with("rotated=false")
+    });
+    let place = (
+        -3.0..0.7f64,
+        prop::sample::select(vec![0.0, 1e4, 1e5, 5e5]),
+        (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+    );
+    let mut config = TestRunner::new_with_rng(
+        Config {
+            cases: 400,
+            max_global_rejects: 20_000,
+            failure_persistence: None,
+            ..Config::default()
+        },
+        TestRng::from_seed(RngAlgorithm::ChaCha, &[31; 32]),
+    );
+    let worst = RefCell::new((0.0f64, String::new()));
+    let result = config.run(&(case, place), |(case, (log_s, corner, (x, y, z)))| {
+        let shift = corner * DVec3::new(x, y, z).normalize_or(DVec3::X);
+        let s = 10f64.powf(log_s);
+        let size = s * bbox(&case.u).max(bbox(&case.v));
+        // Input rounding at |shift| bends planes by up to ε |shift| / size.
+        let slack = (64.0 * f64::EPSILON * corner / size).max(1e-9);
+        let design = Design {
+            guide_u: placed(&case.design.guide_u, s, shift),
+            guide_v: placed(&case.design.guide_v, s, shift),
+            tolerance: Some(Tolerances {
+                planarity: slack,
+                angle: slack,
+                start: slack,
+            }),
+            ..case.design.clone()
+        };
+        let Ok(g) = generate(&design, &GenerateOptions::default()) else {
+            return Err(TestCaseError::reject("invalid or degenerate"));
+        };
+        if g.report.folded_faces > 0 || g.report.min_crossing.sine < 1e-2 {
+            return Err(TestCaseError::reject("folded or nearly pinched"));
+        }
+        let grid = &g.grid;
+        let m = measure(grid);
+        let mut own: f64 = 0.0;
+        for i in 0..grid.rows - 1 {
+            for j in 0..grid.cols - 1 {
+                let q = grid.face(i, j);
+                let o = q[0];
+                own = own.max(own_face_planarity(&q.map(|p| p - o)) / m.scale);
+            }
+        }
+        let err = own
+            .max(m.circularity.value)
+            .max(m.row_planarity.value)
+            .max(m.column_planarity.value);
+        let ulps = (err - TOL).max(0.0) * m.scale / ulp(corner).max(f64::MIN_POSITIVE);
+        let label = format!("{} s={s:.1e} corner={corner:e}: {err:.2e}", case.label);
+        if ulps > worst.borrow().0 {
+            *worst.borrow_mut() = (ulps, label.clone());
+        }
+        prop_assert!(err <= TOL + 4.0 * ulp(corner) / m.scale, "{label}");
+        Ok(())
+    });
+    let (ulps, label) = worst.into_inner();
+    eprintln!("far from the origin: worst excess over 1e-9 {ulps:.2} ulps of the corner [{label}]");
+    if let Err(e) = result {
+        panic!("{e}");
+    }
 }

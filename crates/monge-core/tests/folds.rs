@@ -8,6 +8,9 @@ use monge_core::grid::{quad_turn, Turn};
 use monge_core::measure::{circularity, face_planarity, measure};
 use monge_core::{generate, Design, QuadGrid};
 
+mod common;
+use common::design;
+
 /// Whether two opposite edges of the quad cross, independently of the code
 /// under test: the corners are projected on the plane of the largest of the
 /// four corner triangles, and segments AB, CD (and BC, DA) cross when each
@@ -106,10 +109,9 @@ fn crossed_figure22() -> Design {
         },
         other => other,
     };
-    Design {
-        mesh: Default::default(),
-        theta_deg: -30.0,
-        guide_u: guide(
+    design(
+        -30.0,
+        guide(
             vec![[0.0; 3], [4.0, 0.0, 0.0], [6.0, 0.0, 0.4], [6.5, 0.0, 3.0]],
             &[
                 0.0,
@@ -127,7 +129,7 @@ fn crossed_figure22() -> Design {
                 1.0,
             ],
         ),
-        guide_v: guide(
+        guide(
             vec![[0.0; 3], [0.0, 3.0, 0.0], [0.0, 5.0, 0.3], [0.0, 5.4, 2.5]],
             &[
                 0.0,
@@ -145,8 +147,7 @@ fn crossed_figure22() -> Design {
                 1.0,
             ],
         ),
-        tolerance: None,
-    }
+    )
 }
 
 #[test]

@@ -4,25 +4,14 @@ use glam::DVec3;
 use monge_core::design::Tolerances;
 use monge_core::measure::measure;
 use monge_core::multipatch::{build, Attach, MultiPatchDesign, MultiPatchError, PatchSpec, Side};
-use monge_core::{GenerateError, GenerateOptions, GuideSpec};
+use monge_core::{GenerateError, GuideSpec};
 
-const R_U: f64 = 4.0;
+mod common;
+use common::{arc_u, opts};
+
 const R_V: f64 = 3.0;
 
-/// An arc of the circle of radius `r` centred at `(0, 0, -r)` in the plane y = 0 (axis `y`, `sign`
-/// = +1 towards +x) starting at angle `from_deg`.
-fn arc_u(from_deg: f64, angle_deg: f64, samples: usize) -> GuideSpec {
-    let a = from_deg.to_radians();
-    GuideSpec::arc(
-        [0.0, 0.0, -R_U],
-        [R_U * a.sin(), 0.0, R_U * a.cos() - R_U],
-        [0.0, angle_deg.signum(), 0.0],
-        angle_deg.abs(),
-        samples,
-    )
-}
-
-/// The same in the plane x = 0 (towards +y for positive angles).
+/// [`arc_u`] in the plane x = 0, radius `R_V` (towards +y for positive angles).
 fn arc_v(from_deg: f64, angle_deg: f64, samples: usize) -> GuideSpec {
     let a = from_deg.to_radians();
     GuideSpec::arc(
@@ -71,10 +60,6 @@ fn chain() -> MultiPatchDesign {
         attached(10.0, 1, Side::LastRow, arc_u(35.0, 25.0, 8)),
         attached(60.0, 0, Side::FirstRow, arc_u(0.0, -12.0, 5)),
     ])
-}
-
-fn opts() -> GenerateOptions {
-    GenerateOptions::default()
 }
 
 fn bits(points: &[DVec3]) -> Vec<[u64; 3]> {

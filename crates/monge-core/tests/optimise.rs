@@ -4,18 +4,10 @@ use glam::DVec3;
 use monge_core::measure::measure;
 use monge_core::multipatch::{build, Attach, MultiPatchDesign, MultiPatchError, PatchSpec, Side};
 use monge_core::optimise::{fit, BoundaryRef, FitError, FitSpec, FreeParameter, GuideKey, Target};
-use monge_core::{GenerateOptions, GuideSpec};
+use monge_core::GuideSpec;
 
-fn arc_u(from_deg: f64, angle_deg: f64, samples: usize) -> GuideSpec {
-    let (r, a) = (4.0, from_deg.to_radians());
-    GuideSpec::arc(
-        [0.0, 0.0, -r],
-        [r * a.sin(), 0.0, r * a.cos() - r],
-        [0.0, 1.0, 0.0],
-        angle_deg,
-        samples,
-    )
-}
+mod common;
+use common::{arc_u, opts};
 
 /// HippoHaus-like: a first dome patch (θ1 fixed), a transition patch (θ2) and a
 /// second dome patch (θ3), along one bottom guide (a circle); G3 is the last row.
@@ -73,10 +65,6 @@ fn with_fit(mut d: MultiPatchDesign, free: Vec<FreeParameter>, target: Target) -
         max_evaluations: None,
     });
     d
-}
-
-fn opts() -> GenerateOptions {
-    GenerateOptions::default()
 }
 
 /// G3: the last row of the design with the true values.

@@ -9,24 +9,25 @@ use monge_core::panels::{optimise_panels, PanelError, PanelOptions, MAX_FREE_SAM
 use monge_core::scan::panel_stats;
 use monge_core::{generate, Design, GenerateError, QuadGrid};
 
+mod common;
+use common::design;
+
 /// Figure-22-like: cubic B-spline guides, nearly straight at first and sharply
 /// bent near their ends, so uniform parameters give elongated faces.
 fn figure22() -> Design {
-    Design {
-        mesh: Default::default(),
-        theta_deg: -30.0,
-        guide_u: GuideSpec::bspline(
+    design(
+        -30.0,
+        GuideSpec::bspline(
             3,
             vec![[0.0; 3], [4.0, 0.0, 0.0], [6.0, 0.0, 0.4], [6.5, 0.0, 3.0]],
             9,
         ),
-        guide_v: GuideSpec::bspline(
+        GuideSpec::bspline(
             3,
             vec![[0.0; 3], [0.0, 3.0, 0.0], [0.0, 5.0, 0.3], [0.0, 5.4, 2.5]],
             9,
         ),
-        tolerance: None,
-    }
+    )
 }
 
 #[test]

@@ -3,16 +3,17 @@
 use monge_core::scan::{parse_range, scan, set_parameter, values, ScanError, Status, MAX_VALUES};
 use monge_core::{generate, Design, GuideSpec};
 
+mod common;
+use common::design;
+
 /// The two guides of Figure 14 (`examples/fig14-family.toml`, fewer samples):
 /// their θ family folds over itself between about 80° and 110°.
 fn figure14() -> Design {
-    Design {
-        mesh: Default::default(),
-        theta_deg: 20.0,
-        guide_u: GuideSpec::bspline(2, vec![[0.0; 3], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]], 21),
-        guide_v: GuideSpec::bspline(2, vec![[0.0; 3], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]], 21),
-        tolerance: None,
-    }
+    design(
+        20.0,
+        GuideSpec::bspline(2, vec![[0.0; 3], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]], 21),
+        GuideSpec::bspline(2, vec![[0.0; 3], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]], 21),
+    )
 }
 
 #[test]

@@ -3,19 +3,19 @@
 use glam::DVec3;
 use monge_core::measure::measure;
 use monge_core::symmetry::{assemble, isometries, Assembly, SymmetryError, SymmetrySpec};
-use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
+use monge_core::QuadGrid;
+
+mod common;
+use common::{arc, design, mesh};
 
 /// A characteristic patch: guide_u in the plane y = 0, guide_v in the plane x = 0,
 /// starting at the origin; its node axes along guide_u lie in y = 0 and along guide_v in x = 0.
 fn patch(rows: usize, cols: usize) -> QuadGrid {
-    let d = Design {
-        theta_deg: -35.0,
-        guide_u: GuideSpec::arc([0.0, 0.0, -4.0], [0.0; 3], [0.0, 1.0, 0.0], 30.0, rows),
-        guide_v: GuideSpec::arc([0.0, 0.0, -3.0], [0.0; 3], [-1.0, 0.0, 0.0], 40.0, cols),
-        mesh: Default::default(),
-        tolerance: None,
-    };
-    generate(&d, &GenerateOptions::default()).unwrap().grid
+    mesh(&design(
+        -35.0,
+        arc([0.0, 0.0, -4.0], [0.0, 1.0, 0.0], 30.0, rows),
+        arc([0.0, 0.0, -3.0], [-1.0, 0.0, 0.0], 40.0, cols),
+    ))
 }
 
 fn mirror(normal: [f64; 3]) -> SymmetrySpec {

@@ -4,6 +4,9 @@
 
 use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, GuideSpec};
 
+mod common;
+use common::design;
+
 fn example(name: &str) -> Design {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples")
@@ -43,13 +46,11 @@ fn one_two_and_three_threads_give_the_same_bits() {
     let freeform = example("fig13-freeform.json");
     // Figure 14's guides (examples/fig14-family.toml) at θ = 100°: folded (§4.3).
     let quadratic = |p: [[f64; 3]; 3]| GuideSpec::bspline(2, p.to_vec(), 41);
-    let folded = Design {
-        mesh: Default::default(),
-        theta_deg: 100.0,
-        guide_u: quadratic([[0.0, 0.0, 0.0], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]]),
-        guide_v: quadratic([[0.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]]),
-        tolerance: None,
-    };
+    let folded = design(
+        100.0,
+        quadratic([[0.0, 0.0, 0.0], [5.0, 0.0, 0.0], [10.0, 0.0, 4.0]]),
+        quadratic([[0.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, 8.0, 3.0]]),
+    );
     let designs = [
         resampled(freeform, 301),
         resampled(example("fig12-dupin-theta30.json"), 203),
@@ -68,7 +69,7 @@ fn one_two_and_three_threads_give_the_same_bits() {
 
 #[test]
 fn the_first_degenerate_face_does_not_depend_on_the_threads() {
-    // The torus of errors.rs whose profile has a sample on the top circle, with
+    // The torus of degenerate.rs whose profile has a sample on the top circle, with
     // 401 rows: every row has a zero Gauss edge at column 18, in every task.
     let mut d = resampled(example("fig12-torus.json"), 401);
     let GuideSpec::Arc(profile) = &mut d.guide_v else {

@@ -1,0 +1,152 @@
+//! Builders shared by the monge-core integration tests: guides, designs, the
+//! named designs of the paper that several test files use, and the helpers of
+//! tests split over several files (the submodules).
+//!
+//! Every test file includes this module (`mod common;`) and uses only part of
+//! it, hence `allow(dead_code)`.
+#![allow(dead_code)]
+
+pub mod cyclidic;
+pub mod developable;
+pub mod random_designs;
+
+use monge_core::{generate, Design, GenerateError, GenerateOptions, GuideSpec, QuadGrid};
+
+/// Every property must hold to this, relative to the model size.
+pub const TOL: f64 = 1e-9;
+
+/// The default generation options.
+pub fn opts() -> GenerateOptions {
+    GenerateOptions::default()
+}
+
+/// An arc guide starting at the origin.
+pub fn arc(center: [f64; 3], normal: [f64; 3], angle_deg: f64, samples: usize) -> GuideSpec {
+    GuideSpec::arc(center, [0.0; 3], normal, angle_deg, samples)
+}
+
+/// A clamped uniform cubic B-spline guide.
+pub fn bspline(control_points: Vec<[f64; 3]>, samples: usize) -> GuideSpec {
+    GuideSpec::bspline(3, control_points, samples)
+}
+
+/// A design of two guides at angle θ, with the default mesh options and tolerances.
+pub fn design(theta_deg: f64, guide_u: GuideSpec, guide_v: GuideSpec) -> Design {
+    Design {
+        mesh: Default::default(),
+        theta_deg,
+        guide_u,
+        guide_v,
+        tolerance: None,
+    }
+}
+
+/// The mesh of `design` with the default options; panics with the refusal.
+pub fn mesh(design: &Design) -> QuadGrid {
+    generate(design, &opts())
+        .unwrap_or_else(|e| panic!("design refused: {e}"))
+        .grid
+}
+
+/// The error `generate` refuses `design` with; panics if it is accepted.
+pub fn refused(design: &Design, options: &GenerateOptions) -> GenerateError {
+    match generate(design, options) {
+        Ok(_) => panic!("design accepted: {design:?}"),
+        Err(e) => e,
+    }
+}
+
+/// Asserts that `message` contains every one of `parts`, and prints it.
+pub fn assert_mentions(message: &str, parts: &[&str]) {
+    for p in parts {
+        assert!(message.contains(p), "message lacks {p:?}: {message}");
+    }
+    eprintln!("message: {message}");
+}
+
+/// ulp of `x` (0 for 0).
+pub fn ulp(x: f64) -> f64 {
+    if x == 0.0 {
+        0.0
+    } else {
+        (f64::from_bits(x.to_bits() + 1) - x).abs()
+    }
+}
+
+/// Radius of guide_u of [`two_circles`].
+pub const RAIL_RADIUS: f64 = 10.0;
+/// Radius of guide_v of [`two_circles`].
+pub const PROFILE_RADIUS: f64 = 3.0;
+
+/// Torus (θ = 0, §4.1.1) and Dupin cyclides (θ ≠ 0, §4.1.3, Figure 12):
+/// guide_u an arc of radius [`RAIL_RADIUS`] in y = 0 centred at (0, 0, −10)
+/// (start tangent ±x) over `rail_deg` in `rows` samples; guide_v an arc of
+/// radius [`PROFILE_RADIUS`] in x = 0 centred at (0, 0, −3) (start tangent ±y)
+/// over `profile_deg` in `cols` samples.
+pub fn two_circles(
+    theta_deg: f64,
+    rail_deg: f64,
+    rows: usize,
+    profile_deg: f64,
+    cols: usize,
+) -> Design {
+    design(
+        theta_deg,
+        arc([0.0, 0.0, -RAIL_RADIUS], [0.0, 1.0, 0.0], rail_deg, rows),
+        arc(
+            [0.0, 0.0, -PROFILE_RADIUS],
+            [-1.0, 0.0, 0.0],
+            profile_deg,
+            cols,
+        ),
+    )
+}
+
+/// The free-form design of Figure 13 (§4.1.2): cubic B-spline guides in
+/// y = 0 and x = 0, with `rows` and `cols` samples.
+pub fn freeform(theta_deg: f64, rows: usize, cols: usize) -> Design {
+    design(
+        theta_deg,
+        bspline(
+            vec![
+                [0.0, 0.0, 0.0],
+                [4.0, 0.0, 0.0],
+                [8.0, 0.0, 2.5],
+                [12.0, 0.0, 1.0],
+                [16.0, 0.0, 3.5],
+            ],
+            rows,
+        ),
+        freeform_guide_v(cols),
+    )
+}
+
+/// guide_v of [`freeform`]: a cubic B-spline in x = 0 with `samples` samples.
+pub fn freeform_guide_v(samples: usize) -> GuideSpec {
+    bspline(
+        vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 3.0, 0.0],
+            [0.0, 6.0, -1.5],
+            [0.0, 10.0, 1.0],
+        ],
+        samples,
+    )
+}
+
+/// Radius of [`arc_u`].
+pub const R_U: f64 = 4.0;
+
+/// The bottom guide of the multi-patch designs (§4.7): an arc of the circle of
+/// radius [`R_U`] centred at (0, 0, −R_U) in the plane y = 0 (axis y, towards
+/// +x for positive angles), starting at angle `from_deg`.
+pub fn arc_u(from_deg: f64, angle_deg: f64, samples: usize) -> GuideSpec {
+    let a = from_deg.to_radians();
+    GuideSpec::arc(
+        [0.0, 0.0, -R_U],
+        [R_U * a.sin(), 0.0, R_U * a.cos() - R_U],
+        [0.0, angle_deg.signum(), 0.0],
+        angle_deg.abs(),
+        samples,
+    )
+}
