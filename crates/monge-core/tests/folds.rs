@@ -9,7 +9,7 @@ use monge_core::measure::{circularity, face_planarity, measure};
 use monge_core::{generate, Design, QuadGrid};
 
 mod common;
-use common::design;
+use common::{design, figure22};
 
 /// Whether two opposite edges of the quad cross, independently of the code
 /// under test: the corners are projected on the plane of the largest of the
@@ -101,18 +101,18 @@ fn a_symmetric_bow_tie_is_a_folded_face() {
 /// What `monge optimise-panels` wrote for `examples/fig22-panels.json` before
 /// issue 10: its mesh has face (7, 11) crossed.
 fn crossed_figure22() -> Design {
-    let guide = |control_points, parameters: &[f64]| match GuideSpec::bspline(3, control_points, 13)
-    {
+    let guide = |guide, parameters: &[f64]| match guide {
         GuideSpec::BSpline { bspline, .. } => GuideSpec::BSpline {
             bspline,
             parameters: Some(parameters.to_vec()),
         },
         other => other,
     };
+    let uniform = figure22(13);
     design(
-        -30.0,
+        uniform.theta_deg,
         guide(
-            vec![[0.0; 3], [4.0, 0.0, 0.0], [6.0, 0.0, 0.4], [6.5, 0.0, 3.0]],
+            uniform.guide_u,
             &[
                 0.0,
                 0.2208782254371717,
@@ -130,7 +130,7 @@ fn crossed_figure22() -> Design {
             ],
         ),
         guide(
-            vec![[0.0; 3], [0.0, 3.0, 0.0], [0.0, 5.0, 0.3], [0.0, 5.4, 2.5]],
+            uniform.guide_v,
             &[
                 0.0,
                 0.11234906020073467,

@@ -10,29 +10,11 @@ use monge_core::scan::panel_stats;
 use monge_core::{generate, Design, GenerateError, QuadGrid};
 
 mod common;
-use common::design;
-
-/// Figure-22-like: cubic B-spline guides, nearly straight at first and sharply
-/// bent near their ends, so uniform parameters give elongated faces.
-fn figure22() -> Design {
-    design(
-        -30.0,
-        GuideSpec::bspline(
-            3,
-            vec![[0.0; 3], [4.0, 0.0, 0.0], [6.0, 0.0, 0.4], [6.5, 0.0, 3.0]],
-            9,
-        ),
-        GuideSpec::bspline(
-            3,
-            vec![[0.0; 3], [0.0, 3.0, 0.0], [0.0, 5.0, 0.3], [0.0, 5.4, 2.5]],
-            9,
-        ),
-    )
-}
+use common::figure22;
 
 #[test]
 fn optimised_sampling_evens_out_the_panels_and_stays_exact() {
-    let d = figure22();
+    let d = figure22(9);
     let r = optimise_panels(&d, &Default::default(), &PanelOptions::default()).unwrap();
     println!(
         "variance {:e} -> {:e}, spread {} -> {}, evals {}",
@@ -69,7 +51,7 @@ fn optimised_sampling_evens_out_the_panels_and_stays_exact() {
 
 #[test]
 fn panel_errors() {
-    let mut d = figure22();
+    let mut d = figure22(9);
     d.guide_u = GuideSpec::Points {
         points: vec![[0.0; 3], [1.0, 0.0, 0.1], [2.0, 0.0, 0.5]],
         tangent: Some([1.0, 0.0, 0.0]),
@@ -80,7 +62,7 @@ fn panel_errors() {
         optimise_panels(&d, &Default::default(), &o).unwrap_err(),
         PanelError::NoBSplineGuide
     );
-    let mut d = figure22();
+    let mut d = figure22(9);
     bspline_of(&mut d.guide_u).samples = 2;
     bspline_of(&mut d.guide_v).samples = 2;
     assert_eq!(
@@ -88,7 +70,7 @@ fn panel_errors() {
         PanelError::NothingToChoose
     );
     // 10 000 samples once took 3 GB of BOBYQA model before failing to allocate more.
-    let mut d = figure22();
+    let mut d = figure22(9);
     bspline_of(&mut d.guide_u).samples = 10_000;
     assert_eq!(
         optimise_panels(&d, &Default::default(), &o).unwrap_err(),
@@ -97,13 +79,13 @@ fn panel_errors() {
             max: MAX_FREE_SAMPLES
         }
     );
-    let mut d = figure22();
+    let mut d = figure22(9);
     d.theta_deg = 90.0;
     assert!(matches!(
         optimise_panels(&d, &Default::default(), &o).unwrap_err(),
         PanelError::Start(GenerateError::ThetaSingular { .. })
     ));
-    let d = figure22();
+    let d = figure22(9);
     let few = PanelOptions {
         max_evaluations: Some(5),
         ..o
@@ -130,7 +112,7 @@ fn guide_parameters_are_validated() {
     let check = |guide_u: GuideSpec| match generate(
         &Design {
             guide_u,
-            ..figure22()
+            ..figure22(9)
         },
         &Default::default(),
     ) {
@@ -138,7 +120,7 @@ fn guide_parameters_are_validated() {
         other => panic!("{:?}", other.map(|g| g.grid.rows)),
     };
     let with = |t: Vec<f64>| GuideSpec::BSpline {
-        bspline: bspline_of(&mut figure22().guide_u).clone(),
+        bspline: bspline_of(&mut figure22(9).guide_u).clone(),
         parameters: Some(t),
     };
     let nine = |k: usize, v: f64| {
@@ -174,12 +156,12 @@ fn guide_parameters_are_validated() {
     let uniform = generate(
         &Design {
             guide_u: with((0..9).map(|i| i as f64 / 8.0).collect()),
-            ..figure22()
+            ..figure22(9)
         },
         &Default::default(),
     )
     .unwrap();
-    let plain = generate(&figure22(), &Default::default()).unwrap();
+    let plain = generate(&figure22(9), &Default::default()).unwrap();
     assert_eq!(uniform.grid.vertices, plain.grid.vertices);
 }
 
@@ -217,8 +199,8 @@ fn panel_areas_hold_at_the_extremes_of_the_design_scale() {
 /// and the design came back unchanged with exit 0.
 #[test]
 fn a_huge_design_is_optimised_as_at_unit_scale() {
-    let unit = figure22();
-    let mut huge = figure22();
+    let unit = figure22(9);
+    let mut huge = figure22(9);
     for g in [&mut huge.guide_u, &mut huge.guide_v] {
         for p in bspline_of(g).control_points.iter_mut() {
             *p = p.map(|c| c * 1e99);

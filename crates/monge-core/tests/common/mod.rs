@@ -102,7 +102,7 @@ pub fn two_circles(
     )
 }
 
-/// The free-form design of Figure 13 (§4.1.2): cubic B-spline guides in
+/// The free-form design of Figure 13 (§4.2): cubic B-spline guides in
 /// y = 0 and x = 0, with `rows` and `cols` samples.
 pub fn freeform(theta_deg: f64, rows: usize, cols: usize) -> Design {
     design(
@@ -131,6 +131,23 @@ pub fn freeform_guide_v(samples: usize) -> GuideSpec {
             [0.0, 10.0, 1.0],
         ],
         samples,
+    )
+}
+
+/// Figure-22-like (§4.8): cubic B-spline guides, nearly straight at first and
+/// sharply bent near their ends, so uniform parameters give elongated faces;
+/// `samples` samples on each guide.
+pub fn figure22(samples: usize) -> Design {
+    design(
+        -30.0,
+        bspline(
+            vec![[0.0; 3], [4.0, 0.0, 0.0], [6.0, 0.0, 0.4], [6.5, 0.0, 3.0]],
+            samples,
+        ),
+        bspline(
+            vec![[0.0; 3], [0.0, 3.0, 0.0], [0.0, 5.0, 0.3], [0.0, 5.4, 2.5]],
+            samples,
+        ),
     )
 }
 
