@@ -7,6 +7,9 @@ use monge_core::measure::measure;
 use monge_core::symmetry::{assemble, isometries, SymmetrySpec};
 use monge_core::{generate, GenerateOptions, QuadGrid};
 
+mod common;
+use common::Lcg;
+
 fn plane(point: [f64; 3], normal: [f64; 3]) -> PlaneSpec {
     PlaneSpec { point, normal }
 }
@@ -114,21 +117,6 @@ fn facade_boundaries_lie_in_the_four_walls() {
 #[test]
 fn fig17_boundaries_lie_in_the_planes() {
     check(&fig17());
-}
-
-/// A small deterministic generator (no dependency, fixed seeds).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn vec(&mut self) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next())
-    }
 }
 
 #[test]

@@ -6,7 +6,7 @@ use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Frame};
 use monge_core::{Design, QuadGrid};
 
-use super::{freeform, mesh, two_circles};
+use super::{freeform, mesh, two_circles, Lcg};
 
 /// The torus design (θ = 0, two circular-arc guides).
 pub fn torus() -> Design {
@@ -96,26 +96,6 @@ pub fn nets() -> Vec<(&'static str, QuadGrid, CyclidicNet)> {
 /// `n` equally spaced values in [0, 1].
 pub fn params(n: usize) -> Vec<f64> {
     (0..n).map(|k| k as f64 / (n - 1) as f64).collect()
-}
-
-/// A small deterministic generator for random quads.
-pub struct Lcg(pub u64);
-impl Lcg {
-    pub fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub fn unit(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(self.next(), self.next(), self.next()) * 2.0 - DVec3::ONE;
-            if (0.1..1.0).contains(&v.length()) {
-                return v.normalize();
-            }
-        }
-    }
 }
 
 /// Random circular quads (four points in cyclic order on a random circle) with a

@@ -10,6 +10,7 @@ pub mod cyclidic;
 pub mod developable;
 pub mod random_designs;
 
+use glam::DVec3;
 use monge_core::{generate, Design, GenerateError, GenerateOptions, GuideSpec, QuadGrid};
 
 /// Every property must hold to this, relative to the model size.
@@ -62,6 +63,40 @@ pub fn assert_mentions(message: &str, parts: &[&str]) {
         assert!(message.contains(p), "message lacks {p:?}: {message}");
     }
     eprintln!("message: {message}");
+}
+
+/// A small deterministic generator (a 64-bit LCG: no dependency, fixed seeds).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// Uniform in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [−1, 1)³.
+    pub fn vec(&mut self) -> DVec3 {
+        DVec3::new(self.signed(), self.signed(), self.signed())
+    }
+
+    /// A unit vector: [`Lcg::vec`] normalised, if its length is in [0.1, 1).
+    pub fn unit(&mut self) -> DVec3 {
+        loop {
+            let v = self.vec();
+            if (0.1..1.0).contains(&v.length()) {
+                return v.normalize();
+            }
+        }
+    }
+
+    /// Uniform in [−1, 1).
+    fn signed(&mut self) -> f64 {
+        self.next() * 2.0 - 1.0
+    }
 }
 
 /// ulp of `x` (0 for 0).
