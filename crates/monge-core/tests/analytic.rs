@@ -10,11 +10,11 @@ use glam::DVec3;
 use monge_core::design::ArcSpec;
 use monge_core::measure::measure;
 use monge_core::{Design, GuideSpec, QuadGrid};
-use nalgebra::DMatrix;
 
 mod common;
 use common::{
-    bspline, design, freeform, mesh, two_circles, PROFILE_RADIUS as RT, RAIL_RADIUS as R, TOL,
+    bspline, circle3, circle_distance, design, freeform, mesh, plane_fit, two_circles,
+    PROFILE_RADIUS as RT, RAIL_RADIUS as R, TOL,
 };
 
 /// All measurements of `measure` within the tolerance; returns the largest.
@@ -25,40 +25,9 @@ fn assert_exact(grid: &QuadGrid, what: &str) -> f64 {
     worst
 }
 
-/// Least-squares plane of `points` by SVD: (centroid, unit normal, largest distance).
-fn plane_fit(points: &[DVec3]) -> (DVec3, DVec3, f64) {
-    let c = points.iter().copied().sum::<DVec3>() / points.len() as f64;
-    let m = DMatrix::from_fn(points.len(), 3, |r, k| (points[r] - c)[k]);
-    let svd = m.svd(false, true);
-    let v_t = svd.v_t.unwrap();
-    let k = svd.singular_values.imin();
-    let n = DVec3::new(v_t[(k, 0)], v_t[(k, 1)], v_t[(k, 2)]).normalize();
-    let d = points
-        .iter()
-        .map(|p| (*p - c).dot(n).abs())
-        .fold(0.0, f64::max);
-    (c, n, d)
-}
-
-/// The circle through three points: (centre, radius, unit normal).
-fn circle3(a: DVec3, b: DVec3, c: DVec3) -> (DVec3, f64, DVec3) {
-    let (u, v) = (b - a, c - a);
-    let w = u.cross(v);
-    let centre =
-        a + (u.length_squared() * v - v.length_squared() * u).cross(w) / (2.0 * w.length_squared());
-    (centre, (a - centre).length(), w.normalize())
-}
-
-/// Distance of `p` from the circle (centre, radius, normal).
-fn circle_distance(p: DVec3, (centre, radius, normal): (DVec3, f64, DVec3)) -> f64 {
-    let q = p - centre;
-    let h = q.dot(normal);
-    h.hypot((q - h * normal).length() - radius)
-}
-
 /// A polyline inscribed in a circle: the circle through its first, middle and
 /// last vertices, and the largest distance of a vertex from it.
-fn inscribed(points: &[DVec3]) -> ((DVec3, f64, DVec3), f64) {
+fn inscribed(points: &[DVec3]) -> ((DVec3, DVec3, f64), f64) {
     let n = points.len();
     let circle = circle3(points[0], points[n / 2], points[n - 1]);
     let d = points
@@ -118,13 +87,13 @@ fn torus_at_theta_zero() {
         // radius R − r + r cos β_j (§4.6 at θ = 0).
         for i in 0..rows {
             let row: Vec<DVec3> = g.row(i).collect();
-            let ((_, radius, _), d) = inscribed(&row);
+            let ((_, _, radius), d) = inscribed(&row);
             worst_radius = worst_radius.max((radius - RT).abs() / size).max(d / size);
             assert!(d / size <= TOL && (radius - RT).abs() / size <= TOL);
         }
         for j in 0..cols {
             let col: Vec<DVec3> = g.column(j).collect();
-            let ((_, radius, _), d) = inscribed(&col);
+            let ((_, _, radius), d) = inscribed(&col);
             let beta = (profile * j as f64 / (cols - 1) as f64).to_radians();
             let expect = R - RT + RT * beta.cos();
             worst_radius = worst_radius
@@ -154,7 +123,7 @@ fn dupin_cyclides_have_circular_curvature_lines() {
             .map(|i| g.row(i).collect::<Vec<_>>())
             .chain((0..g.cols).map(|j| g.column(j).collect::<Vec<_>>()));
         for (k, line) in lines.enumerate() {
-            let ((_, _, normal), d) = inscribed(&line);
+            let ((_, normal, _), d) = inscribed(&line);
             let (_, n, flat) = plane_fit(&line);
             circ = circ.max(d / size);
             plane = plane.max(flat / size);

@@ -9,11 +9,10 @@
 use glam::DVec3;
 use monge_core::cyclidic::{Arc, CyclidicNet, CyclidicOptions, Family, Frame};
 use monge_core::{Design, GuideSpec, QuadGrid};
-use nalgebra::DMatrix;
 
 mod common;
-use common::cyclidic::{circle3, circle_distance, coarse_freeform, dupin30, net_of};
-use common::{arc, design, freeform_guide_v};
+use common::cyclidic::{coarse_freeform, dupin30, net_of};
+use common::{arc, circle3, circle_distance, design, freeform_guide_v, plane_fit};
 
 /// guide_u a circular arc, guide_v a B-spline: every u-line is inscribed in a circle (§4.6).
 fn circular_u() -> Design {
@@ -57,18 +56,6 @@ fn biarc() -> Design {
     )
 }
 
-/// Largest distance of `points` from their least-squares plane (nalgebra SVD).
-fn plane_deviation(points: &[DVec3]) -> f64 {
-    let centroid = points.iter().sum::<DVec3>() / points.len() as f64;
-    let m = DMatrix::from_fn(points.len(), 3, |r, c| (points[r] - centroid)[c]);
-    let v_t = m.svd(false, true).v_t.expect("V^T requested");
-    let n = DVec3::new(v_t[(2, 0)], v_t[(2, 1)], v_t[(2, 2)]);
-    points
-        .iter()
-        .map(|p| (*p - centroid).dot(n).abs())
-        .fold(0.0, f64::max)
-}
-
 /// Largest distance from its plane of the samples of every curvature line of a net
 /// (boundary samples of the patches along each mesh line).
 fn line_planarity(g: &QuadGrid, net: &CyclidicNet) -> f64 {
@@ -86,7 +73,7 @@ fn line_planarity(g: &QuadGrid, net: &CyclidicNet) -> f64 {
                 (0..k).map(move |a| s[a * k + b])
             })
             .collect();
-        worst = worst.max(plane_deviation(&pts));
+        worst = worst.max(plane_fit(&pts).2);
     }
     for i in 0..g.rows {
         let (pi, a) = if i + 1 < g.rows {
@@ -100,7 +87,7 @@ fn line_planarity(g: &QuadGrid, net: &CyclidicNet) -> f64 {
                 (0..k).map(move |b| s[a * k + b])
             })
             .collect();
-        worst = worst.max(plane_deviation(&pts));
+        worst = worst.max(plane_fit(&pts).2);
     }
     worst / g.bbox_diagonal()
 }

@@ -10,7 +10,8 @@ use glam::DVec3;
 use monge_core::cyclidic::{FoldReason, Frame, Patch};
 
 mod common;
-use common::cyclidic::{circle3, circle_distance, faces, nets, params, random_patches};
+use common::cyclidic::{faces, nets, params, random_patches};
+use common::{circle3, circle_distance};
 
 #[test]
 fn closed_form_and_bezier_agree_and_interpolate_corners() {

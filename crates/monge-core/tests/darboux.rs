@@ -19,7 +19,9 @@ use monge_core::darboux::EnneperEnvelope;
 use monge_core::measure::measure;
 use monge_core::projective::Line;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
-use nalgebra::DMatrix;
+
+mod common;
+use common::plane_fit;
 
 /// Equal radii: Enneper's minimal surface itself.
 const ENNEPER: EnneperEnvelope = EnneperEnvelope {
@@ -57,17 +59,6 @@ fn closed_form(e: &EnneperEnvelope, s: f64, t: f64) -> DVec3 {
     enneper + 0.25 * e.p * DVec3::Z + rho / (2.0 * e.p) * (normal + DVec3::Z)
 }
 
-/// Least-squares plane of `points` (nalgebra SVD): unit normal and a point on it.
-fn fit_plane(points: &[DVec3]) -> (DVec3, DVec3) {
-    let centroid = points.iter().sum::<DVec3>() / points.len() as f64;
-    let m = DMatrix::from_fn(points.len(), 3, |r, c| (points[r] - centroid)[c]);
-    let svd = m.svd(false, true);
-    let v_t = svd.v_t.expect("V^T requested");
-    let k = svd.singular_values.imin();
-    let normal = DVec3::new(v_t[(k, 0)], v_t[(k, 1)], v_t[(k, 2)]).normalize();
-    (normal, centroid)
-}
-
 /// The envelope's curvature line through parameters `params`: points and normals.
 fn line(e: &EnneperEnvelope, params: &[(f64, f64)]) -> (Vec<DVec3>, Vec<DVec3>) {
     params
@@ -80,11 +71,7 @@ fn line(e: &EnneperEnvelope, params: &[(f64, f64)]) -> (Vec<DVec3>, Vec<DVec3>) 
 /// (spread of `N·m`, m the plane's unit normal) of one curvature line, and the
 /// Gauss circle's plane `{Y : m·Y = c}` as `(m, c)`.
 fn check_line(points: &[DVec3], normals: &[DVec3]) -> (f64, f64, (DVec3, f64)) {
-    let (m, centroid) = fit_plane(points);
-    let planarity = points
-        .iter()
-        .map(|x| (*x - centroid).dot(m).abs())
-        .fold(0.0, f64::max);
+    let (_, m, planarity) = plane_fit(points);
     let cosines: Vec<f64> = normals.iter().map(|n| n.dot(m)).collect();
     let (lo, hi) = cosines
         .iter()

@@ -9,10 +9,9 @@ use monge_core::fabrication::{
     SegmentShape,
 };
 use monge_core::{Design, GuideSpec, QuadGrid};
-use nalgebra::DMatrix;
 
 mod common;
-use common::{arc, design, freeform, mesh, two_circles, TOL};
+use common::{arc, design, freeform, mesh, plane_fit, two_circles, TOL};
 
 /// The discrete Dupin cyclide of Figure 12 (θ = 30°), smaller than the example file.
 fn dupin(theta_deg: f64) -> Design {
@@ -109,7 +108,7 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
             let back = fr.origin + q.x * fr.x_axis + q.y * fr.y_axis;
             assert!((back - *p).length() <= TOL * size);
         }
-        assert!(svd_planarity(&points) <= TOL * size);
+        assert!(plane_fit(&points).2 <= TOL * size);
         for s in &b.segments {
             worst_arc = worst_arc.max(s.residual);
             match s.shape {
@@ -169,22 +168,6 @@ fn check_all(f: &Fabrication, base: &QuadGrid, circular: bool) {
         }
     }
     assert!(f.summary.max_torsion <= TOL);
-}
-
-/// Largest distance of a point from the least-squares plane (SVD of the centred points).
-fn svd_planarity(points: &[DVec3]) -> f64 {
-    let c = points.iter().copied().sum::<DVec3>() / points.len() as f64;
-    let m = DMatrix::from_fn(points.len(), 3, |r, k| (points[r] - c)[k]);
-    let svd = m.svd(false, true);
-    let v_t = svd.v_t.unwrap();
-    let k = (0..3)
-        .min_by(|&a, &b| svd.singular_values[a].total_cmp(&svd.singular_values[b]))
-        .unwrap();
-    let n = DVec3::new(v_t[(k, 0)], v_t[(k, 1)], v_t[(k, 2)]);
-    points
-        .iter()
-        .map(|p| (*p - c).dot(n).abs())
-        .fold(0.0, f64::max)
 }
 
 #[test]

@@ -44,24 +44,6 @@ pub fn invert(g: &QuadGrid, c: DVec3, r: f64) -> QuadGrid {
     QuadGrid::new(g.rows, g.cols, v, vec![])
 }
 
-/// Circle through three points: centre, unit normal, radius.
-pub fn circle3(a: DVec3, b: DVec3, c: DVec3) -> (DVec3, DVec3, f64) {
-    let (ab, ac) = (b - a, c - a);
-    let n = ab.cross(ac);
-    let center = a
-        + (n.cross(ab) * ac.length_squared() + ac.cross(n) * ab.length_squared())
-            / (2.0 * n.length_squared());
-    (center, n.normalize(), center.distance(a))
-}
-
-/// Distance of `p` from the circle `(center, normal, radius)`.
-pub fn circle_distance(p: DVec3, (center, normal, radius): (DVec3, DVec3, f64)) -> f64 {
-    let q = p - center;
-    let h = q.dot(normal);
-    let r = (q - h * normal).length();
-    (h * h + (r - radius).powi(2)).sqrt()
-}
-
 /// The faces of a net.
 pub fn faces(net: &CyclidicNet) -> impl Iterator<Item = (usize, usize)> {
     let c = net.cols() - 1;

@@ -12,6 +12,7 @@ pub mod random_designs;
 
 use glam::DVec3;
 use monge_core::{generate, Design, GenerateError, GenerateOptions, GuideSpec, QuadGrid};
+use nalgebra::DMatrix;
 
 /// Every property must hold to this, relative to the model size.
 pub const TOL: f64 = 1e-9;
@@ -63,6 +64,39 @@ pub fn assert_mentions(message: &str, parts: &[&str]) {
         assert!(message.contains(p), "message lacks {p:?}: {message}");
     }
     eprintln!("message: {message}");
+}
+
+/// Least-squares plane of `points` by SVD: (centroid, unit normal, largest distance).
+pub fn plane_fit(points: &[DVec3]) -> (DVec3, DVec3, f64) {
+    let c = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+    let m = DMatrix::from_fn(points.len(), 3, |r, k| (points[r] - c)[k]);
+    let svd = m.svd(false, true);
+    let v_t = svd.v_t.unwrap();
+    let k = svd.singular_values.imin();
+    let n = DVec3::new(v_t[(k, 0)], v_t[(k, 1)], v_t[(k, 2)]).normalize();
+    let d = points
+        .iter()
+        .map(|p| (*p - c).dot(n).abs())
+        .fold(0.0, f64::max);
+    (c, n, d)
+}
+
+/// Circle through three points: centre, unit normal, radius.
+pub fn circle3(a: DVec3, b: DVec3, c: DVec3) -> (DVec3, DVec3, f64) {
+    let (ab, ac) = (b - a, c - a);
+    let n = ab.cross(ac);
+    let center = a
+        + (n.cross(ab) * ac.length_squared() + ac.cross(n) * ab.length_squared())
+            / (2.0 * n.length_squared());
+    (center, n.normalize(), center.distance(a))
+}
+
+/// Distance of `p` from the circle `(center, normal, radius)`.
+pub fn circle_distance(p: DVec3, (center, normal, radius): (DVec3, DVec3, f64)) -> f64 {
+    let q = p - center;
+    let h = q.dot(normal);
+    let r = (q - h * normal).length();
+    (h * h + (r - radius).powi(2)).sqrt()
 }
 
 /// A small deterministic generator (a 64-bit LCG: no dependency, fixed seeds).
