@@ -13,7 +13,7 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
 mod common;
-use common::TOL;
+use common::{own_face_planarity, TOL};
 
 /// A cubic B-spline guide from the origin with start tangent `t`, bending in the
 /// plane spanned by `t` and `d`.
@@ -61,19 +61,6 @@ fn design() -> impl Strategy<Value = Design> {
         })
 }
 
-/// Distance of the corner farthest from the plane of the other three, taking
-/// the triple of largest area.
-fn face_planarity(q: &[DVec3; 4]) -> f64 {
-    (0..4)
-        .map(|k| {
-            let [a, b, c] = [q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]];
-            let n = (b - a).cross(c - a);
-            (n.length(), (q[k] - a).dot(n).abs() / n.length())
-        })
-        .fold((0.0, 0.0), |best, x| if x.0 > best.0 { x } else { best })
-        .1
-}
-
 /// Every conical property of `c`, relative to its size; also checks its face
 /// normals against the faces themselves.
 fn conical_errors(c: &ConicalMesh) -> [f64; 4] {
@@ -84,7 +71,7 @@ fn conical_errors(c: &ConicalMesh) -> [f64; 4] {
     for i in 0..g.rows - 1 {
         for j in 0..g.cols - 1 {
             let q = g.face(i, j);
-            planar = planar.max(face_planarity(&q) / scale);
+            planar = planar.max(own_face_planarity(&q) / scale);
             let n = c.face_normals[i * (g.cols - 1) + j];
             let h = n.dot(q[0]);
             for v in q {
@@ -112,7 +99,7 @@ fn conical_errors(c: &ConicalMesh) -> [f64; 4] {
                 own_normal(i, j),
                 own_normal(i - 1, j),
             ];
-            cone = cone.max(face_planarity(&q));
+            cone = cone.max(own_face_planarity(&q));
         }
     }
     // `measure`'s conical error agrees where no face is turned over.

@@ -27,8 +27,8 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
 mod common;
-use common::random_designs::{bbox, characteristic_case, own_face_planarity};
-use common::{ulp, TOL};
+use common::random_designs::{bbox, characteristic_case};
+use common::{own_face_planarity, ulp, TOL};
 
 /// Largest distance of `points` from their least-squares plane, relative to the first point.
 fn plane_distance(points: &[DVec3]) -> f64 {

@@ -7,7 +7,7 @@ use monge_core::multipatch::{build, Attach, MultiPatchDesign, MultiPatchError, P
 use monge_core::{GenerateError, GuideSpec};
 
 mod common;
-use common::{arc_u, opts};
+use common::{arc_u, bits, opts};
 
 const R_V: f64 = 3.0;
 
@@ -60,13 +60,6 @@ fn chain() -> MultiPatchDesign {
         attached(10.0, 1, Side::LastRow, arc_u(35.0, 25.0, 8)),
         attached(60.0, 0, Side::FirstRow, arc_u(0.0, -12.0, 5)),
     ])
-}
-
-fn bits(points: &[DVec3]) -> Vec<[u64; 3]> {
-    points
-        .iter()
-        .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
-        .collect()
 }
 
 #[test]

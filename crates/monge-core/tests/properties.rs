@@ -21,9 +21,9 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
 mod common;
 use common::random_designs::{
-    arbitrary_case, bbox, bspline_point, characteristic_case, own_face_planarity, Case, Mode,
+    arbitrary_case, bbox, bspline_point, characteristic_case, Case, Mode,
 };
-use common::{design, TOL};
+use common::{design, own_face_planarity, TOL};
 
 // ---------------------------------------------------------------------------
 // The checks.

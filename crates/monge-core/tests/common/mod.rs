@@ -99,6 +99,29 @@ pub fn circle_distance(p: DVec3, (center, normal, radius): (DVec3, DVec3, f64)) 
     (h * h + (r - radius).powi(2)).sqrt()
 }
 
+/// Distance of one corner of a quad from the plane of the other three, for the
+/// triple of largest area (0 if all four are collinear).
+pub fn own_face_planarity(q: &[DVec3; 4]) -> f64 {
+    let mut best = (0.0, 0.0);
+    for k in 0..4 {
+        let (a, b, c) = (q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]);
+        let n = (b - a).cross(c - a);
+        let area = n.length();
+        if area > best.0 {
+            best = (area, (q[k] - a).dot(n).abs() / area);
+        }
+    }
+    best.1
+}
+
+/// The bits of the coordinates of `points`, to compare them exactly.
+pub fn bits(points: &[DVec3]) -> Vec<[u64; 3]> {
+    points
+        .iter()
+        .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+        .collect()
+}
+
 /// A small deterministic generator (a 64-bit LCG: no dependency, fixed seeds).
 pub struct Lcg(pub u64);
 

@@ -452,21 +452,6 @@ pub fn arbitrary_case() -> impl Strategy<Value = Case> {
         .prop_filter("θ near +90°", |c| regular(c.design.theta_deg))
 }
 
-/// Distance of one corner of a quad from the plane of the other three, for the
-/// triple of largest area (0 if all four are collinear).
-pub fn own_face_planarity(q: &[DVec3; 4]) -> f64 {
-    let mut best = (0.0, 0.0);
-    for k in 0..4 {
-        let (a, b, c) = (q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]);
-        let n = (b - a).cross(c - a);
-        let area = n.length();
-        if area > best.0 {
-            best = (area, (q[k] - a).dot(n).abs() / area);
-        }
-    }
-    best.1
-}
-
 pub fn bbox(points: &[DVec3]) -> f64 {
     let lo = points.iter().fold(points[0], |a, p| a.min(*p));
     let hi = points.iter().fold(points[0], |a, p| a.max(*p));
