@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::design::Xyz;
 
-use super::Side;
+use super::side::Side;
 
 /// The fit of a multi-patch design (§4.7): the `fit` key of a design file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
