@@ -6,7 +6,8 @@ mod common;
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use glam::DVec3;
-use monge_io::{read_iges_surfaces, IoError};
+use monge_core::bspline::surface_point;
+use monge_io::{read_iges_surfaces, IgesSurface, IoError};
 
 use common::iges::{entity, file, file_with_global, line, one, parameters, Entity, BILINEAR};
 
@@ -406,3 +407,130 @@ fn error_transformation_pointers() {
 
 // ---------------------------------------------------------------------------
 // Writer
+
+// ---------------------------------------------------------------------------
+// Evaluation: monge-core's B-spline evaluator
+
+/// A surface from its degrees, knots and seed-drawn weights and control points.
+fn surface(degrees: [usize; 2], knots: [Vec<f64>; 2], rng: &mut Rng) -> IgesSurface {
+    let count = |d: usize| knots[d].len() - degrees[d] - 1;
+    let (count_u, count_v) = (count(0), count(1));
+    let n = count_u * count_v;
+    let range = |d: usize| [knots[d][degrees[d]], knots[d][count(d)]];
+    let (range_u, range_v) = (range(0), range(1));
+    let [knots_u, knots_v] = knots;
+    IgesSurface {
+        degree_u: degrees[0],
+        degree_v: degrees[1],
+        count_u,
+        count_v,
+        knots_u,
+        knots_v,
+        weights: (0..n).map(|_| 0.2 + 3.0 * rng.next()).collect(),
+        control_points: (0..n)
+            .map(|_| DVec3::new(rng.next(), rng.next(), rng.next()) * 20.0 - 10.0)
+            .collect(),
+        range_u,
+        range_v,
+    }
+}
+
+/// A xorshift generator of numbers in `[0, 1)`, for reproducible draws.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() * n as f64) as usize
+    }
+}
+
+#[test]
+fn surfaces_are_evaluated_by_monge_core_bit_for_bit() {
+    // Random degrees, knots (distinct or repeated, clamped or not), weights and
+    // parameters (at knots, between, outside the domain): the reader's point is
+    // monge-core's at the parameter clamped to the domain, to the last bit.
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut evaluations = 0;
+    while evaluations < 20_000 {
+        let draw_knots = |rng: &mut Rng| {
+            let degree = 1 + rng.below(5);
+            let count = degree + 1 + rng.below(5);
+            let coarse = rng.below(2) == 0;
+            let mut knots: Vec<f64> = (0..count + degree + 1)
+                .map(|_| {
+                    if coarse {
+                        rng.below(5) as f64
+                    } else {
+                        rng.next() * 10.0 - 3.0
+                    }
+                })
+                .collect();
+            knots.sort_by(f64::total_cmp);
+            if rng.below(2) == 0 {
+                let (start, end, last) = (knots[degree], knots[count], knots.len() - 1);
+                knots[..degree].fill(start);
+                knots[last - degree..].fill(end);
+            }
+            (degree, knots)
+        };
+        let ((du, ku), (dv, kv)) = (draw_knots(&mut rng), draw_knots(&mut rng));
+        if ku[du] >= ku[ku.len() - du - 1] || kv[dv] >= kv[kv.len() - dv - 1] {
+            continue; // an empty domain, which the reader refuses
+        }
+        let s = surface([du, dv], [ku, kv], &mut rng);
+        let param = |rng: &mut Rng, knots: &[f64], range: [f64; 2]| match rng.below(4) {
+            0 => knots[rng.below(knots.len())],
+            1 => range[0] + (range[1] - range[0]) * (3.0 * rng.next() - 1.0),
+            _ => range[0] + (range[1] - range[0]) * rng.next(),
+        };
+        for _ in 0..10 {
+            let u = param(&mut rng, &s.knots_u, s.range_u);
+            let v = param(&mut rng, &s.knots_v, s.range_v);
+            let p = s.point(u, v);
+            let expected = surface_point(
+                [s.degree_u, s.degree_v],
+                [&s.knots_u, &s.knots_v],
+                &s.control_points,
+                &s.weights,
+                u.clamp(s.range_u[0], s.range_u[1]),
+                v.clamp(s.range_v[0], s.range_v[1]),
+            );
+            let at = format!(
+                "degrees ({}, {}), knots {:?} and {:?}, at ({u}, {v})",
+                s.degree_u, s.degree_v, s.knots_u, s.knots_v
+            );
+            assert!(p.is_finite(), "{at}: {p}");
+            assert_eq!(
+                p.to_array().map(f64::to_bits),
+                expected.to_array().map(f64::to_bits),
+                "{at}"
+            );
+            evaluations += 1;
+        }
+    }
+}
+
+#[test]
+fn the_end_of_a_domain_closed_by_a_double_knot_is_its_control_point() {
+    // Degree 1 along u on unclamped knots [0, 0, 1, 1, 2]: the domain [0, 1]
+    // ends at a double knot, where the surface passes through control row 1.
+    let mut rng = Rng(7);
+    let s = surface(
+        [1, 1],
+        [vec![0.0, 0.0, 1.0, 1.0, 2.0], vec![0.0, 0.0, 1.0, 1.0]],
+        &mut rng,
+    );
+    assert_eq!(s.range_u, [0.0, 1.0]);
+    // One term, `w P / w`: the control point to round-off.
+    for (u, v, k) in [(1.0, 0.0, 2), (1.0, 1.0, 3), (5.0, 1.0, 3), (0.0, 0.0, 0)] {
+        let gap = (s.point(u, v) - s.control_points[k]).length();
+        assert!(gap < 1e-14, "({u}, {v}): {gap:e} from control point {k}");
+    }
+}

@@ -1,8 +1,10 @@
 //! B-spline and NURBS evaluation, for the guide curves (§3), the fitted guides
 //! of the approximation (§4.8) and the NURBS export of cyclidic nets (§4.4, §5.3):
 //! the knot span holding a parameter, the basis functions that are non-zero
-//! there (algorithms A2.1 and A2.2 of Piegl and Tiller, *The NURBS Book*), and
-//! the point of a rational curve by the de Boor algorithm.
+//! there (algorithms A2.1 and A2.2 of Piegl and Tiller, *The NURBS Book*), the
+//! point of a rational curve by the de Boor algorithm, and the point of a
+//! rational tensor-product surface (the cyclidic net's, and the IGES surfaces
+//! read as targets, §4.8).
 //!
 //! A knot vector of `n + 1` control points of degree `p` has `n + p + 2`
 //! non-decreasing knots; the curve's domain is `[knots[p], knots[n + 1]]`.
@@ -30,14 +32,24 @@ use glam::DVec3;
 
 /// The knot span of `u` (algorithm A2.1): the largest `s` in `degree..=n`
 /// (`n + 1` control points, so `knots.len() = n + degree + 2`) with
-/// `knots[s] ≤ u`, so `knots[s] ≤ u < knots[s + 1]` inside the domain and the
-/// last non-empty span at its end; `degree` below the domain (and for NaN).
+/// `knots[s] ≤ u`, so `knots[s] ≤ u < knots[s + 1]` inside the domain; at and
+/// beyond the domain's end `knots[n + 1]`, the last non-empty span (the largest
+/// `s` with `knots[s] < knots[n + 1]`, which is `n` unless the knot before the
+/// end equals it, as an unclamped knot vector may have); `degree` below the
+/// domain (and for NaN).
 ///
 /// The basis functions non-zero at `u` are those of control points
 /// `s − degree ..= s`.
 pub fn span(knots: &[f64], degree: usize, u: f64) -> usize {
     let n = knots.len() - degree - 2;
-    degree + knots[degree + 1..=n].partition_point(|&k| k <= u)
+    let end = knots[n + 1];
+    let inner = &knots[degree + 1..=n];
+    degree
+        + if u >= end {
+            inner.partition_point(|&k| k < end)
+        } else {
+            inner.partition_point(|&k| k <= u)
+        }
 }
 
 /// The `n.len() = degree + 1` basis functions of degree `n.len() − 1` that can
@@ -127,6 +139,52 @@ impl<'a> Nurbs<'a> {
     }
 }
 
+/// The point at `(u, v)` of a rational tensor-product B-spline surface: degrees
+/// `degrees` and knots `knots` along `u` and along `v`, control points `points`
+/// and positive weights `weights` (control point `(a, b)` at `a · count_v + b`,
+/// `count_v = knots[1].len() − degrees[1] − 1`). It is `Σ w N_a(u) N_b(v) P /
+/// Σ w N_a(u) N_b(v)` over the basis functions non-zero there ([`span`],
+/// [`basis`]); terms whose basis function is zero are skipped. Parameters are
+/// not clamped: outside the domain, the end spans' polynomials go on.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::bspline::surface_point;
+/// // A bilinear patch over the unit square.
+/// let knots = [0.0, 0.0, 1.0, 1.0];
+/// let points = [DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 1.0)];
+/// let p = surface_point([1, 1], [&knots, &knots], &points, &[1.0; 4], 0.5, 0.5);
+/// assert_eq!(p, DVec3::new(0.5, 0.5, 0.25));
+/// ```
+pub fn surface_point(
+    degrees: [usize; 2],
+    knots: [&[f64]; 2],
+    points: &[DVec3],
+    weights: &[f64],
+    u: f64,
+    v: f64,
+) -> DVec3 {
+    let basis_at = |direction: usize, t: f64| {
+        let s = span(knots[direction], degrees[direction], t);
+        let mut n = vec![0.0; degrees[direction] + 1];
+        basis(knots[direction], s, t, &mut n);
+        (s - degrees[direction], n)
+    };
+    let (first_u, nu) = basis_at(0, u);
+    let (first_v, nv) = basis_at(1, v);
+    let count_v = knots[1].len() - degrees[1] - 1;
+    let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+    for (a, &na) in nu.iter().enumerate().filter(|(_, &n)| n != 0.0) {
+        for (b, &nb) in nv.iter().enumerate().filter(|(_, &n)| n != 0.0) {
+            let k = (first_u + a) * count_v + first_v + b;
+            let w = weights[k] * na * nb;
+            sum += points[k] * w;
+            weight += w;
+        }
+    }
+    sum / weight
+}
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
@@ -165,6 +223,64 @@ pub(crate) mod tests {
         );
         // Outside the domain: the first or last span.
         assert_eq!([-1.0, 2.0, f64::NAN].map(at), [3, 6, 3]);
+    }
+
+    #[test]
+    fn span_at_the_end_is_the_last_non_empty_one() {
+        // Unclamped, quadratic, 4 control points: the domain [0, 1] ends at a
+        // double knot, so span 3 ([1, 1)) is empty and span 2 holds the end.
+        let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0];
+        assert_eq!([0.5, 1.0, 1.5].map(|u| span(&knots, 2, u)), [2, 2, 2]);
+        let mut n = [0.0; 3];
+        basis(&knots, 2, 1.0, &mut n);
+        // The defining recursion at the end of the domain (continuous there).
+        let expected: Vec<f64> = (0..3).map(|i| cox_de_boor(&knots, i, 2, 1.0)).collect();
+        assert_eq!(n.to_vec(), expected);
+        assert_eq!(n, [0.0, 0.0, 1.0]);
+        // Degree 1 whose last knot inside the domain repeats the end.
+        let knots = [2.0, 2.0, 3.0, 3.0, 3.0];
+        assert_eq!(span(&knots, 1, 3.0), 1);
+    }
+
+    #[test]
+    fn surface_point_matches_the_defining_sums() {
+        // Degree 2 along u on clamped knots with a double interior knot, degree 3
+        // along v on unclamped knots: the sums of the defining recursion.
+        let knots_u = [0.0, 0.0, 0.0, 0.4, 0.4, 1.0, 1.0, 1.0];
+        let knots_v = [-1.0, -0.5, 0.0, 0.3, 0.6, 1.2, 1.5, 2.0];
+        let (count_u, count_v) = (5, 4);
+        let points: Vec<DVec3> = (0..count_u * count_v)
+            .map(|k| {
+                let (a, b) = ((k / count_v) as f64, (k % count_v) as f64);
+                DVec3::new(a, b, (a * 1.7 + b * 0.9).sin())
+            })
+            .collect();
+        let weights: Vec<f64> = (0..count_u * count_v)
+            .map(|k| 0.5 + (k as f64 * 0.37).fract())
+            .collect();
+        for i in 0..=20 {
+            for j in 0..=20 {
+                let u = i as f64 / 20.0;
+                let v = knots_v[3] + (knots_v[4] - knots_v[3]) * j as f64 / 20.0;
+                let (mut num, mut den) = (DVec3::ZERO, 0.0);
+                for a in 0..count_u {
+                    for b in 0..count_v {
+                        let k = a * count_v + b;
+                        let nw = cox_de_boor(&knots_u, a, 2, u)
+                            * cox_de_boor(&knots_v, b, 3, v)
+                            * weights[k];
+                        num += nw * points[k];
+                        den += nw;
+                    }
+                }
+                let got = surface_point([2, 3], [&knots_u, &knots_v], &points, &weights, u, v);
+                assert!(
+                    (got - num / den).length() < 1e-14,
+                    "({u}, {v}): {got} vs {}",
+                    num / den
+                );
+            }
+        }
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! A rational B-spline surface read from IGES (entity 128), and its evaluation.
 
 use glam::DVec3;
+use monge_core::bspline::surface_point;
 
 /// A rational B-spline surface (IGES entity 128) read by [`read_iges_surfaces`](crate::read_iges_surfaces).
 ///
@@ -32,8 +33,8 @@ pub struct IgesSurface {
 }
 
 impl IgesSurface {
-    /// The point at `(u, v)`: the rational tensor-product B-spline, its basis
-    /// functions by the Cox–de Boor recursion.
+    /// The point at `(u, v)`: the rational tensor-product B-spline, evaluated by
+    /// monge-core ([`surface_point`]).
     ///
     /// Parameters outside the knot domain `[knots[degree], knots[count]]` are
     /// clamped to it; NaN gives NaN.
@@ -43,47 +44,16 @@ impl IgesSurface {
     /// If the fields are inconsistent (lengths as documented), which never
     /// happens for a surface returned by [`read_iges_surfaces`](crate::read_iges_surfaces).
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
-        let (first_u, nu) = basis(&self.knots_u, self.degree_u, self.count_u, u);
-        let (first_v, nv) = basis(&self.knots_v, self.degree_v, self.count_v, v);
-        let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
-        for (a, &na) in nu.iter().enumerate().filter(|(_, &n)| n != 0.0) {
-            for (b, &nb) in nv.iter().enumerate().filter(|(_, &n)| n != 0.0) {
-                let k = (first_u + a) * self.count_v + first_v + b;
-                let w = self.weights[k] * na * nb;
-                sum += self.control_points[k] * w;
-                weight += w;
-            }
-        }
-        sum / weight
+        let clamp = |t: f64, knots: &[f64], degree: usize, count: usize| {
+            t.clamp(knots[degree], knots[count])
+        };
+        surface_point(
+            [self.degree_u, self.degree_v],
+            [&self.knots_u, &self.knots_v],
+            &self.control_points,
+            &self.weights,
+            clamp(u, &self.knots_u, self.degree_u, self.count_u),
+            clamp(v, &self.knots_v, self.degree_v, self.count_v),
+        )
     }
-}
-
-/// The `degree + 1` B-spline basis functions of `degree` on `knots` (for
-/// `count` control points) that can be non-zero at `t` (clamped to the
-/// domain), and the index of the first: from the degree-0 indicator of the
-/// span holding `t` (the last non-empty span at the end of the domain) raised
-/// one degree at a time, in `degree²` operations whatever the number of knots.
-fn basis(knots: &[f64], degree: usize, count: usize, t: f64) -> (usize, Vec<f64>) {
-    let t = t.clamp(knots[degree], knots[count]);
-    let span = if t.is_nan() {
-        degree
-    } else if t < knots[count] {
-        knots.partition_point(|&k| k <= t) - 1
-    } else {
-        knots.partition_point(|&k| k < t) - 1
-    };
-    let first = span - degree;
-    let ratio = |num: f64, den: f64| if den == 0.0 { 0.0 } else { num / den };
-    // n[i - first] is basis function i; one more, always 0, past the span.
-    let mut n = vec![0.0; degree + 2];
-    n[degree] = if t.is_nan() { f64::NAN } else { 1.0 };
-    for p in 1..=degree {
-        for i in first..=span {
-            let j = i - first;
-            n[j] = ratio(t - knots[i], knots[i + p] - knots[i]) * n[j]
-                + ratio(knots[i + p + 1] - t, knots[i + p + 1] - knots[i + 1]) * n[j + 1];
-        }
-    }
-    n.truncate(degree + 1);
-    (first, n)
 }

@@ -30,7 +30,7 @@ pub struct NurbsSurface {
 pub const NURBS_DEGREE: usize = 2;
 
 impl NurbsSurface {
-    /// The point at `(u, v)` by the rational Cox–de Boor recursion (§5.3).
+    /// The point at `(u, v)` (§5.3), by [`bspline::surface_point`].
     ///
     /// ```
     /// use glam::DVec3;
@@ -41,28 +41,15 @@ impl NurbsSurface {
     /// assert!((net.nurbs().point(0.5, 0.5) - DVec3::new(0.5, 0.5, 0.0)).length() < 1e-15);
     /// ```
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
-        let (su, nu) = basis(&self.knots_u, u);
-        let (sv, nv) = basis(&self.knots_v, v);
-        let (mut h, mut w) = (DVec3::ZERO, 0.0);
-        for (a, ba) in nu.iter().enumerate() {
-            for (b, bb) in nv.iter().enumerate() {
-                let idx = (su - NURBS_DEGREE + a) * self.cols + (sv - NURBS_DEGREE + b);
-                let wt = self.weights[idx] * ba * bb;
-                h += self.control_points[idx] * wt;
-                w += wt;
-            }
-        }
-        h / w
+        bspline::surface_point(
+            [NURBS_DEGREE; 2],
+            [&self.knots_u, &self.knots_v],
+            &self.control_points,
+            &self.weights,
+            u,
+            v,
+        )
     }
-}
-
-/// The knot span `s` of `t` and the three quadratic B-spline basis functions
-/// non-zero there ([`bspline::span`], [`bspline::basis`]).
-fn basis(knots: &[f64], t: f64) -> (usize, [f64; 3]) {
-    let span = bspline::span(knots, NURBS_DEGREE, t);
-    let mut n = [0.0; NURBS_DEGREE + 1];
-    bspline::basis(knots, span, t, &mut n);
-    (span, n)
 }
 
 /// `[0, 0, 0, 1, 1, …, m − 1, m − 1, m, m, m]`.
