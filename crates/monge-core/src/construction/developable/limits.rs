@@ -1,7 +1,8 @@
 //! The tolerance and the size limits of a developable design (§3.3).
 
 /// Relative tolerance of every check (§3.3): lengths relative to the design size
-/// (see [`DevelopableError`](super::DevelopableError)), slopes relative to the mean slope, angles in radians.
+/// (see [`DevelopableError`](super::DevelopableError)), slopes relative to the
+/// mean slope, angles in radians.
 pub const TOLERANCE: f64 = 1e-9;
 
 /// Largest absolute coordinate or height accepted (§3.3).

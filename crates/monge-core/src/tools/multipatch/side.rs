@@ -43,7 +43,8 @@ impl Side {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Attach {
-    /// Index of the earlier patch in [`MultiPatchDesign::patches`](super::MultiPatchDesign::patches).
+    /// Index of the earlier patch in
+    /// [`MultiPatchDesign::patches`](super::MultiPatchDesign::patches).
     pub patch: usize,
     /// Which of its sides.
     pub side: Side,
