@@ -3,13 +3,19 @@
 //   MONGE_BIN=target/release/monge node web/e2e/explorer.test.mjs
 //
 // Serves web/dist (as `npm run build` leaves it) from a plain static file
-// server, opens the page, moves θ and a control point, compares the page's
+// server (and opens it from file://, where it must say how to serve it), opens
+// the page, moves θ and a control point, compares the page's
 // mesh and exports with `monge generate` on the page's design (bit for bit),
 // saves and loads a design, loads bad designs (the page must show the CLI's
 // messages), measures the input-to-frame latency at 100 × 100 and 300 × 300
-// faces (reported, not asserted) and keeps a screenshot in
-// target/explorer-screenshot.png. Then `monge explore DESIGN` must serve the
-// embedded page with that design. Exits non-zero on failure.
+// faces (reported, not asserted), drags a handle of each kind with its plane
+// seen at a grazing angle (the point must stay near the pointer's ray and move
+// no more than the pointer's path allows), refuses an edit (the page must say
+// where, and export the last valid design), undoes and redoes every kind of
+// edit (the same design bytes back), checks that the console has no error and
+// no request failed, and keeps a screenshot in target/explorer-screenshot.png.
+// Then `monge explore DESIGN` must serve the embedded page with that design,
+// with the same clean console. Exits non-zero on failure.
 import { spawn, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { createServer } from 'node:http';
@@ -82,6 +88,267 @@ function sameAsCli(snapshot) {
   return flat;
 }
 
+/** Collects the page's console errors and failed requests (`problems`) and the URLs it requested (`requests`). */
+function watchConsole(page) {
+  const noise = { problems: [], requests: [] };
+  page.on('console', (m) => { if (m.type() === 'error') noise.problems.push(`console error: ${m.text()}`); });
+  page.on('request', (r) => noise.requests.push(r.url()));
+  page.on('requestfailed', (r) => noise.problems.push(`failed: ${r.url()} ${r.failure()?.errorText}`));
+  page.on('response', (r) => { if (r.status() >= 400) noise.problems.push(`${r.status()}: ${r.url()}`); });
+  return noise;
+}
+
+/** The pointer's ray at client pixel (x, y), from the camera's frame (not the page's raycaster): { origin, dir, forward, tan }. */
+function rayAt(cam, x, y) {
+  const w = cam.world;
+  const tan = Math.tan((cam.fov * Math.PI) / 360);
+  const nx = ((x - cam.rect.left) / cam.rect.width) * 2 - 1;
+  const ny = -(((y - cam.rect.top) / cam.rect.height) * 2 - 1);
+  const local = [nx * tan * (cam.rect.width / cam.rect.height), ny * tan, -1];
+  const dir = [0, 1, 2].map((k) => w[k] * local[0] + w[4 + k] * local[1] + w[8 + k] * local[2]);
+  const n = Math.hypot(...dir);
+  return { origin: [w[12], w[13], w[14]], dir: dir.map((d) => d / n), forward: [-w[8], -w[9], -w[10]], tan, height: cam.rect.height };
+}
+const sub = (a, b) => a.map((x, k) => x - b[k]);
+const dot = (a, b) => a.reduce((s, x, k) => s + x * b[k], 0);
+const len = (a) => Math.hypot(...a);
+/** Distance from point p to the ray. */
+function distanceToRay(p, ray) {
+  const d = sub(p, ray.origin);
+  const t = Math.max(0, dot(d, ray.dir));
+  return len(sub(d, ray.dir.map((x) => x * t)));
+}
+/** Pixels a unit length covers at p seen face on. */
+const pixelsPerUnit = (p, ray) => ray.height / 2 / (dot(sub(p, ray.origin), ray.forward) * ray.tan);
+
+/** The step bound of a drag: a direction seen more than 60° from face on moves as if seen at 60° (GRAZING_FLOOR = 0.5 in handles.js). */
+const FLOOR = 0.5;
+
+/**
+ * Real pointer drags (page.mouse) of each handle kind with the guide's plane
+ * seen at a grazing angle (about 2° from edge on): the point stays in its
+ * plane, moves no more than the pointer's path allows at its depth (a path of
+ * P pixels moves it at most P / (FLOOR × pixels per unit)), and ends within the
+ * pointer's path (in units at its depth) of the pointer's ray.
+ */
+async function grazingDrags(page, snapshot, idle) {
+  const cases = [
+    // example, guide, handle, plane normal, the design's point of the handle
+    ['default-design.json', 'v', 2, [1, 0, 0], (d) => d.guide_v.bspline.control_points[2]],
+    ['contract.json', 'u', 2, [0, 1, 0], (d) => d.guide_u.points[2]],
+    ['fig2-enneper.json', 'u', 2, [0, 1, 0], (d) => sumOf(d.guide_u.parabola.start, d.guide_u.parabola.tangent, d.guide_u.parabola.quadratic)],
+    ['fig2-enneper.json', 'v', 1, [1, 0, 0], (d) => sumOf(d.guide_v.parabola.start, d.guide_v.parabola.tangent.map((x) => x / 2))],
+    ['fig12-torus.json', 'v', 'end', [1, 0, 0], (d) => arcEndOf(d.guide_v.arc)],
+  ];
+  for (const [name, guide, index, normal, pointOf] of cases) {
+    const n = (await snapshot()).generations;
+    const file = name === 'default-design.json' ? join(repo, 'web/src', name) : join(repo, 'examples', name);
+    await page.setInputFiles('#load', file);
+    await page.waitForFunction((k) => explorer.state.generations > k && explorer.idle(), n);
+    const before = await snapshot();
+    const p0 = pointOf(before.design);
+    // Look along the plane, about 2° off it, from a distance of 4 sizes of the mesh.
+    const size = meshRadius(before.vertices);
+    const along = normal[0] ? [0, -1, 0] : [-1, 0, 0];
+    const eye = [0, 1, 2].map((k) => p0[k] + size * (4 * along[k] + 0.14 * normal[k]) + (k === 2 ? 0.3 * size : 0));
+    await page.evaluate(([e, t]) => explorer.look(e, t), [eye, p0]);
+    await idle();
+    const from = await page.evaluate(([g, k]) => explorer.handleOnScreen(g, k), [guide, index]);
+    const cam = await page.evaluate(() => explorer.camera());
+    const f0 = pixelsPerUnit(p0, rayAt(cam, from.x, from.y));
+    // Across the plane's line on the screen and along it: 60 px in 6 moves.
+    const [dx, dy] = [8, -6];
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 6; k++) await page.mouse.move(from.x + dx * k, from.y + dy * k);
+    await page.mouse.up();
+    await idle();
+    const after = await snapshot();
+    const p = pointOf(after.design);
+    const path = 6 * Math.hypot(dx, dy);
+    const moved = len(sub(p, p0));
+    const bound = path / (FLOOR * f0);
+    const ray = rayAt(cam, from.x + 6 * dx, from.y + 6 * dy);
+    const offRay = distanceToRay(p, ray);
+    const offBound = path / pixelsPerUnit(p, ray);
+    // Where the pointer's ray meets the plane: where a drag by that intersection would have sent the point.
+    const hit = (dot(sub(p0, ray.origin), normal) / dot(ray.dir, normal));
+    const jump = hit > 0 ? len(sub(ray.origin.map((o, k) => o + hit * ray.dir[k]), p0)).toFixed(1) : '∞ (behind the eye)';
+    log(`grazing drag of ${name}'s guide_${guide} ${index} by ${path} px (${f0.toFixed(1)} px per unit face on): moved ${moved.toFixed(3)} (bound ${bound.toFixed(3)}; to the ray's meeting with the plane: ${jump}), ${offRay.toFixed(3)} from the pointer's ray (bound ${offBound.toFixed(3)})`);
+    assert.ok(moved > 0, 'the point moved');
+    assert.ok(Math.abs(dot(sub(p, p0), normal)) < 1e-9, `the point stays in its plane: ${p}`);
+    assert.ok(moved <= 1.2 * bound, `a drag of ${path} px moved the point ${moved}, beyond ${bound}`);
+    if (index === 'end') {
+      assert.equal(Math.sign(after.design.guide_v.arc.angle_deg), Math.sign(before.design.guide_v.arc.angle_deg), 'the arc keeps its direction');
+    } else {
+      assert.ok(index === 1 || offRay <= 1.2 * offBound, `the point ends ${offRay} from the pointer's ray, beyond ${offBound}`);
+    }
+    if (!after.error) sameAsCli(after);
+  }
+}
+const sumOf = (...vs) => [0, 1, 2].map((k) => vs.reduce((s, v) => s + v[k], 0));
+/** The end of an arc guide, by Rodrigues' formula. */
+function arcEndOf({ center, start, normal, angle_deg: a }) {
+  const k = normal.map((x) => x / len(normal));
+  const v = sub(start, center);
+  const [c, s] = [Math.cos((a * Math.PI) / 180), Math.sin((a * Math.PI) / 180)];
+  const cross = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
+  return [0, 1, 2].map((i) => center[i] + v[i] * c + cross[i] * s + k[i] * dot(k, v) * (1 - c));
+}
+/** Half the diagonal of the vertices' bounding box. */
+function meshRadius(flat) {
+  const lo = [Infinity, Infinity, Infinity];
+  const hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < flat.length; i++) { lo[i % 3] = Math.min(lo[i % 3], flat[i]); hi[i % 3] = Math.max(hi[i % 3], flat[i]); }
+  return len(sub(hi, lo)) / 2;
+}
+
+/**
+ * A refused edit: the page says what and where (the field outlined), keeps
+ * the last valid mesh and exports it (labelled so), clears its warnings; a
+ * refusal mid-drag of θ ends in full quality.
+ */
+async function neverSilent(page, snapshot, idle) {
+  const n = (await snapshot()).generations;
+  await page.setInputFiles('#load', join(repo, 'examples', 'fig10-arbitrary.json'));
+  await page.waitForFunction((k) => explorer.state.generations > k && explorer.idle(), n);
+  const valid = await snapshot();
+  // θ dragged by the pointer from the admissible band into the refused one.
+  const slider = await page.locator('#theta').boundingBox();
+  const x = (deg) => slider.x + 5 + ((deg + 180) / 360) * (slider.width - 10);
+  await page.mouse.move(x(valid.design.theta_deg), slider.y + slider.height / 2);
+  await page.mouse.down();
+  for (let k = 1; k <= 8; k++) await page.mouse.move(x(valid.design.theta_deg) - (k * (valid.design.theta_deg - 20)) / 8, slider.y + slider.height / 2);
+  await page.mouse.up();
+  await idle();
+  const refused = await page.evaluate(() => ({
+    theta: explorer.state.design.theta_deg,
+    fast: explorer.state.fast,
+    error: document.getElementById('error').textContent,
+    errorShown: !document.getElementById('error').hidden,
+    where: document.getElementById('error-source').textContent,
+    invalid: [...document.querySelectorAll('.invalid')].map((e) => e.id),
+    note: document.getElementById('last-valid').hidden ? null : document.getElementById('last-valid').textContent,
+    label: document.getElementById('export-obj').textContent,
+    warnings: document.getElementById('warnings').children.length,
+    obj: explorer.exported('obj'),
+    valid: JSON.parse(explorer.state.valid),
+  }));
+  writeFileSync(join(work, 'refused.json'), JSON.stringify({ ...valid.design, theta_deg: refused.theta }));
+  const cli = generate('refused.json');
+  assert.equal(cli.status, 2, `monge generate refuses θ = ${refused.theta}°`);
+  assert.ok(refused.errorShown && refused.error === cli.stderr.replace(/^error: /, '').trimEnd().replace('refused.json', '<input>'), refused.error);
+  assert.deepEqual(refused.invalid, ['theta'], 'the θ slider is marked');
+  assert.match(refused.where, /θ/);
+  assert.ok(refused.note && refused.note.includes('last valid design'), 'the page says it shows the last valid design');
+  assert.equal(refused.label, 'Export OBJ (last valid design)');
+  assert.equal(refused.warnings, 0, 'no warnings of another design');
+  assert.equal(refused.fast, false, 'a refusal mid-drag ends in full quality');
+  // The export is the last valid design's mesh (the last θ of the drag monge
+  // took), as monge generate writes it.
+  assert.deepEqual({ ...refused.valid, theta_deg: 0 }, { ...valid.design, theta_deg: 0 }, 'the last valid design is the dragged one at another θ');
+  writeFileSync(join(work, 'valid.json'), JSON.stringify(refused.valid));
+  spawnSync(monge, ['generate', 'valid.json', '-o', 'valid.obj'], { cwd: work });
+  assert.equal(refused.obj, readFileSync(join(work, 'valid.obj'), 'utf8'), 'Export OBJ writes the last valid design');
+  log(`θ dragged to ${refused.theta}°: "${refused.error.split('\n')[0].slice(0, 70)}…", ${refused.where} Export OBJ = monge generate of the last valid design (θ = ${refused.valid.theta_deg}°)`);
+  // Undo: back to the valid design, nothing marked.
+  await page.keyboard.press('Control+z');
+  await idle();
+  const back = await page.evaluate(() => ({ theta: explorer.state.design.theta_deg, invalid: document.querySelectorAll('.invalid').length, error: !document.getElementById('error').hidden, label: document.getElementById('export-obj').textContent }));
+  assert.deepEqual(back, { theta: valid.design.theta_deg, invalid: 0, error: false, label: 'Export OBJ' }, 'undo returns to the valid design');
+}
+
+/**
+ * Undo and redo: every edit (θ, samples, mesh kind, offset, a handle drag, a
+ * loaded file) is one step; Ctrl+Z and Ctrl+Shift+Z (focus on θ's slider, which
+ * must not move) give back the very same design bytes, step by step.
+ */
+async function undoRedo(page, snapshot, idle) {
+  const text = () => page.evaluate(() => JSON.stringify({ design: explorer.state.design, offset: explorer.state.offset }));
+  const steps = [await text()];
+  const edits = {
+    'θ': async () => { await page.focus('#theta'); await page.keyboard.press('ArrowRight'); },
+    samples: async () => { await page.fill('#samples-u', '31'); await page.dispatchEvent('#samples-u', 'change'); },
+    kind: async () => { await page.selectOption('#kind', 'conical'); },
+    offset: async () => { await page.fill('#offset', '0.1'); await page.dispatchEvent('#offset', 'change'); },
+    drag: async () => {
+      await page.click('#fit');
+      const from = await page.evaluate(() => explorer.handleOnScreen('u', 2));
+      await page.mouse.move(from.x, from.y);
+      await page.mouse.down();
+      for (let k = 1; k <= 3; k++) await page.mouse.move(from.x + 5 * k, from.y - 4 * k);
+      await page.mouse.up();
+    },
+    file: async () => { await page.setInputFiles('#load', join(repo, 'examples', 'fig13-freeform.json')); },
+  };
+  for (const [what, edit] of Object.entries(edits)) {
+    await edit();
+    await idle();
+    const now = await text();
+    assert.notEqual(now, steps.at(-1), `the ${what} edit changed the design`);
+    steps.push(now);
+  }
+  assert.deepEqual(await page.evaluate(() => explorer.history().redo), 0);
+  await page.focus('#theta');
+  for (let k = steps.length - 2; k >= 0; k--) {
+    await page.keyboard.press('Control+z');
+    await idle();
+    assert.equal(await text(), steps[k], `undo gives back step ${k} byte for byte`);
+    assert.equal(Number(await page.inputValue('#theta')), JSON.parse(steps[k]).design.theta_deg, 'the slider shows the design\'s θ');
+  }
+  sameAsCli(await snapshot());
+  for (let k = 1; k < steps.length; k++) {
+    await page.keyboard.press(k % 2 ? 'Control+Shift+z' : 'Control+y');
+    await idle();
+    assert.equal(await text(), steps[k], `redo gives back step ${k} byte for byte`);
+  }
+  await page.click('#undo');
+  await idle();
+  assert.equal(await text(), steps.at(-2), 'the Undo button');
+  await page.click('#redo');
+  await idle();
+  assert.equal(await text(), steps.at(-1), 'the Redo button');
+  log(`undo/redo: ${steps.length - 1} edits (${Object.keys(edits).join(', ')}) undone and redone with Ctrl+Z / Ctrl+Shift+Z, each design byte for byte`);
+}
+
+/**
+ * The page opened from a file (file://) says how to serve it; served, the θ
+ * slider's admissible band is drawn (green pixels on it).
+ */
+async function firstImpressions(context, url) {
+  const page = await context.newPage();
+  try {
+    await page.goto(`file://${join(repo, 'web/dist/index.html')}`);
+    const note = page.locator('#file-note');
+    assert.ok(await note.isVisible(), 'the page opened from a file says so');
+    assert.match(await note.textContent(), /python3 -m http\.server.*monge explore/s);
+    log(`file://: ${(await note.textContent()).replace(/\s+/g, ' ').trim()}`);
+    await page.goto(`${url}?x`);
+    await page.waitForFunction(() => window.explorer && window.explorer.idle() && window.explorer.state.generations > 0);
+    assert.ok(await note.isHidden(), 'no such note when served');
+    const n = await page.evaluate(() => explorer.state.generations);
+    await page.setInputFiles('#load', join(repo, 'examples', 'fig10-arbitrary.json'));
+    await page.waitForFunction((k) => explorer.state.generations > k && explorer.idle(), n);
+    const png = (await page.locator('#theta').screenshot()).toString('base64');
+    const green = await page.evaluate(async (data) => {
+      const image = new Image();
+      image.src = `data:image/png;base64,${data}`;
+      await image.decode();
+      const canvas = Object.assign(document.createElement('canvas'), { width: image.width, height: image.height });
+      const context2d = canvas.getContext('2d');
+      context2d.drawImage(image, 0, 0);
+      const { data: px } = context2d.getImageData(0, 0, image.width, image.height);
+      let count = 0;
+      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - 0xb5) < 12 && Math.abs(px[i + 1] - 0xe3) < 12 && Math.abs(px[i + 2] - 0xb5) < 12) count += 1;
+      return { count, total: px.length / 4 };
+    }, png);
+    assert.ok(green.count > 0.05 * green.total, `the admissible band is drawn on the slider: ${green.count} of ${green.total} pixels green`);
+    log(`θ slider: ${green.count} of ${green.total} pixels in the admissible band's green`);
+  } finally {
+    await page.close();
+  }
+}
+
 async function main() {
   const { server, url } = await startStatic();
   const context = await chromium.launchPersistentContext(join(work, 'profile'), {
@@ -96,9 +363,11 @@ async function main() {
     const page = context.pages()[0] ?? await context.newPage();
     const pageErrors = [];
     page.on('pageerror', (e) => pageErrors.push(e.message));
+    const noise = watchConsole(page);
     page.setDefaultTimeout(60000); // a loaded 2-core machine renders WebGL in software
     await page.goto(url);
     const idle = () => page.waitForFunction(() => window.explorer && window.explorer.idle() && window.explorer.state.generations > 0);
+    await firstImpressions(context, url);
     const snapshot = () => page.evaluate(() => ({
       design: JSON.parse(JSON.stringify(explorer.state.design)),
       rows: explorer.state.mesh.rows,
@@ -342,7 +611,14 @@ async function main() {
     await page.uncheck('#show-arcs');
     await idle();
 
+    await grazingDrags(page, snapshot, idle);
+    await neverSilent(page, snapshot, idle);
+    await undoRedo(page, snapshot, idle);
+
     assert.deepEqual(pageErrors, [], 'no errors in the page');
+    assert.deepEqual(noise.problems, [], 'no console error and no failed request from a plain static server');
+    log(`static server: ${noise.requests.length} requests, none failed, no console error; none to api/design: ${!noise.requests.some((r) => r.includes('api/design'))}`);
+    assert.ok(!noise.requests.some((r) => r.includes('api/design') || r.includes('favicon')), noise.requests.join(' '));
     assert.ok((await snapshot()).full, 'the screenshot is in full quality');
     mkdirSync(dirname(screenshot), { recursive: true });
     await page.screenshot({ path: screenshot });
@@ -361,12 +637,15 @@ async function embedded() {
   try {
     const page = await browser.newPage();
     page.setDefaultTimeout(60000);
+    const noise = watchConsole(page);
     await page.goto(url);
     await page.waitForFunction(() => window.explorer && window.explorer.idle() && window.explorer.state.generations > 0);
+    assert.deepEqual(noise.problems, [], 'no console error and no failed request from monge explore');
+    assert.ok(noise.requests.some((r) => r.endsWith('/api/design')), 'the page served by monge explore asks it for its design');
     const cli = generate(join(repo, design));
     const shown = await page.evaluate(() => explorer.vertices());
     assert.deepEqual(shown, cli.mesh.vertices.flat(), `the page served by monge explore shows ${design}`);
-    log(`monge explore ${design}: the embedded page shows it (${cli.mesh.rows} × ${cli.mesh.cols} vertices)`);
+    log(`monge explore ${design}: the embedded page shows it (${cli.mesh.rows} × ${cli.mesh.cols} vertices); ${noise.requests.length} requests, none failed, no console error`);
   } finally {
     await browser.close();
     server.kill();

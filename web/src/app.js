@@ -5,20 +5,52 @@
 //
 // This module wires the parts: the 3D view (view.js) and the layers drawn in
 // it (layers.js), the handles (handles.js), the controls (controls.js), the
-// files (files.js) and the bridge to the module and its worker (bridge.js),
-// around one cycle: a change generates the mesh and shows it.
+// files (files.js), the design's history (history.js) and the bridge to the
+// module and its worker (bridge.js), around one cycle: a change generates the mesh and shows it.
 import { $, current, replaceCurrent, state } from './page.js';
 import { designInfo, forgetMeasure, generateMesh, loadModule, measure, measurePending, onMeasured } from './bridge.js';
 import { installControls, showMetrics, showThetaRange, syncControls } from './controls.js';
-import { installFiles, netFile } from './files.js';
+import { installFiles, labelExports, netFile } from './files.js';
+import { depth, record, step } from './history.js';
 import { handleOnScreen, installHandles, showHandles } from './handles.js';
 import { showArcs, showAxes, showColours, showMarkers, showPlanes } from './layers.js';
 import {
-  arcLines, axesGroup, coloured, fitView, frameOwed, gaussSurface, gaussWire, guideLines, planesGroup, quality, redraw,
-  resize, setGrid, setPolyline, SETTLE_MS, surface, surfaceMaterial, timeNextFrame, wire,
+  arcLines, axesGroup, camera, coloured, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
+  quality, redraw, resize, setGrid, setPolyline, SETTLE_MS, surface, surfaceMaterial, timeNextFrame, wire,
 } from './view.js';
 
 let settleTimer = null;
+
+/** The fields that edit the design, by the words the panel labels them with. */
+const FIELDS = { theta: 'θ', 'samples-u': 'samples u', 'samples-v': 'samples v', kind: 'mesh', offset: 'offset', 'load-button': 'Load design…' };
+
+/** The field or handle of the last refused edit, unmarked. */
+function unmark() {
+  $('error-source').textContent = '';
+  for (const element of document.querySelectorAll('.invalid')) {
+    element.classList.remove('invalid');
+    element.removeAttribute('aria-invalid');
+  }
+  state.invalid = null;
+}
+
+/**
+ * Marks where a refused edit came from: `source` is { field: id } (outlined)
+ * or { handle: { guide, index } } (drawn larger, in magenta); says so under
+ * the message.
+ */
+function mark(source) {
+  unmark();
+  state.invalid = source;
+  if (source?.field) {
+    $(source.field).classList.add('invalid');
+    $(source.field).setAttribute('aria-invalid', 'true');
+  }
+  const where = !source ? ''
+    : source.handle ? `the dragged ${source.handle.index === 'end' ? 'end' : `point ${source.handle.index}`} of guide_${source.handle.guide} (magenta in the view)`
+      : `“${FIELDS[source.field]}” (outlined)`;
+  $('error-source').textContent = where ? `Refused edit: ${where}.` : '';
+}
 
 /**
  * Draws a wasm `mesh` (which becomes `current`); `t0` is the time of the input
@@ -30,6 +62,7 @@ function showMesh(mesh, t0, fast = false) {
   const header = JSON.parse(mesh.header());
   state.mesh = header;
   state.stale = false;
+  unmark();
   const circular = header.kind === 'circular';
   // A circular mesh's normals are its node axes (the Gauss map); a conical
   // mesh's vertex normals are left to three.js. The arrays are views into the
@@ -53,6 +86,8 @@ function showMesh(mesh, t0, fast = false) {
   }
   showThetaRange(header);
   $('error').hidden = true;
+  $('last-valid').hidden = true;
+  labelExports(false);
   state.generations += 1;
   if (t0 !== null) timeNextFrame(t0);
   quality(fast);
@@ -64,41 +99,50 @@ function showMesh(mesh, t0, fast = false) {
  * now, in the input's own task, so it is drawn in the very next frame.
  * `dragging`: θ or a control point is being dragged, so the mesh is drawn in
  * drag quality without its metrics, then in full with them once the drag has
- * rested for SETTLE_MS. `name` names the design's file in messages.
+ * rested for SETTLE_MS. `name` names the design's file in messages; `source`
+ * is where the edit came from ({ field } or { handle }, see `mark`), shown
+ * if monge refuses it.
  */
-function change(t0, dragging = false, name = '<input>') {
+function change(t0, dragging = false, name = '<input>', source = null) {
   clearTimeout(settleTimer);
   settleTimer = null;
   const start = performance.now();
   try {
     showMesh(generateMesh(JSON.stringify(state.design), name), t0, dragging);
   } catch (error) {
-    showError(error, dragging);
+    showError(error, dragging, source, true);
   }
   state.blocked.push(performance.now() - start);
   if (dragging) {
     settleTimer = setTimeout(() => {
       settleTimer = null;
-      if (!state.stale) settle();
+      settle();
     }, SETTLE_MS);
   }
 }
 
-/** After a drag: the metrics, and the mesh in full quality. */
+/** After a drag: the metrics (of a design monge took), and the view in full quality. */
 function settle() {
   const start = performance.now();
   showHandles();
-  measure();
+  if (!state.stale) measure();
   quality(false);
   redraw();
   state.blocked.push(performance.now() - start);
 }
 
-/** Shows a refusal: monge's message, the mesh greyed as no longer current. */
-function showError(error, fast = false) {
+/**
+ * Shows a refusal: monge's message and where the edit came from (`source`,
+ * see `mark`). When the design itself was refused (`refused`: an edit, not a
+ * file that was not loaded), the last valid mesh stays, greyed, and stays
+ * what the exports write, labelled as such; its warnings and marks go.
+ */
+function showError(error, fast = false, source = null, refused = false) {
   const box = $('error');
   box.textContent = error.message;
   box.hidden = false;
+  mark(source);
+  if (!refused) return;
   // The admissible θ, when the guides themselves are valid.
   try {
     showThetaRange(designInfo());
@@ -107,6 +151,11 @@ function showError(error, fast = false) {
   }
   state.stale = true;
   forgetMeasure(); // an answer for the refused design's predecessor is stale
+  $('warnings').replaceChildren();
+  markers.clear();
+  $('last-valid').hidden = current === null;
+  labelExports(current !== null);
+  showHandles(); // where the refused edit put them
   arcLines.visible = false;
   surfaceMaterial.color.set(0xcccccc);
   coloured.material.color.set(0xcccccc);
@@ -114,22 +163,45 @@ function showError(error, fast = false) {
   redraw();
 }
 
-installHandles(change);
-installControls(change);
-installFiles({ showMesh, showError });
+/** Undo (`back`) or redo one step of the design's history. */
+function travel(back) {
+  if (!step(back)) return;
+  syncControls();
+  change(performance.now());
+}
+
+installHandles(change, record);
+installControls(change, record);
+installFiles({ showMesh, showError, done: record });
 onMeasured((answer, measured) => {
   showArcs(measured.net);
   showMetrics(answer, measured);
 });
+$('undo').addEventListener('click', () => travel(true));
+$('redo').addEventListener('click', () => travel(false));
+$('fit').addEventListener('click', () => {
+  fitView();
+  redraw();
+});
+// Ctrl+Z / Ctrl+Shift+Z (Ctrl+Y) undo and redo the design, wherever the focus
+// is: never the browser's own undo of a field, nor a step of the θ slider.
+window.addEventListener('keydown', (event) => {
+  const key = event.key.toLowerCase();
+  if (!(event.ctrlKey || event.metaKey) || event.altKey || (key !== 'z' && key !== 'y')) return;
+  event.preventDefault();
+  event.stopPropagation();
+  travel(key === 'z' && !event.shiftKey);
+}, { capture: true });
 
 /**
  * The design to start from: the one `monge explore DESIGN` serves at
  * api/design, else (any static server) the built-in default-design.json.
  */
 async function startDesign() {
-  const given = await fetch('api/design').catch(() => null);
-  if (given && given.ok && (given.headers.get('content-type') || '').startsWith('application/json')) return given.json();
-  return (await fetch('default-design.json')).json();
+  // `monge explore` marks the page it serves with <meta name="monge-design">;
+  // a static server's page has no such mark and asks for nothing it lacks.
+  const served = document.querySelector('meta[name="monge-design"]')?.content;
+  return (await fetch(served ?? 'default-design.json')).json();
 }
 
 async function start() {
@@ -138,12 +210,27 @@ async function start() {
   state.design = await startDesign();
   syncControls();
   change(performance.now());
+  record();
 }
 
 /** For the e2e test: state, and where a control point is on the screen. */
 window.explorer = {
   state,
   handleOnScreen,
+  /** Undo and redo steps available. */
+  history: depth,
+  /** The camera: looks from `position` at `target`; returns its frame for the test's own ray. */
+  look: (position, target) => {
+    orbit.target.fromArray(target);
+    camera.position.fromArray(position);
+    orbit.update();
+    redraw();
+  },
+  camera: () => {
+    camera.updateMatrixWorld();
+    const rect = document.querySelector('#view canvas').getBoundingClientRect();
+    return { world: camera.matrixWorld.toArray(), fov: camera.fov, rect: { left: rect.left, top: rect.top, width: rect.width, height: rect.height } };
+  },
   /** The shown mesh's vertices, f64, as `monge generate` writes them. */
   vertices: () => Array.from(current.vertices()),
   /** The shown mesh's metrics (JSON text), measured in the module. */

@@ -21,6 +21,7 @@ export function generateMesh(text, name) {
   const mesh = generate(text, name, state.offset, MAX_VERTICES);
   generateMs = performance.now() - start;
   state.name = name;
+  state.valid = text;
   return mesh;
 }
 

@@ -39,14 +39,14 @@ export function showThetaRange({ theta_range: r, mode }) {
   const slider = $('theta');
   if (mode === 'characteristic') {
     $('theta-range').textContent = 'admissible: every θ in (−180°, 180°] (singular at +90°)';
-    slider.style.background = '';
+    slider.style.removeProperty('--band');
     return;
   }
   $('theta-range').textContent = `admissible: |θ| in [${r.min_deg.toFixed(2)}°, ${r.max_deg.toFixed(2)}°]`;
   const pct = (deg) => `${((deg + 180) / 360) * 100}%`;
   const ok = '#b5e3b5';
   const no = '#f3c0c0';
-  slider.style.background = `linear-gradient(to right, ${no} ${pct(-r.max_deg)}, ${ok} ${pct(-r.max_deg)} ${pct(-r.min_deg)}, ${no} ${pct(-r.min_deg)} ${pct(r.min_deg)}, ${ok} ${pct(r.min_deg)} ${pct(r.max_deg)}, ${no} ${pct(r.max_deg)})`;
+  slider.style.setProperty('--band', `linear-gradient(to right, ${no} ${pct(-r.max_deg)}, ${ok} ${pct(-r.max_deg)} ${pct(-r.min_deg)}, ${no} ${pct(-r.min_deg)} ${pct(r.min_deg)}, ${ok} ${pct(r.min_deg)} ${pct(r.max_deg)}, ${no} ${pct(r.max_deg)})`);
 }
 
 /** Puts the design's values into the controls. */
@@ -55,6 +55,7 @@ export function syncControls() {
   $('theta').value = d.theta_deg;
   $('theta-value').textContent = Number(d.theta_deg).toFixed(1);
   $('kind').value = d.mesh === 'conical' ? 'conical' : 'circular';
+  $('offset').value = state.offset;
   for (const g of ['u', 'v']) {
     const spec = d[`guide_${g}`];
     const sampled = spec.bspline || spec.arc || spec.parabola;
@@ -64,31 +65,38 @@ export function syncControls() {
 }
 
 /**
- * Lets the controls change the design and the views; `change(t0, dragging)`
- * is told of each change to the design, at the time `t0` of its event.
+ * Lets the controls change the design and the views; `change(t0, dragging,
+ * name, source)` is told of each change to the design, at the time `t0` of its
+ * event, with the field as source; `done()` when an edit is complete (one step
+ * of the design's history: θ when it is let go, a field when it changes).
  */
-export function installControls(change) {
+export function installControls(change, done) {
+  const field = (id) => ({ field: id });
   $('theta').addEventListener('input', (event) => {
     const t0 = performance.now();
     state.design.theta_deg = Number(event.target.value);
     $('theta-value').textContent = state.design.theta_deg.toFixed(1);
-    change(t0, true);
+    change(t0, true, '<input>', field('theta'));
   });
+  $('theta').addEventListener('change', done);
   for (const g of ['u', 'v']) {
     $(`samples-${g}`).addEventListener('change', (event) => {
       const spec = state.design[`guide_${g}`];
       (spec.bspline || spec.arc || spec.parabola).samples = Math.round(Number(event.target.value));
-      change(performance.now());
+      change(performance.now(), false, '<input>', field(`samples-${g}`));
+      done();
     });
   }
   $('kind').addEventListener('change', (event) => {
     if (event.target.value === 'conical') state.design.mesh = 'conical';
     else delete state.design.mesh;
-    change(performance.now());
+    change(performance.now(), false, '<input>', field('kind'));
+    done();
   });
   $('offset').addEventListener('change', (event) => {
     state.offset = Number(event.target.value) || 0;
-    change(performance.now());
+    change(performance.now(), false, '<input>', field('offset'));
+    done();
   });
   $('show-gauss').addEventListener('change', (event) => {
     gauss.visible = event.target.checked;

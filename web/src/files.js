@@ -19,17 +19,27 @@ export function netFile() {
   try { return net.export(9); } finally { net.free(); }
 }
 
+/** The export buttons, and whether they export the last valid design (the design shown was refused). */
+const EXPORTS = { 'export-obj': 'Export OBJ', 'export-json': 'Export JSON', 'export-net': 'Export smooth net' };
+
+/** Labels the export buttons as exporting the last valid design (`stale`) or the design shown. */
+export function labelExports(stale) {
+  for (const [id, label] of Object.entries(EXPORTS)) $(id).textContent = stale ? `${label} (last valid design)` : label;
+}
+
 /**
  * Lets the buttons save and load; a loaded design's wasm mesh is shown with
- * `showMesh(mesh, t0)`, a refused one's message with `showError(error)`.
+ * `showMesh(mesh, t0)`, a refused one's message with `showError(error,
+ * dragging, source)`; `done()` records a loaded design as a step of the history.
+ * The exports are of the mesh shown: the last valid design's when an edit was refused.
  */
-export function installFiles({ showMesh, showError }) {
+export function installFiles({ showMesh, showError, done }) {
   $('save').addEventListener('click', () => {
     download(new Blob([`${JSON.stringify(state.design, null, 2)}\n`], { type: 'application/json' }), 'design.json');
   });
   $('export-net').addEventListener('click', () => {
     // The cyclidic net's JSON, as `monge smooth -o net.json` writes it (a click, not a drag: on the main thread).
-    if (!current || state.stale) return;
+    if (!current) return;
     try {
       download(new Blob([netFile()]), 'net.json');
     } catch (error) {
@@ -40,7 +50,7 @@ export function installFiles({ showMesh, showError }) {
   for (const format of ['obj', 'json']) {
     // The file `monge generate` writes, written by the same code in the module.
     $(`export-${format}`).addEventListener('click', () => {
-      if (current && !state.stale) download(new Blob([current.export(format)]), `mesh.${format}`);
+      if (current) download(new Blob([current.export(format)]), `mesh.${format}`);
     });
   }
   $('load-button').addEventListener('click', () => $('load').click());
@@ -56,8 +66,9 @@ export function installFiles({ showMesh, showError }) {
       syncControls();
       state.mesh = null; // fit the view to the new design
       showMesh(mesh, t0);
+      done();
     } catch (error) {
-      showError(error); // the current design stays
+      showError(error, false, { field: 'load-button' }); // the current design stays
     }
   });
 }

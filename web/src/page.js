@@ -16,7 +16,9 @@ export const state = {
   latencies: [],     // ms from input event to the frame that shows its mesh
   blocked: [],       // ms of each main-thread task for monge: a change (module, upload), a drag's end, the worker's answer
   generations: 0,    // meshes drawn so far
-  stale: false,      // the design changed and monge refused it
+  stale: false,      // the design changed and monge refused it: the mesh shown is the last valid design's
+  valid: null,       // the last design monge took (JSON text): the mesh shown and exported is its
+  invalid: null,     // where the refused edit came from: { field: id } or { handle: { guide, index } }
   fast: false,       // drawn in drag quality (see `quality` in view.js)
   legend: null,      // the colour legend's numbers: { mode: 'area', min, max } or { mode: 'fold', folded, faces }
   name: '<input>',   // the design's file name, in messages

@@ -13,6 +13,9 @@ use tempfile::{NamedTempFile, TempDir};
 mod common;
 use common::example;
 
+/// What `monge explore` adds after the `<head>` of the page it serves.
+const MARK: &str = "\n  <meta name=\"monge-design\" content=\"api/design\">";
+
 /// The page's files, as committed (what the binary embeds).
 fn web_dist() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("web-dist")
@@ -188,9 +191,12 @@ fn routes_and_files() {
         "no warning on 127.0.0.1: {}",
         server.stderr()
     );
+    // The page, marked as served by `monge explore` (it then asks for /api/design).
+    let page = format!("{MARK}<p>explorer</p>");
+    assert_eq!(server.request("GET", "/"), (200, page.clone().into_bytes()));
     assert_eq!(
-        server.request("GET", "/"),
-        (200, b"<p>explorer</p>".to_vec())
+        server.request("GET", "/index.html"),
+        (200, page.clone().into_bytes())
     );
     // HEAD: the GET's status and headers, Content-Length included, no body.
     let mut stream = TcpStream::connect(&server.address).unwrap();
@@ -203,7 +209,10 @@ fn routes_and_files() {
     let mut answer = String::new();
     stream.read_to_string(&mut answer).unwrap();
     assert!(answer.starts_with("HTTP/1.1 200 "), "{answer}");
-    assert!(answer.contains("Content-Length: 15\r\n"), "{answer}");
+    assert!(
+        answer.contains(&format!("Content-Length: {}\r\n", page.len())),
+        "{answer}"
+    );
     assert!(answer.ends_with("\r\n\r\n"), "no body: {answer}");
     assert_eq!(server.request("HEAD", "/nothing.js").0, 404);
     assert_eq!(server.request("GET", "/nothing.js").0, 404);
@@ -244,13 +253,22 @@ fn a_copied_binary_serves_its_embedded_page() {
     let page = web_dist();
     let (status, index) = server.request("GET", "/");
     assert_eq!(status, 200);
-    assert_eq!(index, std::fs::read(page.join("index.html")).unwrap());
-    // Every file the page links to or loads, as committed.
-    let html = String::from_utf8(index).unwrap();
+    // As committed, with the mark after `<head>` that makes it ask for /api/design.
+    let committed = std::fs::read_to_string(page.join("index.html")).unwrap();
+    assert!(
+        !committed.contains("monge-design"),
+        "a static server's page asks for no api/design"
+    );
+    assert_eq!(
+        String::from_utf8(index).unwrap(),
+        committed.replacen("<head>", &format!("<head>{MARK}"), 1)
+    );
+    // Every file the page links to or loads, as committed (the icon is inline: no request).
     let linked: Vec<&str> = ["src=\"", "href=\""]
         .iter()
-        .flat_map(|attr| html.split(attr).skip(1))
+        .flat_map(|attr| committed.split(attr).skip(1))
         .filter_map(|rest| rest.split('"').next())
+        .filter(|link| !link.starts_with("data:"))
         .collect();
     assert_eq!(linked.len(), 2, "app.js and style.css: {linked:?}");
     for file in linked

@@ -16,7 +16,9 @@
 //! installed `monge` serves its page; `--web-dir` serves another directory instead.
 //!
 //! Routes:
-//! * `GET /`, `GET /<file>`: the page, embedded or from `--web-dir`.
+//! * `GET /`, `GET /<file>`: the page, embedded or from `--web-dir`; its
+//!   `index.html` marked ([`DESIGN_MARK`]) so that it asks for its start
+//!   design here.
 //! * `GET /api/design`: the design to start from (DESIGN, or a built-in one of
 //!   100 × 100 faces).
 
@@ -98,6 +100,22 @@ pub struct ExploreArgs {
 
 /// The page built by `npm run build` in `web/`, as committed in `web-dist/`.
 static EMBEDDED_PAGE: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/web-dist");
+
+/// What `monge explore` adds to the `<head>` of the page it serves: the page
+/// then asks for its start design at `/api/design`. A page from a plain static
+/// server has no such mark and opens its own `default-design.json`, so that it
+/// asks for no file the server lacks.
+const DESIGN_MARK: &str = "\n  <meta name=\"monge-design\" content=\"api/design\">";
+
+/// `index.html` with [`DESIGN_MARK`] after its `<head>` (or first, if it has none).
+fn marked(html: &[u8]) -> Vec<u8> {
+    const HEAD: &[u8] = b"<head>";
+    let at = html
+        .windows(HEAD.len())
+        .position(|w| w.eq_ignore_ascii_case(HEAD))
+        .map_or(0, |i| i + HEAD.len());
+    [&html[..at], DESIGN_MARK.as_bytes(), &html[at..]].concat()
+}
 
 /// Where the page's files come from.
 enum Page {
@@ -289,6 +307,20 @@ fn static_file(page: &Page, path: &str) -> http::Response {
     let plain = relative
         .components()
         .all(|c| matches!(c, Component::Normal(_)));
+    if plain && relative == Path::new("index.html") {
+        let html = match page {
+            Page::Embedded => EMBEDDED_PAGE
+                .get_file(relative)
+                .map(|f| f.contents().to_vec()),
+            Page::Directory(dir) => fs::read(dir.join(relative)).ok(),
+        };
+        if let Some(html) = html {
+            return file(
+                content_type(relative),
+                http::Body::Bytes(marked(&html).into()),
+            );
+        }
+    }
     let body = match page {
         _ if !plain => None,
         Page::Embedded => EMBEDDED_PAGE
