@@ -312,6 +312,38 @@ async function undoRedo(page, snapshot, idle) {
 }
 
 /**
+ * A guide's kind changed from the panel: each kind keeps the guide's start and
+ * end (measured here from the design file's keys) and gives a design monge
+ * takes, the page's mesh being monge generate's.
+ */
+async function guideKinds(page, snapshot, idle) {
+  await page.fill('#offset', '0');
+  await page.dispatchEvent('#offset', 'change');
+  const n = (await snapshot()).generations;
+  await page.setInputFiles('#load', join(repo, 'web/src/default-design.json'));
+  await page.waitForFunction((k) => explorer.state.generations > k && explorer.idle(), n);
+  const endsOf = (g) => {
+    if (g.parabola) return [g.parabola.start, sumOf(g.parabola.start, g.parabola.tangent, g.parabola.quadratic)];
+    if (g.arc) return [g.arc.start, arcEndOf(g.arc)];
+    const points = g.points ?? g.bspline.control_points;
+    return [points[0], points.at(-1)];
+  };
+  const original = endsOf((await snapshot()).design.guide_u);
+  for (const kind of ['parabola', 'arc', 'points', 'bspline']) {
+    await page.selectOption('#kind-u', kind);
+    await idle();
+    const now = await snapshot();
+    assert.equal(now.error, null, `guide_u as ${kind}: ${now.error}`);
+    assert.ok(now.design.guide_u[kind], `guide_u is a ${kind}`);
+    const [a, b] = endsOf(now.design.guide_u);
+    const off = Math.max(len(sub(a, original[0])), len(sub(b, original[1])));
+    assert.ok(off < 1e-9, `guide_u as ${kind} keeps its start and end (off by ${off})`);
+    sameAsCli(now);
+  }
+  log('guide kinds: guide_u as parabola, arc, points and bspline, start and end kept; monge generate = page bit for bit');
+}
+
+/**
  * The page opened from a file (file://) says how to serve it; served, the θ
  * slider's admissible band is drawn (green pixels on it).
  */
@@ -614,6 +646,7 @@ async function main() {
     await grazingDrags(page, snapshot, idle);
     await neverSilent(page, snapshot, idle);
     await undoRedo(page, snapshot, idle);
+    await guideKinds(page, snapshot, idle);
 
     assert.deepEqual(pageErrors, [], 'no errors in the page');
     assert.deepEqual(noise.problems, [], 'no console error and no failed request from a plain static server');

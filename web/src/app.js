@@ -22,7 +22,7 @@ import {
 let settleTimer = null;
 
 /** The fields that edit the design, by the words the panel labels them with. */
-const FIELDS = { theta: 'θ', 'samples-u': 'samples u', 'samples-v': 'samples v', kind: 'mesh', offset: 'offset', 'load-button': 'Load design…' };
+const FIELDS = { theta: 'θ', 'samples-u': 'samples u', 'samples-v': 'samples v', kind: 'mesh', 'kind-u': 'guide u', 'kind-v': 'guide v', offset: 'offset', 'load-button': 'Load design…' };
 
 /** The field or handle of the last refused edit, unmarked. */
 function unmark() {
@@ -171,7 +171,7 @@ function travel(back) {
 }
 
 installHandles(change, record);
-installControls(change, record);
+installControls(change, record, (error, source) => showError(error, false, source));
 installFiles({ showMesh, showError, done: record });
 onMeasured((answer, measured) => {
   showArcs(measured.net);

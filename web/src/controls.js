@@ -5,6 +5,7 @@ import { $, current, fmt, state } from './page.js';
 import { generateMs, measure } from './bridge.js';
 import { showAxes, showColours, showPlanes } from './layers.js';
 import { arcLines, axesGroup, gauss, planesGroup, redraw } from './view.js';
+import { convertGuide, kindOf } from './kinds.js';
 
 /** The first words of a long message. */
 const brief = (text, n = 90) => (text.length > n ? `${text.slice(0, n)}…` : text);
@@ -61,6 +62,7 @@ export function syncControls() {
     const sampled = spec.bspline || spec.arc || spec.parabola;
     $(`samples-${g}`).value = sampled ? sampled.samples : spec.points.length;
     $(`samples-${g}`).disabled = !sampled;
+    $(`kind-${g}`).value = kindOf(spec);
   }
 }
 
@@ -68,9 +70,10 @@ export function syncControls() {
  * Lets the controls change the design and the views; `change(t0, dragging,
  * name, source)` is told of each change to the design, at the time `t0` of its
  * event, with the field as source; `done()` when an edit is complete (one step
- * of the design's history: θ when it is let go, a field when it changes).
+ * of the design's history: θ when it is let go, a field when it changes);
+ * `refuse(error, source)` shows an edit the page itself cannot make.
  */
-export function installControls(change, done) {
+export function installControls(change, done, refuse) {
   const field = (id) => ({ field: id });
   $('theta').addEventListener('input', (event) => {
     const t0 = performance.now();
@@ -84,6 +87,21 @@ export function installControls(change, done) {
       const spec = state.design[`guide_${g}`];
       (spec.bspline || spec.arc || spec.parabola).samples = Math.round(Number(event.target.value));
       change(performance.now(), false, '<input>', field(`samples-${g}`));
+      done();
+    });
+  }
+  for (const g of ['u', 'v']) {
+    $(`kind-${g}`).addEventListener('change', (event) => {
+      const key = `guide_${g}`;
+      try {
+        state.design[key] = convertGuide(state.design[key], event.target.value, g);
+      } catch (error) {
+        event.target.value = kindOf(state.design[key]);
+        refuse(error, field(`kind-${g}`));
+        return;
+      }
+      syncControls();
+      change(performance.now(), false, '<input>', field(`kind-${g}`));
       done();
     });
   }

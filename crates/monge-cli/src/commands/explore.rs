@@ -58,13 +58,17 @@ const DEFAULT_DESIGN: &str = include_str!("../../web-dist/default-design.json");
 #[command(
     long_about = "Serve the design explorer on this machine and print its address: a web page \
          with a 3D view of the mesh (guides highlighted, Gauss map beside it), a θ slider, \
-         draggable control points of B-spline guides (kept in their planes, start tangents \
-         kept), sample counts, circular/conical switch, offset distance, live metrics and \
-         warnings where the mesh folds or θ is not admissible; designs load and save in the \
-         design-file format, meshes export as OBJ or JSON.\n\n\
+         draggable guide points (B-spline control points, points, a parabola's control points, \
+         an arc's end; kept in their planes, start tangents kept), sample counts, \
+         circular/conical switch, offset distance, live metrics and warnings where the mesh \
+         folds or θ is not admissible; every edit can be undone (Ctrl+Z) and redone \
+         (Ctrl+Shift+Z); a refused edit is marked and the last valid design stays shown and \
+         exportable; designs load and save in the design-file format, meshes export as OBJ \
+         or JSON.\n\n\
          The page computes the mesh in the browser (monge-core in WebAssembly, the same code \
-         as `monge generate`); this server only serves the page and the start design \
-         (GET /api/design), and computes nothing. It listens on 127.0.0.1 unless --host says \
+         as `monge generate`); this server only serves the page (marking it so that it asks \
+         for its start design here) and the start design (GET /api/design), and computes \
+         nothing. It listens on 127.0.0.1 unless --host says \
          otherwise (and warns when it listens beyond this machine), answers GET and HEAD \
          only, and closes a connection whose request has not arrived whole within 10 s or \
          whose answer has not been taken within 30 s. The page is built into this binary; \
