@@ -273,7 +273,10 @@ async function undoRedo(page, snapshot, idle) {
     offset: async () => { await page.fill('#offset', '0.1'); await page.dispatchEvent('#offset', 'change'); },
     drag: async () => {
       await page.click('#fit');
+      await idle();
       const from = await page.evaluate(() => explorer.handleOnScreen('u', 2));
+      const grabbed = await page.evaluate(([x, y]) => document.elementFromPoint(x, y)?.tagName, [from.x, from.y]);
+      assert.equal(grabbed, 'CANVAS', `guide_u's point 2 is on the view at ${from.x}, ${from.y}`);
       await page.mouse.move(from.x, from.y);
       await page.mouse.down();
       for (let k = 1; k <= 3; k++) await page.mouse.move(from.x + 5 * k, from.y - 4 * k);

@@ -246,6 +246,7 @@ export function installHandles(change, done) {
 
 /** Where point `index` (or 'end') of guide `guide` is on the screen, in client pixels. */
 export function handleOnScreen(guide, index) {
+  camera.updateMatrixWorld(); // the camera may have moved since the last frame drew
   const p = toScreen(index === 'end' ? arcEnd(guide) : new THREE.Vector3().fromArray(controlPoints(guide)[index]));
   return { x: p.x, y: p.y };
 }
