@@ -62,7 +62,7 @@ def run(command, binary, cache):
             bindir = os.path.join(d, ".bin")
             os.mkdir(bindir)
             os.symlink(binary, os.path.join(bindir, "monge"))
-            env = dict(os.environ, PATH=bindir + os.pathsep + os.environ["PATH"])
+            env = dict(os.environ, PATH=bindir + os.pathsep + os.environ["PATH"], MONGE_REPO=ROOT)
             print("$ " + command, file=sys.stderr)
             p = subprocess.run(["sh", "-c", command], cwd=d, env=env, capture_output=True, text=True)
             if p.returncode != 0:
