@@ -77,19 +77,19 @@ WINDOWS_DLLS = [
 ]
 PLATFORMS = [
     Platform(
-        "Linux x86_64", r"manylinux_2_17_x86_64(\.manylinux2014_x86_64)?", "ELF", "x86_64",
+        "Linux x86_64", r"(manylinux2014_x86_64\.)?manylinux_2_17_x86_64(\.manylinux2014_x86_64)?", "ELF", "x86_64",
         # The manylinux 2014 policy's libraries (checked again by auditwheel).
         [r"libc\.so\.6", r"libm\.so\.6", r"libdl\.so\.2", r"libpthread\.so\.0", r"librt\.so\.1",
          r"libgcc_s\.so\.1", r"ld-linux-x86-64\.so\.2"],
     ),
     Platform(
         "macOS x86_64", r"macosx_10_(1[2-5])_x86_64", "Mach-O", "x86_64",
-        [r"/usr/lib/libSystem\.B\.dylib", r"/usr/lib/libiconv\.2\.dylib", r"/usr/lib/libresolv\.9\.dylib",
+        [r"/usr/lib/libSystem\.B\.dylib", r"/usr/lib/libiconv\.2\.dylib", r"/usr/lib/libcharset\.1\.dylib", r"/usr/lib/libresolv\.9\.dylib",
          r"/System/Library/Frameworks/(CoreFoundation|Security)\.framework/.*"],
     ),
     Platform(
         "macOS arm64", r"macosx_11_0_arm64", "Mach-O", "arm64",
-        [r"/usr/lib/libSystem\.B\.dylib", r"/usr/lib/libiconv\.2\.dylib", r"/usr/lib/libresolv\.9\.dylib",
+        [r"/usr/lib/libSystem\.B\.dylib", r"/usr/lib/libiconv\.2\.dylib", r"/usr/lib/libcharset\.1\.dylib", r"/usr/lib/libresolv\.9\.dylib",
          r"/System/Library/Frameworks/(CoreFoundation|Security)\.framework/.*"],
     ),
     Platform("Windows x86_64", r"win_amd64", "PE", "x86_64", WINDOWS_DLLS),

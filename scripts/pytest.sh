@@ -19,7 +19,11 @@ fi
 # for one CPython version at a time (3.11 for bpy 4.1–5.0).
 "$venv/bin/python" -m pip install --quiet bpy ||
   echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
-"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask mypy
+# dask and pandas: monge.dask on a local cluster; pefile, macholib, pyelftools,
+# auditwheel: the checks of the cross-built wheels (scripts/wheels.sh), when
+# target/wheels-all holds them.
+"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask mypy \
+  "dask[distributed]" pandas pefile macholib pyelftools auditwheel
 [ "${1:-}" = --setup ] && exit 0
 
 # A debug wheel by default: it reuses what `cargo test` just built, and the tests
