@@ -44,7 +44,7 @@ if [ "${1:-}" != --check-only ]; then
   build --compatibility manylinux2014 # manylinux2014 = manylinux_2_17
   build --target x86_64-apple-darwin
   build --target aarch64-apple-darwin
-  build --target x86_64-pc-windows-gnu
+  build --target x86_64-pc-windows-gnu || echo "warning: the Windows wheel did not build (see above); checking the others" >&2
 fi
 
 echo "== wheels in $out"
