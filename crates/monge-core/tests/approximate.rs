@@ -15,7 +15,7 @@ use monge_core::measure::measure;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 
 mod common;
-use common::design;
+use common::{design, triangle_distance};
 
 /// A deterministic noise in [−1, 1] (splitmix64).
 fn noise(k: u64) -> f64 {
@@ -62,36 +62,11 @@ fn brute_to_mesh(p: DVec3, grid: &QuadGrid) -> f64 {
         for j in 0..grid.cols - 1 {
             let [a, b, c, d] = grid.face(i, j);
             for (x, y, z) in [(a, b, c), (a, c, d)] {
-                best = best.min(triangle_distance(p, x, y, z));
+                best = best.min(triangle_distance(p, [x, y, z]));
             }
         }
     }
     best
-}
-
-/// Distance from a point to a triangle by projection and edges (a different formula
-/// from the library's region test).
-fn triangle_distance(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    let n = (b - a).cross(c - a).normalize();
-    let q = p - n * (p - a).dot(n);
-    let edges = [(a, b), (b, c), (c, a)];
-    if edges
-        .iter()
-        .all(|(u, v)| (*v - *u).cross(q - *u).dot(n) >= 0.0)
-        || edges
-            .iter()
-            .all(|(u, v)| (*v - *u).cross(q - *u).dot(n) <= 0.0)
-    {
-        return (p - a).dot(n).abs();
-    }
-    edges
-        .iter()
-        .map(|(u, v)| {
-            let e = *v - *u;
-            let t = ((p - *u).dot(e) / e.length_squared()).clamp(0.0, 1.0);
-            p.distance(*u + t * e)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Largest and RMS of `values`.

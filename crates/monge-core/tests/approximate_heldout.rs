@@ -2,6 +2,7 @@
 //! in `heldout/`), as meshes and as noised scans, rotated and far from the origin;
 //! every distance measured by brute force on fine samplings of both surfaces.
 
+mod common;
 mod heldout;
 
 use std::time::Instant;

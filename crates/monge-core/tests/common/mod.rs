@@ -259,3 +259,28 @@ pub fn arc_u(from_deg: f64, angle_deg: f64, samples: usize) -> GuideSpec {
         samples,
     )
 }
+
+/// Distance from a point to a triangle by projection and edges (a different formula
+/// from the library's region test).
+pub fn triangle_distance(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
+    let n = (b - a).cross(c - a).normalize();
+    let q = p - n * (p - a).dot(n);
+    let edges = [(a, b), (b, c), (c, a)];
+    if edges
+        .iter()
+        .all(|(u, v)| (*v - *u).cross(q - *u).dot(n) >= 0.0)
+        || edges
+            .iter()
+            .all(|(u, v)| (*v - *u).cross(q - *u).dot(n) <= 0.0)
+    {
+        return (p - a).dot(n).abs();
+    }
+    edges
+        .iter()
+        .map(|(u, v)| {
+            let e = *v - *u;
+            let t = ((p - *u).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+            p.distance(*u + t * e)
+        })
+        .fold(f64::INFINITY, f64::min)
+}

@@ -13,6 +13,8 @@
 use glam::{DQuat, DVec3};
 use monge_core::QuadGrid;
 
+use crate::common::triangle_distance;
+
 /// A deterministic random stream (splitmix64).
 pub struct Rng(u64);
 
@@ -287,30 +289,6 @@ pub fn targets() -> Vec<Target> {
         Target::placed("hyperbolic paraboloid", hypar, false, 10.0, 1e3, 5),
         Target::placed("Bézier roof", bezier, false, 50.0, 1e5, 6),
     ]
-}
-
-/// Distance from a point to a triangle by projection and edges.
-pub fn triangle_distance(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
-    let n = (b - a).cross(c - a).normalize();
-    let q = p - n * (p - a).dot(n);
-    let edges = [(a, b), (b, c), (c, a)];
-    if edges
-        .iter()
-        .all(|(u, v)| (*v - *u).cross(q - *u).dot(n) >= 0.0)
-        || edges
-            .iter()
-            .all(|(u, v)| (*v - *u).cross(q - *u).dot(n) <= 0.0)
-    {
-        return (p - a).dot(n).abs();
-    }
-    edges
-        .iter()
-        .map(|(u, v)| {
-            let e = *v - *u;
-            let t = ((p - *u).dot(e) / e.length_squared()).clamp(0.0, 1.0);
-            p.distance(*u + t * e)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Triangles with their bounding spheres, for a brute-force search that skips the far ones.
