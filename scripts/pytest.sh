@@ -22,20 +22,37 @@ fi
 # dask and pandas: monge.dask on a local cluster; pefile, macholib, pyelftools,
 # auditwheel: the checks of the cross-built wheels (scripts/wheels.sh), when
 # target/wheels-all holds them.
-"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" numpy pytest rhino3dm compas ghhops-server flask mypy \
+"$venv/bin/python" -m pip install --quiet "maturin>=1.9.4,<2" numpy pytest rhino3dm compas ghhops-server flask mypy \
   "dask[distributed]" pandas pefile macholib pyelftools auditwheel
 [ "${1:-}" = --setup ] && exit 0
 
-# A debug wheel by default: it reuses what `cargo test` just built, and the tests
-# are small (MONGE_WHEEL_PROFILE=--release builds the wheel that users get). It
-# is named as the release wheel is, so it goes to a folder of its own,
-# target/wheels-test: target/wheels, where the README's `maturin build --release`
-# puts the wheel to install, is neither written nor emptied here.
+# The workspace's test build (nothing to do after `cargo test --workspace`): the
+# tests run the `monge` it holds, and the debug wheel below reuses it.
+cargo test --workspace --locked --no-run --quiet
+
+# A debug wheel by default: the tests are small (MONGE_WHEEL_PROFILE=--release
+# builds the wheel that users get). It is named as the release wheel is, so it
+# goes to a folder of its own, target/wheels-test: target/wheels, where the
+# README's `maturin build --release` puts the wheel to install, is neither
+# written nor emptied here.
 profile="${MONGE_WHEEL_PROFILE:-}"
 wheels="$target/wheels-test"
 echo "== wheel (maturin build ${profile:-(debug)}, into $wheels)"
 rm -rf "$wheels"
-(cd crates/monge-py && "$venv/bin/maturin" build $profile --locked --out "$wheels")
+log="$(mktemp)"
+(cd crates/monge-py && "$venv/bin/maturin" build $profile --locked --out "$wheels") 2>&1 | tee "$log"
+# The debug wheel compiles only what differs from the test build: pyo3 built as
+# an extension module, and what links it. Anything else means a dependency's
+# features differ between the two builds (see crates/monge-py/Cargo.toml).
+if [ -z "$profile" ]; then
+  extra="$(sed -n 's/^ *Compiling \([^ ]*\) .*/\1/p' "$log" | grep -vxE 'pyo3(-ffi|-macros|-macros-backend|-build-config)?|numpy|pythonize|monge-py' || true)"
+  if [ -n "$extra" ]; then
+    echo "error: the debug wheel's build compiled again what \`cargo test --workspace\` had built:" $extra >&2
+    echo "  their features differ from the workspace's: align them in crates/monge-py/Cargo.toml" >&2
+    exit 2
+  fi
+fi
+rm -f "$log"
 wheel="$(ls "$wheels"/monge-*.whl)"
 case "$(basename "$wheel")" in
   *-cp39-abi3-*) echo "wheel: $(basename "$wheel") (abi3, CPython ≥ 3.9)" ;;
@@ -44,7 +61,6 @@ esac
 "$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps "$wheel"
 
 echo "== pytest"
-cargo build --quiet --locked -p monge-cli
 export MONGE_BIN="$target/debug/monge"
 export MONGE_TEST_WHEEL="$wheel"
 # Run from outside the source tree so that the installed wheel is imported.

@@ -29,7 +29,7 @@ out="$target/wheels-all"
 if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
-"$venv/bin/python" -m pip install --quiet "maturin>=1.5,<2" ziglang pefile macholib pyelftools auditwheel
+"$venv/bin/python" -m pip install --quiet "maturin>=1.9.4,<2" ziglang pefile macholib pyelftools auditwheel
 
 if [ "${1:-}" != --check-only ]; then
   rustup target add x86_64-apple-darwin aarch64-apple-darwin x86_64-pc-windows-gnu
