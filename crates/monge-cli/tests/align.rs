@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, generate_and_check, monge, refuses};
 
 /// Largest distance of each boundary line of the JSON mesh `mesh` from the planes

@@ -1,6 +1,6 @@
 //! End-to-end tests of `monge approximate` (issue 14; monge's extension of the method).
 
-mod common;
+use crate::common;
 
 use std::fs;
 

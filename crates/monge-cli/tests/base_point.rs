@@ -3,7 +3,7 @@
 //! measured here with closed forms of this file (not monge's measure module),
 //! the files read by hand, by `tobj` and by `gltf`.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

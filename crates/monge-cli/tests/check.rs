@@ -8,7 +8,7 @@ use predicates::prelude::*;
 use serde_json::Value;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{check_json, example, monge, monge_to, read_json, refuses, write};
 
 /// A 3 × 3 JSON mesh of the unit grid in the plane z = 0, with vertex (1, 1) lifted by `lift`.

@@ -6,7 +6,7 @@ use std::fs;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, fig10_with_theta, generate_and_check, monge, refuses, write};
 
 /// Runs `generate` on `design` (written as `name`) into `out.obj` with `extra`

@@ -6,7 +6,7 @@ use std::fs;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, monge, obj_faces, refuses, shoelace_area, variance_and_spread};
 
 #[test]

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use serde_json::Value;
 use tempfile::{NamedTempFile, TempDir};
 
-mod common;
+use crate::common;
 use common::example;
 
 /// What `monge explore` adds after the `<head>` of the page it serves.

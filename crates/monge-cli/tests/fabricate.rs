@@ -3,7 +3,7 @@
 use monge_io::FABRICATION_FILES;
 use predicates::prelude::*;
 
-mod common;
+use crate::common;
 use common::{example, monge, refuses};
 
 /// The summary line of one family of beams.

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, monge, monge_to, refuses, write};
 
 /// Every command that writes a file, with its input file and `OUT` in place of

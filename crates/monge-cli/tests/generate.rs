@@ -9,7 +9,7 @@ use predicates::prelude::*;
 use serde_json::Value;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{
     check_json, example, examples, generate_and_check, monge, monge_to, read_json, refuses, vertex,
     write,

@@ -2,7 +2,7 @@
 //! panic (101) or an abort (134), and a cost bounded by what the file holds.
 //! Each input here crashed or ran away before (found by a mutation fuzzer).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -4,7 +4,7 @@ use predicates::prelude::*;
 use serde_json::Value;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, fig10_with_theta, monge, refuses, write};
 
 #[test]

@@ -5,7 +5,7 @@
 //! of its corners. `generate` (every example, circular, conical, developable),
 //! `smooth`'s dense mesh, `patches` (merged and mirrored) and `fabricate`'s glTF.
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::{Path, PathBuf};

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, monge, refuses};
 
 /// Every file of `dir` with its content, sorted by name (directories as `<dir>`).

@@ -5,7 +5,7 @@ use std::fs;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-mod common;
+use crate::common;
 use common::{example, monge, refuses};
 
 #[test]

@@ -3,7 +3,7 @@
 //! direct geometric computations: circles through three vertices, least-squares
 //! planes (nalgebra SVD), pairwise distances, mirror images.
 //!
-//! `cargo test -p monge-core --test analytic -- --nocapture` prints the worst
+//! `cargo test -p monge-core --test integration analytic:: -- --nocapture` prints the worst
 //! values seen and the refinement rates.
 
 use glam::DVec3;
@@ -11,7 +11,7 @@ use monge_core::design::ArcSpec;
 use monge_core::measure::measure;
 use monge_core::{Design, GuideSpec, QuadGrid};
 
-mod common;
+use crate::common;
 use common::{
     bspline, circle3, circle_distance, design, freeform, mesh, plane_fit, two_circles,
     PROFILE_RADIUS as RT, RAIL_RADIUS as R, TOL,

@@ -14,7 +14,7 @@ use monge_core::approximate::{
 use monge_core::measure::measure;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 
-mod common;
+use crate::common;
 use common::{design, triangle_distance};
 
 /// A deterministic noise in [−1, 1] (splitmix64).

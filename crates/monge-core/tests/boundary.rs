@@ -7,7 +7,7 @@ use monge_core::measure::measure;
 use monge_core::symmetry::{assemble, isometries, SymmetrySpec};
 use monge_core::{generate, GenerateOptions, QuadGrid};
 
-mod common;
+use crate::common;
 use common::Lcg;
 
 fn plane(point: [f64; 3], normal: [f64; 3]) -> PlaneSpec {

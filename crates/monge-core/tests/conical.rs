@@ -12,7 +12,7 @@ use std::cell::{Cell, RefCell};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-mod common;
+use crate::common;
 use common::{own_face_planarity, TOL};
 
 /// A cubic B-spline guide from the origin with start tangent `t`, bending in the

@@ -4,13 +4,13 @@
 //! and planes are fitted to sampled points here (three-point circles, nalgebra
 //! SVD planes), never taken from the patch formulas.
 //!
-//! `cargo test -p monge-core --test cyclidic_arcs -- --nocapture` prints the worst values.
+//! `cargo test -p monge-core --test integration cyclidic_arcs:: -- --nocapture` prints the worst values.
 
 use glam::DVec3;
 use monge_core::cyclidic::{Arc, CyclidicNet, CyclidicOptions, Family, Frame};
 use monge_core::{Design, GuideSpec, QuadGrid};
 
-mod common;
+use crate::common;
 use common::cyclidic::{coarse_freeform, dupin30, net_of};
 use common::{arc, circle3, circle_distance, design, freeform_guide_v, plane_fit};
 

@@ -8,7 +8,7 @@ use monge_core::cyclidic::{
 };
 use monge_core::{Design, GuideSpec, QuadGrid};
 
-mod common;
+use crate::common;
 use common::cyclidic::{dupin30, net_of, random_patches};
 use common::{design, mesh};
 

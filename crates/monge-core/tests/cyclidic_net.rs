@@ -3,13 +3,13 @@
 //! construction: against the torus' equation, the patches' own samples and
 //! frames carried along two paths.
 //!
-//! `cargo test -p monge-core --test cyclidic_net -- --nocapture` prints the worst values.
+//! `cargo test -p monge-core --test integration cyclidic_net:: -- --nocapture` prints the worst values.
 
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::QuadGrid;
 
-mod common;
+use crate::common;
 use common::cyclidic::{dupin30, faces, net_of, nets, params, torus};
 use common::mesh;
 

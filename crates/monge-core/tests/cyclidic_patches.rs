@@ -4,12 +4,12 @@
 //! fitted to sampled points here (three-point circles), never taken from the
 //! patch formulas.
 //!
-//! `cargo test -p monge-core --test cyclidic_patches -- --nocapture` prints the worst values.
+//! `cargo test -p monge-core --test integration cyclidic_patches:: -- --nocapture` prints the worst values.
 
 use glam::DVec3;
 use monge_core::cyclidic::{FoldReason, Frame, Patch};
 
-mod common;
+use crate::common;
 use common::cyclidic::{faces, nets, params, random_patches};
 use common::{circle3, circle_distance};
 

@@ -11,7 +11,7 @@
 //! sample `i` and guide_v's sample `j` (§2.2.1), so it approximates `X(s_i, t_j)`
 //! whatever the spacing; arc-length sampling would only move the samples.
 //!
-//! `cargo test -p monge-core --test darboux -- --nocapture` prints the θ scan,
+//! `cargo test -p monge-core --test integration darboux:: -- --nocapture` prints the θ scan,
 //! the errors per refinement and the rates.
 
 use glam::DVec3;
@@ -20,7 +20,7 @@ use monge_core::measure::measure;
 use monge_core::projective::Line;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 
-mod common;
+use crate::common;
 use common::plane_fit;
 
 /// Equal radii: Enneper's minimal surface itself.

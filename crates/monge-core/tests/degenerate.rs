@@ -9,7 +9,7 @@ use monge_core::guide::GuideName;
 use monge_core::measure::measure;
 use monge_core::{generate, inspect, Design, GenerateError, GuideSpec, MIN_NORMAL_TURN};
 
-mod common;
+use crate::common;
 use common::{arc, assert_mentions, design, opts, refused};
 
 #[test]

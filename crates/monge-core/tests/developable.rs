@@ -16,7 +16,7 @@ use monge_core::{GenerateOptions, QuadGrid};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestRunner};
 
-mod common;
+use crate::common;
 use common::developable::{check, curve, generate_checked, square, Xyz};
 use common::TOL;
 

@@ -9,7 +9,7 @@ use monge_core::{GenerateError, GenerateOptions};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestRunner};
 
-mod common;
+use crate::common;
 use common::developable::{check, curve, generate_checked, square, Xyz};
 use common::TOL;
 

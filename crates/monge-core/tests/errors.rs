@@ -9,7 +9,7 @@ use monge_core::{
     generate, inspect, Design, GenerateError, GenerateOptions, GuideSpec, Tolerances,
 };
 
-mod common;
+use crate::common;
 use common::{arc, assert_mentions, bspline, design, opts, refused};
 
 /// A characteristic design (§3.1): guide_u in y = 0 with start tangent +x,

@@ -10,7 +10,7 @@ use monge_core::fabrication::{
 };
 use monge_core::{Design, GuideSpec, QuadGrid};
 
-mod common;
+use crate::common;
 use common::{arc, design, freeform, mesh, plane_fit, two_circles, TOL};
 
 /// The discrete Dupin cyclide of Figure 12 (θ = 30°), smaller than the example file.

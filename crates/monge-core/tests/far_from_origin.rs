@@ -26,7 +26,7 @@ use nalgebra::{DMatrix, Vector2};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-mod common;
+use crate::common;
 use common::random_designs::{bbox, characteristic_case};
 use common::{own_face_planarity, ulp, TOL};
 
@@ -441,7 +441,7 @@ fn a_mesh_written_relative_to_its_start_is_exact_a_million_sizes_away() {
 /// the base point, the largest error that the rounding of the coordinates adds
 /// per rounding ((error − error relative to the start) / (ε · origin ratio)),
 /// and the refusals with the default tolerances. Run with `cargo test -p monge-core --release
-/// --test far_from_origin -- --ignored --nocapture`.
+/// --test integration far_from_origin:: -- --ignored --nocapture`.
 #[test]
 #[ignore = "a sweep of a few minutes: prints the table behind FAR_FROM_ORIGIN"]
 fn sweep_errors_against_the_distance_from_the_origin() {

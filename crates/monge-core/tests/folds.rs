@@ -8,7 +8,7 @@ use monge_core::grid::{quad_turn, Turn};
 use monge_core::measure::{circularity, face_planarity, measure};
 use monge_core::{generate, Design, QuadGrid};
 
-mod common;
+use crate::common;
 use common::{design, figure22};
 
 /// Whether two opposite edges of the quad cross, independently of the code

@@ -9,7 +9,7 @@ use monge_core::{generate, inspect, Design, GenerateError, GuideSpec, Tolerances
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-mod common;
+use crate::common;
 use common::opts;
 
 fn garbage_f64() -> impl Strategy<Value = f64> {

@@ -6,7 +6,7 @@ use monge_core::measure::measure;
 use monge_core::multipatch::{build, Attach, MultiPatchDesign, MultiPatchError, PatchSpec, Side};
 use monge_core::{GenerateError, GuideSpec};
 
-mod common;
+use crate::common;
 use common::{arc_u, bits, opts};
 
 const R_V: f64 = 3.0;

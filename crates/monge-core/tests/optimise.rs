@@ -6,7 +6,7 @@ use monge_core::multipatch::{build, Attach, MultiPatchDesign, MultiPatchError, P
 use monge_core::optimise::{fit, BoundaryRef, FitError, FitSpec, FreeParameter, GuideKey, Target};
 use monge_core::GuideSpec;
 
-mod common;
+use crate::common;
 use common::{arc_u, opts};
 
 /// HippoHaus-like: a first dome patch (θ1 fixed), a transition patch (θ2) and a

@@ -9,7 +9,7 @@ use monge_core::panels::{optimise_panels, PanelError, PanelOptions, MAX_FREE_SAM
 use monge_core::scan::panel_stats;
 use monge_core::{generate, Design, GenerateError, QuadGrid};
 
-mod common;
+use crate::common;
 use common::figure22;
 
 #[test]

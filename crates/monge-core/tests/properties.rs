@@ -8,7 +8,7 @@
 //! samplers (Cox–de Boor basis functions for B-splines, closed-form arcs and
 //! parabolas), in a random rigid position.
 //!
-//! Run `cargo test -p monge-core --test properties -- --nocapture` to see the
+//! Run `cargo test -p monge-core --test integration properties:: -- --nocapture` to see the
 //! worst values measured.
 
 use std::cell::RefCell;
@@ -19,7 +19,7 @@ use monge_core::{generate, inspect, Design, GenerateError, GenerateOptions, Guid
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-mod common;
+use crate::common;
 use common::random_designs::{
     arbitrary_case, bbox, bspline_point, characteristic_case, Case, Mode,
 };

@@ -3,7 +3,7 @@
 use monge_core::scan::{parse_range, scan, set_parameter, values, ScanError, Status, MAX_VALUES};
 use monge_core::{generate, Design, GuideSpec};
 
-mod common;
+use crate::common;
 use common::design;
 
 /// The two guides of Figure 14 (`examples/fig14-family.toml`, fewer samples):

@@ -5,7 +5,7 @@ use monge_core::measure::measure;
 use monge_core::symmetry::{assemble, isometries, Assembly, SymmetryError, SymmetrySpec};
 use monge_core::QuadGrid;
 
-mod common;
+use crate::common;
 use common::{arc, design, mesh};
 
 /// A characteristic patch: guide_u in the plane y = 0, guide_v in the plane x = 0,

@@ -4,7 +4,7 @@
 
 use monge_core::{generate, Design, GenerateError, GenerateOptions, Generated, GuideSpec};
 
-mod common;
+use crate::common;
 use common::{bits, design};
 
 fn example(name: &str) -> Design {

@@ -1,7 +1,7 @@
 //! IGES entity 128: the reader on hand-written files, and the errors that
 //! name the line at fault.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::FRAC_1_SQRT_2;
 

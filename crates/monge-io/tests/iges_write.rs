@@ -1,7 +1,7 @@
 //! IGES entity 128: the writer's fixed format checked column by column, and a
 //! cyclidic net written and read back.
 
-mod common;
+use crate::common;
 
 use std::io;
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! Mesh readers: grid shape, checks, and clear errors.
 
-mod common;
+use crate::common;
 
 use std::io::{self, Read};
 use std::path::Path;

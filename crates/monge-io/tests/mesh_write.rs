@@ -1,6 +1,6 @@
 //! Mesh writers: exact round trips through independent readers.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 

@@ -1,6 +1,6 @@
 //! `read_points`: targets of `monge approximate` as OBJ, PLY and JSON points.
 
-mod common;
+use crate::common;
 
 use monge_io::{read_points, write_mesh, IoError, MeshFormat};
 

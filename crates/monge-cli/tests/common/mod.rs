@@ -1,8 +1,4 @@
 //! Helpers shared by the integration tests of the `monge` binary.
-//!
-//! Every test file compiles this module into its own test binary and uses only
-//! some of it, hence the `allow`.
-#![allow(dead_code)]
 
 use std::ffi::OsStr;
 use std::fs;

@@ -1,10 +1,6 @@
 //! Builders shared by the monge-core integration tests: guides, designs, the
 //! named designs of the paper that several test files use, and the helpers of
 //! tests split over several files (the submodules).
-//!
-//! Every test file includes this module (`mod common;`) and uses only part of
-//! it, hence `allow(dead_code)`.
-#![allow(dead_code)]
 
 pub mod cyclidic;
 pub mod developable;
