@@ -9,9 +9,15 @@
 //    and worker.js bundled with the parts of three.js they use and the
 //    module's glue, minified by esbuild.
 //
-// Deterministic: the same sources and toolchain give the same bytes, which
-// .ci/run checks against the copy embedded in the `monge` binary
-// (crates/monge-cli/web-dist).
+// Deterministic: the same sources and toolchain give the same bytes.
+// `npm run embed` copies dist/ into the `monge` binary's sources
+// (crates/monge-cli/web-dist); the module's glue, web/wasm/monge_wasm.js, is
+// committed with it.
+//
+// `node build.mjs --bundle-only` skips step 1: it bundles the committed glue
+// and takes the embedded module, so that CI checks that the embedded page is
+// the one its sources make without compiling the module (whose output the
+// tests compare with the native build's instead).
 import { buildSync } from 'esbuild';
 import { execFileSync } from 'node:child_process';
 import { cpSync, mkdirSync, rmSync } from 'node:fs';
@@ -24,30 +30,36 @@ const repo = resolve(here, '..');
 const dist = join(here, 'dist');
 const wasmOut = join(here, 'wasm');
 
-const cargoHome = process.env.CARGO_HOME ?? join(homedir(), '.cargo');
-const target = JSON.parse(execFileSync('cargo', ['metadata', '--format-version', '1', '--no-deps'], { cwd: repo })).target_directory;
-execFileSync('cargo', ['build', '--release', '--locked', '-p', 'monge-wasm', '--target', 'wasm32-unknown-unknown'], {
-  cwd: repo,
-  stdio: 'inherit',
-  env: {
-    ...process.env,
-    CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS: `--remap-path-prefix=${repo}=monge --remap-path-prefix=${cargoHome}=cargo`,
-    // The shipped binary is stripped (Cargo.toml); the module must not be:
-    // stripping drops its `target_features` section, from which wasm-bindgen
-    // learns that reference types are on, and it would bind the module the old way.
-    CARGO_PROFILE_RELEASE_STRIP: 'false',
-  },
-});
-rmSync(wasmOut, { recursive: true, force: true });
-execFileSync('wasm-bindgen', ['--target', 'web', '--no-typescript', '--out-dir', wasmOut,
-  join(target, 'wasm32-unknown-unknown', 'release', 'monge_wasm.wasm')], { stdio: 'inherit' });
+const embedded = join(repo, 'crates', 'monge-cli', 'web-dist', 'monge_wasm_bg.wasm');
+const bundleOnly = process.argv.includes('--bundle-only');
+if (!bundleOnly) buildModule();
+
+function buildModule() {
+  const cargoHome = process.env.CARGO_HOME ?? join(homedir(), '.cargo');
+  const target = JSON.parse(execFileSync('cargo', ['metadata', '--format-version', '1', '--no-deps'], { cwd: repo })).target_directory;
+  execFileSync('cargo', ['build', '--release', '--locked', '-p', 'monge-wasm', '--target', 'wasm32-unknown-unknown'], {
+    cwd: repo,
+    stdio: 'inherit',
+    env: {
+      ...process.env,
+      CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS: `--remap-path-prefix=${repo}=monge --remap-path-prefix=${cargoHome}=cargo`,
+      // The shipped binary is stripped (Cargo.toml); the module must not be:
+      // stripping drops its `target_features` section, from which wasm-bindgen
+      // learns that reference types are on, and it would bind the module the old way.
+      CARGO_PROFILE_RELEASE_STRIP: 'false',
+    },
+  });
+  rmSync(wasmOut, { recursive: true, force: true });
+  execFileSync('wasm-bindgen', ['--target', 'web', '--no-typescript', '--out-dir', wasmOut,
+    join(target, 'wasm32-unknown-unknown', 'release', 'monge_wasm.wasm')], { stdio: 'inherit' });
+}
 
 rmSync(dist, { recursive: true, force: true });
 mkdirSync(dist, { recursive: true });
 for (const file of ['index.html', 'style.css', 'default-design.json']) {
   cpSync(join(here, 'src', file), join(dist, file));
 }
-cpSync(join(wasmOut, 'monge_wasm_bg.wasm'), join(dist, 'monge_wasm_bg.wasm'));
+cpSync(bundleOnly ? embedded : join(wasmOut, 'monge_wasm_bg.wasm'), join(dist, 'monge_wasm_bg.wasm'));
 buildSync({
   // The page, and its worker (metrics and arcs off the main thread), each with
   // the module's glue.

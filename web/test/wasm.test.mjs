@@ -1,10 +1,12 @@
-// The WebAssembly module (crates/monge-wasm, as `npm run build` leaves it in
-// web/wasm/) against the native `monge` binary on every example design: the
-// same vertices bit for bit, and the same OBJ and JSON files byte for byte.
+// The WebAssembly module (crates/monge-wasm) against the native `monge` binary
+// on every example design: the same vertices bit for bit, and the same OBJ and
+// JSON files byte for byte. The module is the one `npm run build` left in
+// web/wasm/ if there is one, else the one embedded in the binary
+// (crates/monge-cli/web-dist), with its glue (web/wasm/monge_wasm.js).
 //
 //   MONGE_BIN=target/release/monge node --test web/test/
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, readdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -15,7 +17,10 @@ import init, { generate, info, parseDesign } from '../wasm/monge_wasm.js';
 const repo = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const monge = resolve(process.env.MONGE_BIN ?? join(repo, 'target/release/monge'));
 const work = mkdtempSync(join(tmpdir(), 'monge-wasm-'));
-await init({ module_or_path: readFileSync(join(repo, 'web/wasm/monge_wasm_bg.wasm')) });
+const built = join(repo, 'web/wasm/monge_wasm_bg.wasm');
+const module = existsSync(built) ? built : join(repo, 'crates/monge-cli/web-dist/monge_wasm_bg.wasm');
+console.log(`the module: ${module}`);
+await init({ module_or_path: readFileSync(module) });
 
 /** Surface designs: every example but the developable, multi-patch and planes files. */
 const examples = readdirSync(join(repo, 'examples'))
