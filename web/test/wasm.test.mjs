@@ -1,7 +1,7 @@
 // The WebAssembly module (crates/monge-wasm) against the native `monge` binary
-// on every example design: the same vertices bit for bit, and the same OBJ and
-// JSON files byte for byte. The module is the one `npm run build` left in
-// web/wasm/ if there is one, else the one embedded in the binary
+// on every example design: the same vertices bit for bit, and the same OBJ,
+// JSON and GLB files byte for byte. The module is the one `npm run build` left
+// in web/wasm/ if there is one, else the one embedded in the binary
 // (crates/monge-cli/web-dist), with its glue (web/wasm/monge_wasm.js).
 //
 //   MONGE_BIN=target/release/monge node --test web/test/
@@ -53,6 +53,7 @@ for (const name of examples) {
         assert.equal(differ, 0, `${differ} of ${expected.length} coordinates differ at offset ${offset}`);
         assert.ok(Buffer.from(mesh.export('json')).equals(json), `JSON export at offset ${offset}`);
         assert.ok(Buffer.from(mesh.export('obj')).equals(native(name, 'mesh.obj', offset)), `OBJ export at offset ${offset}`);
+        assert.ok(Buffer.from(mesh.export('glb')).equals(native(name, 'mesh.glb', offset)), `GLB export at offset ${offset}`);
       } finally {
         mesh.free();
       }

@@ -6,9 +6,9 @@
 //!
 //! The page parses design files with monge-io's parser (the CLI's messages),
 //! generates the mesh (circular or conical, at an offset), asks for the
-//! admissible θ, the metrics, and exports OBJ or JSON written by monge-io's
-//! writers, so an exported file is the one `monge generate` writes, byte for
-//! byte. Trigonometry in monge-core goes through the `libm` crate, so the
+//! admissible θ, the metrics, and exports OBJ, JSON or binary glTF written by
+//! monge-io's writers, so an exported file is the one `monge generate` writes,
+//! byte for byte. Trigonometry in monge-core goes through the `libm` crate, so the
 //! vertices are the same bits here as in the native build.
 //!
 //! Every function also compiles natively (the JavaScript types are only
@@ -77,8 +77,8 @@ pub struct Mesh {
     positions: Vec<f32>,
     /// The circular mesh's node axes (its Gauss map), f32, flat.
     normals: Vec<f32>,
-    /// The samples of guide_u and guide_v, f32, flat.
-    guides: [Vec<f32>; 2],
+    /// The samples of guide_u and guide_v, flat.
+    guides: [Vec<f64>; 2],
 }
 
 /// Flat `x, y, z, x, …` of `points`.
@@ -146,7 +146,7 @@ impl Mesh {
             vertices: flat(&layer.grid.vertices),
             positions: flat32(&layer.grid.vertices),
             normals: flat32(&generated.grid.normals),
-            guides: [flat32(&info.guide_u.points), flat32(&info.guide_v.points)],
+            guides: [flat(&info.guide_u.points), flat(&info.guide_v.points)],
             kind: design.mesh,
             name: name.to_owned(),
             offset,
@@ -161,6 +161,7 @@ impl Mesh {
         let mut out = Vec::new();
         let written = match format {
             "obj" => write_mesh_to(&self.grid, MeshFormat::Obj, &mut out),
+            "glb" => write_mesh_to(&self.grid, MeshFormat::Glb, &mut out),
             "json" => {
                 let mut extra = json_extras(&self.generated);
                 extra.extend(self.extra.clone());
@@ -168,7 +169,7 @@ impl Mesh {
             }
             other => {
                 return Err(format!(
-                    "`{other}` is not an export format: give obj or json"
+                    "`{other}` is not an export format: give obj, json or glb"
                 ))
             }
         };
@@ -276,12 +277,23 @@ impl Mesh {
         unsafe { Float32Array::view(&self.normals) }
     }
 
-    /// The samples of guide_u (`u`) or guide_v in f32: a view, as [`Mesh::vertices`].
+    /// The samples of guide_u (`u`) or guide_v (f64, flat; drawn, and
+    /// exported to Rhino as they are): a view, as [`Mesh::vertices`].
     #[wasm_bindgen(js_name = guidePoints)]
-    pub fn guide_points(&self, u: bool) -> Float32Array {
+    pub fn guide_points(&self, u: bool) -> Float64Array {
         let points = &self.guides[usize::from(!u)];
         // SAFETY: as in `vertices`.
-        unsafe { Float32Array::view(points) }
+        unsafe { Float64Array::view(points) }
+    }
+
+    /// The quads of the mesh shown, four vertex indices each (0-based, flat),
+    /// wound as the exported files wind them. A copy.
+    pub fn faces(&self) -> Vec<u32> {
+        self.grid
+            .oriented_faces()
+            .flatten()
+            .map(|k| k as u32)
+            .collect()
     }
 
     /// The centre of face (i, j) of the circular mesh (where folds and pinches
@@ -317,7 +329,8 @@ impl Mesh {
         metrics_json(&self.grid, self.kind).to_string()
     }
 
-    /// The mesh file `monge generate` writes for this design and offset: `obj` or `json`.
+    /// The mesh file `monge generate` writes for this design and offset: `obj`,
+    /// `json` or `glb`.
     pub fn export(&self, format: &str) -> Result<Vec<u8>, JsError> {
         self.file(format).map_err(|e| JsError::new(&e))
     }
