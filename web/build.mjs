@@ -7,7 +7,11 @@
 // 2. index.html, style.css, default-design.json from src/, the module's
 //    monge_wasm_bg.wasm, and app.js (with the modules it imports from src/)
 //    and worker.js bundled with the parts of three.js they use and the
-//    module's glue, minified by esbuild.
+//    module's glue, minified by esbuild;
+// 3. the .3dm writer: rhino-worker.js (src/rhino.js) bundled likewise, and
+//    rhino3dm's ES module and WebAssembly (npm `rhino3dm`, pinned in
+//    package.json) copied beside it as rhino3dm.js and rhino3dm.wasm, which the
+//    worker loads on the first .3dm export only.
 //
 // Deterministic: the same sources and toolchain give the same bytes.
 // `npm run embed` copies dist/ into the `monge` binary's sources
@@ -20,7 +24,7 @@
 // tests compare with the native build's instead).
 import { buildSync } from 'esbuild';
 import { execFileSync } from 'node:child_process';
-import { cpSync, mkdirSync, rmSync } from 'node:fs';
+import { cpSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { homedir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -60,10 +64,16 @@ for (const file of ['index.html', 'style.css', 'default-design.json']) {
   cpSync(join(here, 'src', file), join(dist, file));
 }
 cpSync(bundleOnly ? embedded : join(wasmOut, 'monge_wasm_bg.wasm'), join(dist, 'monge_wasm_bg.wasm'));
+// rhino3dm as npm ships it (MIT), with its notice.
+const rhino = join(here, 'node_modules', 'rhino3dm');
+const { version, license } = JSON.parse(readFileSync(join(rhino, 'package.json'), 'utf8'));
+writeFileSync(join(dist, 'rhino3dm.js'), `/*! rhino3dm ${version} (npm), ${license} licence, Robert McNeel & Associates, https://github.com/mcneel/rhino3dm */\n${
+  readFileSync(join(rhino, 'rhino3dm.module.min.js'), 'utf8')}`);
+cpSync(join(rhino, 'rhino3dm.wasm'), join(dist, 'rhino3dm.wasm'));
 buildSync({
   // The page, and its worker (metrics and arcs off the main thread), each with
-  // the module's glue.
-  entryPoints: [join(here, 'src', 'app.js'), join(here, 'src', 'worker.js')],
+  // the module's glue; the .3dm writer's worker.
+  entryPoints: ['app.js', 'worker.js', 'rhino-worker.js'].map((file) => join(here, 'src', file)),
   outdir: dist,
   bundle: true,
   minify: true,

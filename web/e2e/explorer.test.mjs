@@ -12,10 +12,12 @@
 // seen at a grazing angle (the point must stay near the pointer's ray and move
 // no more than the pointer's path allows), refuses an edit (the page must say
 // where, and export the last valid design), undoes and redoes every kind of
-// edit (the same design bytes back), checks that the console has no error and
+// edit (the same design bytes back), exports GLB and 3DM (read back by a
+// GLB parser of its own and by rhino3dm), checks that the console has no error and
 // no request failed, and keeps a screenshot in target/explorer-screenshot.png.
 // Then `monge explore DESIGN` must serve the embedded page with that design,
-// with the same clean console. Exits non-zero on failure.
+// with the same clean console, and `monge explore --web-dir web/dist` the
+// .3dm writer's files with their types. Exits non-zero on failure.
 import { spawn, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { createServer } from 'node:http';
@@ -24,6 +26,7 @@ import { dirname, extname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import assert from 'node:assert/strict';
 import { chromium } from 'playwright-core';
+import rhino3dm from 'rhino3dm';
 
 const repo = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const monge = resolve(process.env.MONGE_BIN ?? join(repo, 'target/release/monge'));
@@ -201,6 +204,125 @@ function meshRadius(flat) {
   const hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < flat.length; i++) { lo[i % 3] = Math.min(lo[i % 3], flat[i]); hi[i % 3] = Math.max(hi[i % 3], flat[i]); }
   return len(sub(hi, lo)) / 2;
+}
+
+/** A binary glTF read by hand (not by the writer): its JSON chunk and its BIN chunk. */
+function readGlb(bytes) {
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  assert.equal(bytes.subarray(0, 4).toString('latin1'), 'glTF', 'GLB magic');
+  assert.equal(view.getUint32(4, true), 2, 'glTF 2');
+  assert.equal(view.getUint32(8, true), bytes.length, 'GLB length');
+  const chunks = {};
+  for (let at = 12; at < bytes.length;) {
+    const length = view.getUint32(at, true);
+    chunks[bytes.subarray(at + 4, at + 8).toString('latin1').replace(/\0/g, '')] = bytes.subarray(at + 8, at + 8 + length);
+    at += 8 + length;
+  }
+  return { json: JSON.parse(chunks.JSON.toString('utf8')), bin: chunks.BIN };
+}
+
+/** The elements of glTF accessor `index` as numbers (float32 or unsigned ints), from its buffer view in `bin`. */
+function accessor({ json, bin }, index) {
+  const a = json.accessors[index];
+  const view = json.bufferViews[a.bufferView];
+  const [Type, width] = { 5126: [Float32Array, 4], 5125: [Uint32Array, 4], 5123: [Uint16Array, 2] }[a.componentType];
+  const n = a.count * { SCALAR: 1, VEC3: 3 }[a.type];
+  const start = bin.byteOffset + (view.byteOffset ?? 0) + (a.byteOffset ?? 0);
+  return { count: a.count, values: new Type(bin.buffer.slice(start, start + n * width)) };
+}
+
+/**
+ * Export GLB and Export 3DM of the design shown (`shown`, a snapshot), each
+ * downloaded by a click and read by what did not write it: the GLB's chunks
+ * by hand, the .3dm by rhino3dm in node. Against `monge generate`: the .3dm's
+ * mesh has its vertices bit for bit (f64) and its OBJ's quads, the guides are
+ * the mesh's first column and row, each panel a closed polyline through its
+ * face's corners; the GLB has the vertices in f32 and two triangles a quad,
+ * and is `monge generate -o mesh.glb`'s file byte for byte. rhino3dm is
+ * loaded on the first .3dm export, not before; its load is timed (reported).
+ */
+async function rhinoAndGlb(page, shown, noise) {
+  const flat = sameAsCli(shown); // and out.json of its design, current.json
+  const { rows, cols } = shown;
+  const faces = (rows - 1) * (cols - 1);
+  spawnSync(monge, ['generate', 'current.json', '-o', 'out.obj'], { cwd: work });
+  spawnSync(monge, ['generate', 'current.json', '-o', 'out.glb'], { cwd: work });
+  const quads = readFileSync(join(work, 'out.obj'), 'utf8').split('\n').filter((l) => l.startsWith('f '))
+    .map((l) => l.split(' ').slice(1).map((c) => Number(c.split('/')[0]) - 1));
+  assert.equal(quads.length, faces);
+  const save = async (button, name) => {
+    const start = performance.now();
+    const [file] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+    assert.equal(file.suggestedFilename(), name);
+    await file.saveAs(join(work, name));
+    return { bytes: readFileSync(join(work, name)), ms: performance.now() - start };
+  };
+
+  const glb = await save('#export-glb', 'mesh.glb');
+  assert.ok(glb.bytes.equals(readFileSync(join(work, 'out.glb'))), 'Export GLB is monge generate -o mesh.glb byte for byte');
+  const gltf = readGlb(glb.bytes);
+  const [primitive] = gltf.json.meshes.flatMap((m) => m.primitives);
+  const positions = accessor(gltf, primitive.attributes.POSITION);
+  const indices = accessor(gltf, primitive.indices);
+  assert.equal(positions.count, rows * cols, 'a GLB position per vertex');
+  assert.equal(indices.count, 6 * faces, 'two triangles a quad');
+  const off = flat.filter((x, k) => !Object.is(Math.fround(x), positions.values[k])).length;
+  assert.equal(off, 0, `${off} GLB coordinates are not the f32 of monge generate's`);
+
+  assert.ok(!noise.requests.some((r) => r.includes('rhino3dm')), 'rhino3dm is not loaded before the first .3dm export');
+  const loads = {};
+  const started = (r) => { if (r.url().includes('rhino3dm')) loads[r.url().split('/').pop()] = { start: performance.now() }; };
+  const finished = (r) => { const l = loads[r.url().split('/').pop()]; if (l) l.ms = performance.now() - l.start; };
+  page.on('request', started);
+  page.on('requestfinished', finished);
+  const rhinoFile = await save('#export-3dm', 'mesh.3dm');
+  page.off('request', started);
+  page.off('requestfinished', finished);
+  const rhino = await rhino3dm();
+  const doc = rhino.File3dm.fromByteArray(new Uint8Array(rhinoFile.bytes));
+  const layers = doc.layers();
+  const layerNames = Array.from({ length: layers.count }, (_, k) => layers.get(k).name);
+  assert.deepEqual(layerNames, ['mesh', 'guide_u', 'guide_v', 'panels']);
+  const objects = doc.objects();
+  assert.equal(objects.count, 3 + faces, 'the mesh, two guides and a polyline a panel');
+  const byName = {};
+  const panels = [];
+  for (let k = 0; k < objects.count; k++) {
+    const object = objects.get(k);
+    const { name, layerIndex } = object.attributes();
+    const geometry = object.geometry();
+    if (layerNames[layerIndex] === 'panels') panels.push({ name, points: Array.from({ length: geometry.pointCount }, (_, j) => geometry.point(j)) });
+    else byName[name] = { layer: layerNames[layerIndex], geometry };
+  }
+  const mesh = byName.mesh.geometry;
+  assert.equal(byName.mesh.layer, 'mesh');
+  assert.ok(mesh.vertices().useDoublePrecisionVertices, 'double-precision vertices');
+  assert.equal(mesh.vertices().count, rows * cols);
+  const read = mesh.vertices().toPoint3dArray().flat();
+  const differ = flat.filter((x, k) => !Object.is(x, read[k])).length;
+  assert.equal(differ, 0, `${differ} of the .3dm's vertex coordinates differ from monge generate's`);
+  assert.equal(mesh.faces().count, faces);
+  for (let f = 0; f < faces; f++) assert.deepEqual(mesh.faces().get(f), quads[f], `quad ${f} of the .3dm`);
+  const vertex = (k) => flat.slice(3 * k, 3 * k + 3);
+  for (const [guide, along] of [['u', (i) => vertex(i * cols)], ['v', (j) => vertex(j)]]) {
+    const { layer, geometry } = byName[`guide_${guide}`];
+    assert.equal(layer, `guide_${guide}`);
+    const n = guide === 'u' ? rows : cols;
+    assert.equal(geometry.pointCount, n, `guide_${guide}: a polyline through its ${n} samples`);
+    for (let i = 0; i < n; i++) assert.deepEqual(geometry.point(i), along(i), `guide_${guide} sample ${i} is the mesh's vertex`);
+  }
+  for (const [f, panel] of panels.entries()) {
+    const [i, j] = [Math.floor(f / (cols - 1)), f % (cols - 1)];
+    assert.equal(panel.name, `panel ${i} ${j}`);
+    assert.deepEqual(panel.points, [...quads[f], quads[f][0]].map(vertex), `panel ${i} ${j}: a closed polyline through its corners`);
+  }
+  doc.delete();
+  const second = await save('#export-3dm', 'mesh.3dm');
+  assert.ok(second.bytes.length > 0);
+  const mb = (n) => `${(n / 1e6).toFixed(2)} MB`;
+  const wasm = readFileSync(join(repo, 'web/dist/rhino3dm.wasm')).length;
+  log(`Export GLB (${mb(glb.bytes.length)}) = monge generate -o mesh.glb byte for byte; Export 3DM (${mb(rhinoFile.bytes.length)}, ${rows} × ${cols} vertices, ${faces} panels) read by rhino3dm: vertices bit for bit`);
+  log(`rhino3dm loaded on the first 3DM export only (${mb(wasm)} wasm): requests ${Object.entries(loads).map(([f, l]) => `${f} ${l.ms?.toFixed(0)} ms`).join(', ')}; first export ${rhinoFile.ms.toFixed(0)} ms (load + write), second ${second.ms.toFixed(0)} ms`);
 }
 
 /**
@@ -639,6 +761,7 @@ async function main() {
     const shownBefore = (await snapshot()).generations;
     await page.setInputFiles('#load', join(repo, 'examples', 'fig13-freeform.json'));
     await page.waitForFunction((k) => explorer.state.generations > k && explorer.idle(), shownBefore);
+    await rhinoAndGlb(page, await snapshot(), noise);
     await page.selectOption('#colour', 'area');
     await idle();
     await page.screenshot({ path: join(repo, 'target/explorer-arcs.png') });
@@ -688,7 +811,25 @@ async function embedded() {
   }
 }
 
-main().then(embedded).then(() => log('passed'), (error) => {
+/** `monge explore --web-dir web/dist` serves the .3dm writer's files with the types a browser runs them by. */
+async function servedTypes() {
+  const { server, url } = await startServer('--web-dir', join(repo, 'web/dist'));
+  try {
+    const types = { 'rhino-worker.js': 'text/javascript; charset=utf-8', 'rhino3dm.js': 'text/javascript; charset=utf-8', 'rhino3dm.wasm': 'application/wasm' };
+    for (const [file, type] of Object.entries(types)) {
+      const response = await fetch(new URL(file, url));
+      const body = Buffer.from(await response.arrayBuffer());
+      assert.equal(response.status, 200, file);
+      assert.equal(response.headers.get('content-type'), type, file);
+      assert.ok(body.equals(readFileSync(join(repo, 'web/dist', file))), `${file} served whole`);
+    }
+    log(`monge explore --web-dir web/dist serves ${Object.entries(types).map(([f, t]) => `${f} as ${t}`).join(', ')}`);
+  } finally {
+    server.kill();
+  }
+}
+
+main().then(embedded).then(servedTypes).then(() => log('passed'), (error) => {
   console.error(error);
   process.exit(1);
 });

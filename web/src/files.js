@@ -1,7 +1,8 @@
-// The page's files: the design saved as JSON, the mesh exported as OBJ or
-// JSON and the cyclidic net as JSON (the files `monge generate` and
-// `monge smooth` write, written by the same code in the module), and a design
-// file (JSON or TOML) loaded.
+// The page's files: the design saved as JSON, the mesh exported as OBJ, JSON
+// or binary glTF and the cyclidic net as JSON (the files `monge generate` and
+// `monge smooth` write, written by the same code in the module), the mesh,
+// guides and panels as a Rhino file (.3dm, written by rhino3dm in a worker,
+// src/rhino-worker.js), and a design file (JSON or TOML) loaded.
 import { $, current, state } from './page.js';
 import { generateMesh, parseDesign } from './bridge.js';
 import { syncControls } from './controls.js';
@@ -20,12 +21,52 @@ export function netFile() {
 }
 
 /** The export buttons, and whether they export the last valid design (the design shown was refused). */
-const EXPORTS = { 'export-obj': 'Export OBJ', 'export-json': 'Export JSON', 'export-net': 'Export smooth net' };
+const EXPORTS = {
+  'export-obj': 'Export OBJ', 'export-json': 'Export JSON', 'export-glb': 'Export GLB', 'export-3dm': 'Export 3DM', 'export-net': 'Export smooth net',
+};
 
 /** Labels the export buttons as exporting the last valid design (`stale`) or the design shown. */
 export function labelExports(stale) {
   for (const [id, label] of Object.entries(EXPORTS)) $(id).textContent = stale ? `${label} (last valid design)` : label;
 }
+
+/** The .3dm writer's worker, started on the first .3dm export; its answers' resolvers, in order. */
+let rhinoWorker = null;
+const rhinoWaiting = [];
+
+/**
+ * The .3dm of the mesh shown: its vertices (f64, as `monge generate` writes
+ * them), its quads (wound as the exported files), its guides' samples and its
+ * panels, on the layers of src/rhino.js. Resolves to the bytes; rejects with
+ * the reason when rhino3dm cannot be loaded or write it.
+ */
+export function rhinoExport() {
+  // A copy of what is shown now: the mesh may change while the worker writes.
+  const data = {
+    vertices: Float64Array.from(current.vertices()),
+    faces: current.faces(),
+    cols: state.mesh.cols,
+    guides: { u: Float64Array.from(current.guidePoints(true)), v: Float64Array.from(current.guidePoints(false)) },
+  };
+  if (!rhinoWorker) {
+    rhinoWorker = new Worker(new URL('rhino-worker.js', import.meta.url), { type: 'module' });
+    rhinoWorker.onmessage = ({ data: answer }) => rhinoWaiting.shift()(answer);
+    rhinoWorker.onerror = (event) => {
+      // The worker itself did not start: every export waiting gets the reason; the next one starts it again.
+      event.preventDefault();
+      rhinoWorker.terminate();
+      rhinoWorker = null;
+      for (const answer of rhinoWaiting.splice(0)) answer({ error: `cannot start the .3dm writer (rhino-worker.js beside the page): ${event.message ?? 'not found'}` });
+    };
+  }
+  return new Promise((resolve, reject) => {
+    rhinoWaiting.push(({ bytes, error }) => (error ? reject(new Error(error)) : resolve(bytes)));
+    rhinoWorker.postMessage(data);
+  });
+}
+
+/** Shows why an export failed (monge's or rhino3dm's message); the mesh stays current. */
+const exportFailed = (error) => Object.assign($('error'), { textContent: error.message, hidden: false });
 
 /**
  * Lets the buttons save and load; a loaded design's wasm mesh is shown with
@@ -43,16 +84,27 @@ export function installFiles({ showMesh, showError, done }) {
     try {
       download(new Blob([netFile()]), 'net.json');
     } catch (error) {
-      // No net (a conical design, a folded face): monge's message; the mesh stays current.
-      Object.assign($('error'), { textContent: error.message, hidden: false });
+      exportFailed(error); // no net (a conical design, a folded face): monge's message
     }
   });
-  for (const format of ['obj', 'json']) {
+  for (const format of ['obj', 'json', 'glb']) {
     // The file `monge generate` writes, written by the same code in the module.
     $(`export-${format}`).addEventListener('click', () => {
       if (current) download(new Blob([current.export(format)]), `mesh.${format}`);
     });
   }
+  $('export-3dm').addEventListener('click', async () => {
+    if (!current) return;
+    const button = $('export-3dm');
+    button.disabled = true; // until this one is written
+    try {
+      download(new Blob([await rhinoExport()]), 'mesh.3dm');
+    } catch (error) {
+      exportFailed(error);
+    } finally {
+      button.disabled = false;
+    }
+  });
   $('load-button').addEventListener('click', () => $('load').click());
   $('load').addEventListener('change', async (event) => {
     const file = event.target.files[0];
