@@ -318,7 +318,8 @@ async function rhinoAndGlb(page, shown, noise) {
   }
   doc.delete();
   const second = await save('#export-3dm', 'mesh.3dm');
-  assert.ok(second.bytes.length > 0);
+  assert.ok(second.bytes.length > 0, 'a second export writes again');
+  assert.deepEqual(await page.evaluate(() => [document.getElementById('export-3dm').disabled, document.getElementById('export-3dm').ariaBusy]), [false, 'false'], 'the button is back');
   const mb = (n) => `${(n / 1e6).toFixed(2)} MB`;
   const wasm = readFileSync(join(repo, 'web/dist/rhino3dm.wasm')).length;
   log(`Export GLB (${mb(glb.bytes.length)}) = monge generate -o mesh.glb byte for byte; Export 3DM (${mb(rhinoFile.bytes.length)}, ${rows} × ${cols} vertices, ${faces} panels) read by rhino3dm: vertices bit for bit`);

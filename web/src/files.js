@@ -96,13 +96,14 @@ export function installFiles({ showMesh, showError, done }) {
   $('export-3dm').addEventListener('click', async () => {
     if (!current) return;
     const button = $('export-3dm');
-    button.disabled = true; // until this one is written
+    // Until this one is written (rhino3dm loads on the first): disabled, and marked as busy.
+    Object.assign(button, { disabled: true, ariaBusy: 'true' });
     try {
       download(new Blob([await rhinoExport()]), 'mesh.3dm');
     } catch (error) {
       exportFailed(error);
     } finally {
-      button.disabled = false;
+      Object.assign(button, { disabled: false, ariaBusy: 'false' });
     }
   });
   $('load-button').addEventListener('click', () => $('load').click());
