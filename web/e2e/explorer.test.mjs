@@ -242,6 +242,7 @@ function accessor({ json, bin }, index) {
  * loaded on the first .3dm export, not before; its load is timed (reported).
  */
 async function rhinoAndGlb(page, shown, noise) {
+  const began = performance.now();
   const flat = sameAsCli(shown); // and out.json of its design, current.json
   const { rows, cols } = shown;
   const faces = (rows - 1) * (cols - 1);
@@ -323,7 +324,7 @@ async function rhinoAndGlb(page, shown, noise) {
   const mb = (n) => `${(n / 1e6).toFixed(2)} MB`;
   const wasm = readFileSync(join(repo, 'web/dist/rhino3dm.wasm')).length;
   log(`Export GLB (${mb(glb.bytes.length)}) = monge generate -o mesh.glb byte for byte; Export 3DM (${mb(rhinoFile.bytes.length)}, ${rows} × ${cols} vertices, ${faces} panels) read by rhino3dm: vertices bit for bit`);
-  log(`rhino3dm loaded on the first 3DM export only (${mb(wasm)} wasm): requests ${Object.entries(loads).map(([f, l]) => `${f} ${l.ms?.toFixed(0)} ms`).join(', ')}; first export ${rhinoFile.ms.toFixed(0)} ms (load + write), second ${second.ms.toFixed(0)} ms`);
+  log(`rhino3dm loaded on the first 3DM export only (${mb(wasm)} wasm): requests ${Object.entries(loads).map(([f, l]) => `${f} ${l.ms?.toFixed(0)} ms`).join(', ')}; first export ${rhinoFile.ms.toFixed(0)} ms (load + write), second ${second.ms.toFixed(0)} ms; these checks took ${((performance.now() - began) / 1000).toFixed(1)} s`);
 }
 
 /**

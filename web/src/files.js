@@ -40,7 +40,7 @@ const rhinoWaiting = [];
  * panels, on the layers of src/rhino.js. Resolves to the bytes; rejects with
  * the reason when rhino3dm cannot be loaded or write it.
  */
-export function rhinoExport() {
+function rhinoExport() {
   // A copy of what is shown now: the mesh may change while the worker writes.
   const data = {
     vertices: Float64Array.from(current.vertices()),

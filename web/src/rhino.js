@@ -3,12 +3,12 @@
 // MB, so it is loaded on the first export only, from the page's own folder
 // (build.mjs copies rhino3dm.js and rhino3dm.wasm next to app.js).
 
-/** The layers, their colours (the guides as the view draws them) and what each holds. */
-export const LAYERS = [
-  { name: 'mesh', color: { r: 176, g: 196, b: 222, a: 255 } },   // the quad mesh, double-precision vertices
-  { name: 'guide_u', color: { r: 220, g: 40, b: 40, a: 255 } },  // guide_u's samples, a polyline
-  { name: 'guide_v', color: { r: 40, g: 80, b: 220, a: 255 } },  // guide_v's samples, a polyline
-  { name: 'panels', color: { r: 60, g: 60, b: 60, a: 255 } },    // each face, a closed polyline `panel i j`
+/** The layers, what each holds, and its colour (the view's, src/view.js: surface, guides, wireframe). */
+const LAYERS = [
+  { name: 'mesh', color: { r: 0xb0, g: 0xc4, b: 0xde, a: 255 } },     // the quad mesh, double-precision vertices
+  { name: 'guide_u', color: { r: 0xd0, g: 0x20, b: 0x20, a: 255 } },  // guide_u's samples, a polyline
+  { name: 'guide_v', color: { r: 0x20, g: 0x40, b: 0xd0, a: 255 } },  // guide_v's samples, a polyline
+  { name: 'panels', color: { r: 0x3a, g: 0x4a, b: 0x5a, a: 255 } },   // each face, a closed polyline `panel i j`
 ];
 
 let loading = null;
@@ -24,7 +24,7 @@ function loadRhino() {
   return loading;
 }
 
-/** The points `k` of the flat `x, y, z, …` array `flat`, as [x, y, z]. */
+/** Point `k` of the flat `x, y, z, …` array `flat`, as [x, y, z]. */
 const point = (flat, k) => [flat[3 * k], flat[3 * k + 1], flat[3 * k + 2]];
 
 /**
