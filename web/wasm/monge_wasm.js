@@ -20,7 +20,8 @@ export class Mesh {
         wasm.__wbg_mesh_free(ptr, 0);
     }
     /**
-     * The mesh file `monge generate` writes for this design and offset: `obj` or `json`.
+     * The mesh file `monge generate` writes for this design and offset: `obj`,
+     * `json` or `glb`.
      * @param {string} format
      * @returns {Uint8Array}
      */
@@ -60,6 +61,17 @@ export class Mesh {
         return v1;
     }
     /**
+     * The quads of the mesh shown, four vertex indices each (0-based, flat),
+     * wound as the exported files wind them. A copy.
+     * @returns {Uint32Array}
+     */
+    faces() {
+        const ret = wasm.mesh_faces(this.__wbg_ptr);
+        var v1 = getArrayU32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
      * Whether each face of the mesh shown is folded (§5.2), 1 or 0, in the
      * order of [`Mesh::face_areas`]. A copy.
      * @returns {Uint8Array}
@@ -71,9 +83,10 @@ export class Mesh {
         return v1;
     }
     /**
-     * The samples of guide_u (`u`) or guide_v in f32: a view, as [`Mesh::vertices`].
+     * The samples of guide_u (`u`) or guide_v (f64, flat; drawn, and
+     * exported to Rhino as they are): a view, as [`Mesh::vertices`].
      * @param {boolean} u
-     * @returns {Float32Array}
+     * @returns {Float64Array}
      */
     guidePoints(u) {
         const ret = wasm.mesh_guidePoints(this.__wbg_ptr, u);
@@ -384,6 +397,11 @@ function getArrayF64FromWasm0(ptr, len) {
     return getFloat64ArrayMemory0().subarray(ptr / 8, ptr / 8 + len);
 }
 
+function getArrayU32FromWasm0(ptr, len) {
+    ptr = ptr >>> 0;
+    return getUint32ArrayMemory0().subarray(ptr / 4, ptr / 4 + len);
+}
+
 function getArrayU8FromWasm0(ptr, len) {
     ptr = ptr >>> 0;
     return getUint8ArrayMemory0().subarray(ptr / 1, ptr / 1 + len);
@@ -408,6 +426,14 @@ function getFloat64ArrayMemory0() {
 function getStringFromWasm0(ptr, len) {
     ptr = ptr >>> 0;
     return decodeText(getUint8ArrayMemory0().subarray(ptr, ptr + len));
+}
+
+let cachedUint32ArrayMemory0 = null;
+function getUint32ArrayMemory0() {
+    if (cachedUint32ArrayMemory0 === null || cachedUint32ArrayMemory0.byteLength === 0) {
+        cachedUint32ArrayMemory0 = new Uint32Array(wasm.memory.buffer);
+    }
+    return cachedUint32ArrayMemory0;
 }
 
 let cachedUint8ArrayMemory0 = null;
@@ -497,6 +523,7 @@ function __wbg_finalize_init(instance, module) {
     wasmModule = module;
     cachedFloat32ArrayMemory0 = null;
     cachedFloat64ArrayMemory0 = null;
+    cachedUint32ArrayMemory0 = null;
     cachedUint8ArrayMemory0 = null;
     wasm.__wbindgen_start();
     return wasm;
