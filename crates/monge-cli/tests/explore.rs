@@ -49,13 +49,27 @@ impl Server {
     /// Starts `BINARY explore --port 0 ARGS…`, keeping `dir` until dropped.
     fn spawn(binary: &Path, args: &[&str], dir: TempDir) -> Server {
         let stderr = NamedTempFile::new().unwrap();
-        let mut child = Command::new(binary)
-            .args(["explore", "--port", "0"])
-            .args(args)
-            .stdout(Stdio::piped())
-            .stderr(stderr.reopen().unwrap())
-            .spawn()
-            .unwrap();
+        let spawn = || {
+            Command::new(binary)
+                .args(["explore", "--port", "0"])
+                .args(args)
+                .stdout(Stdio::piped())
+                .stderr(stderr.reopen().unwrap())
+                .spawn()
+        };
+        // A binary just copied may be "busy" for a moment: a process another
+        // test thread forked meanwhile holds the copy's file open until it
+        // execs. Try again then.
+        let mut tries = 0;
+        let mut child = loop {
+            match spawn() {
+                Err(e) if e.kind() == std::io::ErrorKind::ExecutableFileBusy && tries < 100 => {
+                    tries += 1;
+                    std::thread::sleep(Duration::from_millis(20));
+                }
+                started => break started.unwrap(),
+            }
+        };
         let mut line = String::new();
         BufReader::new(child.stdout.take().unwrap())
             .read_line(&mut line)

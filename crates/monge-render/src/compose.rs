@@ -206,12 +206,12 @@ fn validate(o: &RenderOptions) -> Result<(), RenderError> {
             o.view.elevation_deg
         ));
     }
-    if let Projection::Perspective { distance } = o.projection {
-        if !(distance >= 1.0 && distance.is_finite()) {
-            return bad(format!(
-                "the perspective distance is {distance}: give at least 1 bounding-box diagonal"
-            ));
-        }
+    if let Projection::Perspective { distance } = o.projection
+        && !(distance >= 1.0 && distance.is_finite())
+    {
+        return bad(format!(
+            "the perspective distance is {distance}: give at least 1 bounding-box diagonal"
+        ));
     }
     if !(0.0..0.45).contains(&o.margin) {
         return bad(format!(

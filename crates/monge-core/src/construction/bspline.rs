@@ -174,8 +174,8 @@ pub fn surface_point(
     let (first_v, nv) = basis_at(1, v);
     let count_v = knots[1].len() - degrees[1] - 1;
     let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
-    for (a, &na) in nu.iter().enumerate().filter(|(_, &n)| n != 0.0) {
-        for (b, &nb) in nv.iter().enumerate().filter(|(_, &n)| n != 0.0) {
+    for (a, &na) in nu.iter().enumerate().filter(|&(_, &n)| n != 0.0) {
+        for (b, &nb) in nv.iter().enumerate().filter(|&(_, &n)| n != 0.0) {
             let k = (first_u + a) * count_v + first_v + b;
             let w = weights[k] * na * nb;
             sum += points[k] * w;

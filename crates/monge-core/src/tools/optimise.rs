@@ -164,12 +164,12 @@ pub fn fit(design: &MultiPatchDesign, options: &GenerateOptions) -> Result<FitRe
             count: design.patches.len(),
         });
     }
-    if let Some(m) = spec.max_distance {
-        if !(m.is_finite() && m >= 0.0) {
-            return Err(FitError::BadTarget {
-                problem: format!("`max_distance` is {m}: give a finite distance ≥ 0"),
-            });
-        }
+    if let Some(m) = spec.max_distance
+        && !(m.is_finite() && m >= 0.0)
+    {
+        return Err(FitError::BadTarget {
+            problem: format!("`max_distance` is {m}: give a finite distance ≥ 0"),
+        });
     }
     let start_mesh = build(design, options)?;
     let scale = start_mesh.grid.bbox_diagonal().max(f64::MIN_POSITIVE);
@@ -225,15 +225,15 @@ pub fn fit(design: &MultiPatchDesign, options: &GenerateOptions) -> Result<FitRe
     let fitted_design = with_values(design, &spec.free, &fitted);
     let mesh = build(&fitted_design, options)?;
     let after = distance(&mesh, spec, &target, scale);
-    if let Some(max_distance) = spec.max_distance {
-        if after.max > max_distance || after.max.is_nan() {
-            return Err(FitError::Unreachable {
-                distance: after.max,
-                relative: after.relative,
-                max_distance,
-                values: fitted,
-            });
-        }
+    if let Some(max_distance) = spec.max_distance
+        && (after.max > max_distance || after.max.is_nan())
+    {
+        return Err(FitError::Unreachable {
+            distance: after.max,
+            relative: after.relative,
+            max_distance,
+            values: fitted,
+        });
     }
     let values = spec
         .free

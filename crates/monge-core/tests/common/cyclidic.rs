@@ -45,7 +45,7 @@ pub fn invert(g: &QuadGrid, c: DVec3, r: f64) -> QuadGrid {
 }
 
 /// The faces of a net.
-pub fn faces(net: &CyclidicNet) -> impl Iterator<Item = (usize, usize)> {
+pub fn faces(net: &CyclidicNet) -> impl Iterator<Item = (usize, usize)> + use<> {
     let c = net.cols() - 1;
     (0..(net.rows() - 1) * c).map(move |k| (k / c, k % c))
 }

@@ -433,7 +433,7 @@ impl<'a> Sections<'a> {
         entry: &Entry,
         pdelim: char,
         rdelim: char,
-    ) -> Result<impl Fn(DVec3) -> DVec3, IoError> {
+    ) -> Result<impl Fn(DVec3) -> DVec3 + use<>, IoError> {
         let mut matrices: Vec<[DVec3; 4]> = Vec::new();
         let (mut from, mut pointer) = (de, entry.transform_pointer);
         while pointer != 0 {
