@@ -13,9 +13,9 @@ distributed = pytest.importorskip("distributed", reason="monge.dask needs the da
 pd = pytest.importorskip("pandas")
 import monge.dask  # noqa: E402
 
-# 200 variants of Figure 12's Dupin cyclide: θ over its whole range, fair and
-# folded ones among them.
-VALUES = np.linspace(-179.0, 179.0, 200)
+# 10 000 variants of a small design: θ over its whole range, fair, folded and
+# inadmissible ones among them.
+VALUES = np.linspace(-179.0, 179.0, 10_000)
 
 
 @pytest.fixture(scope="module")
@@ -27,20 +27,20 @@ def client():
 
 @pytest.fixture(scope="module")
 def design():
-    return monge.Design.from_file(example("fig12-dupin-theta30.json"))
+    return monge.Design.from_file(example("contract.json"))
 
 
 def test_the_cluster_gives_the_rows_of_one_machine_whatever_the_split(client, design):
     here = monge.dask.scan_frame(monge.scan(design, VALUES))
-    assert len(here) == 200 and set(here["status"]) == {"fair", "folded"}
-    for batch_size in (7, 64, 1000):
+    assert len(here) == 10_000 and set(here["status"]) == {"fair", "folded", "inadmissible"}
+    for batch_size in (97, 1000, 4096):
         there = monge.dask.scan(client, design, VALUES, batch_size=batch_size)
         pd.testing.assert_frame_equal(there, here, check_exact=True)
 
 
 def test_a_worker_killed_mid_run_loses_and_repeats_no_row(client, design):
     workers = len(client.scheduler_info()["workers"])
-    futures = monge.dask.scan_futures(client, design, VALUES, batch_size=1)
+    futures = monge.dask.scan_futures(client, design, VALUES, batch_size=20)
     distributed.wait(futures[:1])
     busy = {w: keys for w, keys in client.processing().items() if keys}
     assert busy, "every batch finished before a worker could be killed"

@@ -20,8 +20,19 @@ import monge
 
 
 def scan_frame(columns, start=0):
-    """The columns returned by ``monge.scan`` as a DataFrame, ``index`` from ``start``."""
-    frame = pd.DataFrame({k: v for k, v in columns.items() if k != "parameter"})
+    """The columns returned by ``monge.scan`` as a DataFrame, ``index`` from ``start``.
+
+    The text columns (``status``, ``error``) have pandas' string dtype whatever
+    the rows hold: a batch without an error would otherwise make ``error`` an
+    object column, and the gathered frame would depend on the split.
+    """
+    frame = pd.DataFrame(
+        {
+            k: v if isinstance(v, np.ndarray) else pd.array(v, dtype="string")
+            for k, v in columns.items()
+            if k != "parameter"
+        }
+    )
     frame.insert(0, "index", np.arange(start, start + len(frame), dtype=np.int64))
     return frame
 
