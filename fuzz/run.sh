@@ -9,12 +9,14 @@
 #                                      at a time as there are cores
 #
 # New inputs go to fuzz/target/corpus/TARGET (not committed); crashes to
-# fuzz/artifacts/TARGET/. Targets: design_json design_toml mesh_obj mesh_ply
+# fuzz/artifacts/TARGET/. FUZZ_PROFILE=ci builds with less optimisation (CI's
+# short runs; see Cargo.toml). Targets: design_json design_toml mesh_obj mesh_ply
 # mesh_json iges.
 set -euo pipefail
 cd "$(dirname "$0")"
 TARGETS="design_json design_toml mesh_obj mesh_ply mesh_json iges"
 TRIPLE="$(rustc -vV | sed -n 's/^host: //p')"
+PROFILE="${FUZZ_PROFILE:-release}"
 # Per-input limits: 64 KB inputs, 1 s, 512 MB in one allocation, 2 GB RSS.
 LIMITS=(-max_len=65536 -timeout=1 -malloc_limit_mb=512 -rss_limit_mb=2048)
 
@@ -23,13 +25,13 @@ build() {
 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table \
 -Cllvm-args=-sanitizer-coverage-trace-compares -Cllvm-args=-sanitizer-coverage-stack-depth \
 --cfg fuzzing -Cdebug-assertions -Coverflow-checks" \
-    cargo build --release --locked --target "$TRIPLE" --bins
+    cargo build --profile "$PROFILE" --locked --target "$TRIPLE" --bins
 }
 
 run() {
   local target=$1; shift
   mkdir -p "target/corpus/$target" "artifacts/$target"
-  "target/$TRIPLE/release/$target" "${LIMITS[@]}" -artifact_prefix="artifacts/$target/" \
+  "target/$TRIPLE/$PROFILE/$target" "${LIMITS[@]}" -artifact_prefix="artifacts/$target/" \
     "$@" "target/corpus/$target" "corpus/$target"
 }
 
