@@ -10,6 +10,10 @@ each command once in a fresh folder holding `examples/`, and rewrites the marker
     scripts/docs-numbers.py            # every number (a few minutes)
     scripts/docs-numbers.py --cheap    # the cheap ones only (seconds)
     scripts/docs-numbers.py --speed    # also the speed table (docs/speed/make.sh, ~5 min)
+    scripts/docs-numbers.py --only dask-,binary-mb   # the rows whose names start so
+
+Commands that use $MONGE_PYTHON get the Python of scripts/pytest.sh's venv with
+the release wheel installed (built first, a few minutes).
 
 crates/monge-cli/tests/docs_commands.rs checks that the cheap numbers are what this
 script writes, and that no marker names a number this list does not make.
@@ -62,7 +66,8 @@ def run(command, binary, cache):
             bindir = os.path.join(d, ".bin")
             os.mkdir(bindir)
             os.symlink(binary, os.path.join(bindir, "monge"))
-            env = dict(os.environ, PATH=bindir + os.pathsep + os.environ["PATH"], MONGE_REPO=ROOT)
+            env = dict(os.environ, PATH=bindir + os.pathsep + os.environ["PATH"], MONGE_REPO=ROOT,
+                       MONGE_PYTHON=os.path.join(os.path.dirname(os.path.dirname(binary)), "venv", "bin", "python"))
             print("$ " + command, file=sys.stderr)
             p = subprocess.run(["sh", "-c", command], cwd=d, env=env, capture_output=True, text=True)
             if p.returncode != 0:
@@ -82,10 +87,14 @@ def main():
                           check=True, capture_output=True, text=True).stdout
     target = json.loads(meta)["target_directory"]  # CARGO_TARGET_DIR if set
     binary = os.path.join(target, "debug" if cheap_only else "release", "monge")
+    only = sys.argv[sys.argv.index("--only") + 1].split(",") if "--only" in sys.argv else None
+    rows = [r for r in spec() if not (cheap_only and r["cls"] != "cheap")
+            and (only is None or any(r["name"].startswith(o) for o in only))]
+    if any("$MONGE_PYTHON" in r["command"] for r in rows):
+        subprocess.run(["scripts/pytest.sh", "--install"], check=True,
+                       env=dict(os.environ, MONGE_WHEEL_PROFILE="--release"))
     cache, values = {}, {}
-    for row in spec():
-        if cheap_only and row["cls"] != "cheap":
-            continue
+    for row in rows:
         stdout, both = run(row["command"], binary, cache)
         values[row["name"]] = extract(stdout if row["fmt"] == "block" else both, row["after"], row["fmt"])
     pages = ["README.md"] + sorted(glob.glob("docs/*.md"))

@@ -6,6 +6,8 @@
 #
 #   scripts/pytest.sh [PYTEST_ARGS]   set up the venv, build and install the wheel, run pytest
 #   scripts/pytest.sh --setup         only set up the venv (CI does it while Rust compiles)
+#   scripts/pytest.sh --install       set up the venv, build and install the wheel, no pytest
+#                                     (scripts/docs-numbers.py, with MONGE_WHEEL_PROFILE=--release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,7 +30,7 @@ fi
 
 # The workspace's test build (nothing to do after `cargo test --workspace`): the
 # tests run the `monge` it holds, and the debug wheel below reuses it.
-cargo test --workspace --locked --no-run --quiet
+[ "${1:-}" = --install ] || cargo test --workspace --locked --no-run --quiet
 
 # A debug wheel by default: the tests are small (MONGE_WHEEL_PROFILE=--release
 # builds the wheel that users get). It is named as the release wheel is, so it
@@ -44,7 +46,7 @@ log="$(mktemp)"
 # The debug wheel compiles only what differs from the test build: pyo3 built as
 # an extension module, and what links it. Anything else means a dependency's
 # features differ between the two builds (see crates/monge-py/Cargo.toml).
-if [ -z "$profile" ]; then
+if [ -z "$profile" ] && [ "${1:-}" != --install ]; then
   extra="$(sed -n 's/^ *Compiling \([^ ]*\) .*/\1/p' "$log" | grep -vxE 'pyo3(-ffi|-macros|-macros-backend|-build-config)?|numpy|pythonize|monge-py' || true)"
   if [ -n "$extra" ]; then
     echo "error: the debug wheel's build compiled again what \`cargo test --workspace\` had built:" $extra >&2
@@ -59,6 +61,7 @@ case "$(basename "$wheel")" in
   *) echo "error: $(basename "$wheel") is not an abi3 wheel for CPython ≥ 3.9" >&2; exit 2 ;;
 esac
 "$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps "$wheel"
+[ "${1:-}" = --install ] && exit 0
 
 echo "== pytest"
 export MONGE_BIN="$target/debug/monge"
