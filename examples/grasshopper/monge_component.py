@@ -15,7 +15,7 @@ Outputs:
 
 The `# r: monge` line makes Rhino 8 find the package, once the wheel is built and
 installed into Rhino's Python as README.md says (the package index has no `monge`). Everything
-but building Rhino meshes is in monge.grasshopper, tested outside Rhino.
+but the component's inputs and outputs is in monge.grasshopper, tested outside Rhino.
 """
 
 import Rhino.Geometry as rg
@@ -24,24 +24,13 @@ import monge
 import monge.grasshopper as mgh
 
 
-def rhino_mesh(vertices, faces, normals=None):
-    m = rg.Mesh()
-    for x, y, z in vertices:
-        m.Vertices.Add(x, y, z)
-    for a, b, c, d in faces:
-        m.Faces.AddFace(a, b, c, d)
-    for x, y, z in normals or []:
-        m.Normals.Add(x, y, z)
-    return m
-
-
 mesh = gauss = metrics = error = None
 if guide_u is not None and guide_v is not None and theta is not None:
     try:
         r = mgh.solve(guide_u, guide_v, theta, samples or 21, "conical" if conical else "circular")
-        mesh = rhino_mesh(r["vertices"], r["faces"], r["gauss"])
+        mesh = mgh.rhino_mesh(rg.Mesh, r["vertices"], r["faces"], r["gauss"])
         if r["gauss"] is not None:
-            gauss = rhino_mesh(r["gauss"], r["faces"], r["gauss"])
+            gauss = mgh.rhino_mesh(rg.Mesh, r["gauss"], r["faces"], r["gauss"])
         metrics = r["metrics"]
     except monge.MongeError as e:
         error = str(e)

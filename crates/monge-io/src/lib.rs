@@ -70,7 +70,7 @@ pub use multipatch::{
     write_multipatch_into, write_quad_mesh, write_quad_mesh_to,
 };
 pub use net::{conical_has_no_net, write_net_json};
-pub use points_read::{read_points, IGES_TARGET_POINTS};
+pub use points_read::{read_points, surface_parameters, IGES_TARGET_POINTS};
 pub use scan::{write_scan_csv, write_scan_svg, SCAN_CSV_HEADER};
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,

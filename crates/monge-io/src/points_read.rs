@@ -65,8 +65,33 @@ pub fn read_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
 /// About how many points [`read_points`] samples on the surfaces of an IGES target.
 pub const IGES_TARGET_POINTS: usize = 4000;
 
+/// The parameters `(u, v)` at which a target's surface is sampled when `surfaces`
+/// surfaces make the target: a square grid of `range_u` × `range_v`, ends included, `u`
+/// slowest, about [`IGES_TARGET_POINTS`] points in all (at least 5 × 5 a surface). The
+/// rule of [`read_points`] for IGES surfaces, and of the Python package for Rhino ones.
+///
+/// ```
+/// let grid: Vec<(f64, f64)> = monge_io::surface_parameters(1000, [0.0, 1.0], [2.0, 4.0]).collect();
+/// assert_eq!(grid.len(), 25);
+/// assert_eq!((grid[1], grid[24]), ((0.0, 2.5), (1.0, 4.0)));
+/// ```
+pub fn surface_parameters(
+    surfaces: usize,
+    range_u: [f64; 2],
+    range_v: [f64; 2],
+) -> impl Iterator<Item = (f64, f64)> {
+    let side = ((IGES_TARGET_POINTS / surfaces.max(1)) as f64)
+        .sqrt()
+        .ceil() as usize;
+    let side = side.max(5);
+    let at = move |range: [f64; 2], k: usize| {
+        range[0] + (range[1] - range[0]) * k as f64 / (side - 1) as f64
+    };
+    (0..side * side).map(move |k| (at(range_u, k / side), at(range_v, k % side)))
+}
+
 /// Points on every rational B-spline surface of an IGES file, on a square grid of each
-/// one's parameter range (at least 5 × 5 a surface).
+/// one's parameter range ([`surface_parameters`]).
 fn iges_points(text: &str, file: &str) -> Result<Vec<DVec3>, IoError> {
     let surfaces = read_iges_surfaces(text).map_err(|e| match e {
         IoError::Syntax { line, message, .. } => syntax(file, line, message),
@@ -81,15 +106,10 @@ fn iges_points(text: &str, file: &str) -> Result<Vec<DVec3>, IoError> {
                 .to_owned(),
         ));
     }
-    let side = ((IGES_TARGET_POINTS / surfaces.len()) as f64).sqrt().ceil() as usize;
-    let side = side.max(5);
-    let at =
-        |range: [f64; 2], k: usize| range[0] + (range[1] - range[0]) * k as f64 / (side - 1) as f64;
+    let n = surfaces.len();
     Ok(surfaces
         .iter()
-        .flat_map(|s| {
-            (0..side * side).map(move |k| s.point(at(s.range_u, k / side), at(s.range_v, k % side)))
-        })
+        .flat_map(|s| surface_parameters(n, s.range_u, s.range_v).map(|(u, v)| s.point(u, v)))
         .collect())
 }
 

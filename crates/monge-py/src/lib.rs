@@ -14,6 +14,7 @@ mod args;
 mod design;
 mod errors;
 mod mesh;
+mod target;
 mod tools;
 
 /// The native module `monge._monge`, re-exported by the package `monge`.
@@ -32,5 +33,6 @@ fn _monge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::fit, m)?)?;
     m.add_function(wrap_pyfunction!(tools::optimise_panels, m)?)?;
     m.add_function(wrap_pyfunction!(tools::approximate, m)?)?;
+    m.add_function(wrap_pyfunction!(target::target_points, m)?)?;
     Ok(())
 }

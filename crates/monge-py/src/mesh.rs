@@ -136,7 +136,7 @@ impl Mesh {
 
     /// The mesh of `kind` (§2.2, §2.3) generated from `design`, relative to
     /// `base` if given ([`BasePoint::apply`]).
-    fn generate(
+    pub(crate) fn generate(
         design: &Design,
         kind: MeshKind,
         options: &GenerateOptions,

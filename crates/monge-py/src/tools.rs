@@ -5,7 +5,9 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
-use monge_core::approximate::{approximate as core_approximate, deadline_after, ApproxOptions};
+use monge_core::approximate::{
+    approximate as core_approximate, deadline_after, ApproxOptions, Deviation,
+};
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};
 use monge_core::fabrication::{fabricate as core_fabricate, BaseMesh, FabricationOptions};
@@ -20,9 +22,7 @@ use monge_io::{
     DesignFormat, ScheduleJson,
 };
 use numpy::ndarray::IxDyn;
-use numpy::{
-    PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
-};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyString};
@@ -35,10 +35,11 @@ use crate::errors::{
     MeshError, OptimiseError, ScanError, SmoothError,
 };
 use crate::mesh::{measurements, Geometry, Mesh};
+use crate::target::points_of;
 
 /// `points` copied into a numpy array of `shape` (whose product times 3 is the
 /// number of coordinates; the last axis, 3, is appended).
-fn points_array<'py>(
+pub(crate) fn points_array<'py>(
     py: Python<'py>,
     points: &[DVec3],
     shape: &[usize],
@@ -681,23 +682,33 @@ pub fn fit<'py>(py: Python<'py>, design: &Bound<'py, PyAny>) -> PyResult<Bound<'
 }
 
 /// The design whose exact mesh is nearest to a target, as `monge approximate`
-/// (monge's extension of the method): `points` is the target, any array of
-/// shape (..., 3) (a mesh's vertices or a point cloud). Returns the `design`
-/// found (a `Design`), the `initial` guess (a `Design`), its mesh's `kind`,
-/// `vertices` (rows, cols, 3) and `normals` (its node axes, (rows, cols, 3); None
-/// for `kind="conical"`, whose mesh is the conical dual, §2.3), its `max_error`
-/// as `check` measures it (the exactness the command prints), the deviation
-/// `before` and `after` (dicts of distances relative to the target's `size`),
-/// `theta_deg`, `evaluations`, `starts` and `timed_out`.
+/// (monge's extension of the method). `target` is what a designer has: any
+/// array of shape (..., 3) or list of points (a mesh's vertices or a point
+/// cloud); a Rhino mesh, point cloud, surface or Brep (RhinoCommon inside Rhino
+/// 8, or rhino3dm), a surface or Brep sampled at about 4000 points on a grid of
+/// its parameters as the command samples IGES surfaces; a COMPAS mesh (its
+/// vertices); or the path of a file the command reads (OBJ, PLY, JSON, IGES):
+/// `target_points(target)` gives the points taken.
+///
+/// Returns the `design` found (a `Design`: `design.to_file(path)` saves it), the
+/// `initial` guess (a `Design`), its `mesh` (a `Mesh`, for `monge.rhino.write_3dm`,
+/// `monge.compas.to_mesh`, `monge.blender.add_mesh`), its `kind`, `vertices`
+/// (rows, cols, 3) and `normals` (its node axes, (rows, cols, 3); None for
+/// `kind="conical"`, whose mesh is the conical dual, §2.3), `panels` (its number
+/// of faces), its `max_error` as `check` measures it (the exactness the command
+/// prints), the deviation `before` and `after` (dicts of distances relative to
+/// the target's `size`), `deviation` (`after` in model units) and `max_deviation`
+/// (the larger of its two largest distances, model units), `theta_deg`,
+/// `evaluations`, `starts` and `timed_out`.
 #[pyfunction]
 #[pyo3(
-    signature = (points, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false),
-    text_signature = "(points, grid=(40, 40), kind='circular', starts=4, max_evaluations=1500, time_limit=None, keep_boundary=False)"
+    signature = (target, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false),
+    text_signature = "(target, grid=(40, 40), kind='circular', starts=4, max_evaluations=1500, time_limit=None, keep_boundary=False)"
 )]
 #[allow(clippy::too_many_arguments)]
 pub fn approximate<'py>(
     py: Python<'py>,
-    points: &Bound<'py, PyAny>,
+    target: &Bound<'py, PyAny>,
     #[pyo3(from_py_with = args::grid)] grid: (usize, usize),
     kind: &str,
     #[pyo3(from_py_with = args::starts)] starts: usize,
@@ -705,33 +716,7 @@ pub fn approximate<'py>(
     time_limit: Option<f64>,
     keep_boundary: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let numpy = py.import("numpy")?;
-    let array = numpy
-        .call_method1("asarray", (points, "float64"))
-        .map_err(|e| {
-            OptimiseError::new_err(format!(
-                "points must be numbers, an array of shape (..., 3): {}",
-                e.value(py)
-            ))
-        })?;
-    // x, y, z along the last axis: any other shape is refused, never reshaped.
-    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
-    if shape.last() != Some(&3) {
-        let shape: Vec<String> = shape.iter().map(usize::to_string).collect();
-        return Err(OptimiseError::new_err(format!(
-            "points must be an array of shape (..., 3), x, y, z along the last axis; got shape \
-             ({}{}): give the target's points as an (N, 3) array",
-            shape.join(", "),
-            if shape.len() == 1 { "," } else { "" }
-        )));
-    }
-    let array: PyReadonlyArray2<f64> = array.call_method1("reshape", (-1, 3))?.extract()?;
-    let a = array.as_array();
-    let target: Vec<DVec3> = a
-        .rows()
-        .into_iter()
-        .map(|r| DVec3::new(r[0], r[1], r[2]))
-        .collect();
+    let target = points_of(target)?;
     let deadline = match time_limit {
         Some(t) => {
             deadline_after(t).map_err(|e| OptimiseError::new_err(format!("time_limit: {e}")))?
@@ -755,10 +740,15 @@ pub fn approximate<'py>(
         inner,
         source: None,
     };
-    d.set_item("theta_deg", r.design.theta_deg)?;
-    d.set_item("design", Bound::new(py, design(r.design))?)?;
+    let found = design(r.design);
+    // The mesh as `generate` makes it: the same vertices as `r.grid`, with its report.
+    let mesh = py.detach(|| Mesh::generate(&found, kind, &GenerateOptions::default(), None))?;
+    d.set_item("theta_deg", found.inner.theta_deg)?;
+    d.set_item("design", Bound::new(py, found)?)?;
     d.set_item("initial", Bound::new(py, design(r.initial))?)?;
+    d.set_item("mesh", Bound::new(py, mesh)?)?;
     let g = &r.grid;
+    d.set_item("panels", g.face_count())?;
     d.set_item(
         "vertices",
         points_array(py, &g.vertices, &[g.rows, g.cols])?,
@@ -773,8 +763,23 @@ pub fn approximate<'py>(
     d.set_item("max_error", measurements(g, kind, None).1)?;
     d.set_item("before", pythonize(py, &r.before)?)?;
     d.set_item("after", pythonize(py, &r.after)?)?;
+    d.set_item("deviation", model_units(py, &r.after)?)?;
+    d.set_item("max_deviation", r.after.max() * r.after.size)?;
     d.set_item("evaluations", r.evaluations)?;
     d.set_item("starts", r.starts)?;
     d.set_item("timed_out", r.timed_out)?;
+    Ok(d)
+}
+
+/// The distances of `deviation` in model units: each relative distance times the
+/// target's size (`size` itself as it is).
+fn model_units<'py>(py: Python<'py>, deviation: &Deviation) -> PyResult<Bound<'py, PyDict>> {
+    let d = pythonize(py, deviation)?.cast_into::<PyDict>()?;
+    let items: Vec<_> = d.iter().collect();
+    for (key, value) in items {
+        if key.extract::<String>()? != "size" {
+            d.set_item(&key, value.extract::<f64>()? * deviation.size)?;
+        }
+    }
     Ok(d)
 }

@@ -45,6 +45,7 @@ from ._monge import (
     optimise_panels,
     scan,
     smooth,
+    target_points,
 )
 
 __all__ = [
@@ -72,4 +73,5 @@ __all__ = [
     "optimise_panels",
     "scan",
     "smooth",
+    "target_points",
 ]

@@ -33,6 +33,7 @@ __all__ = [
     "fit",
     "optimise_panels",
     "approximate",
+    "target_points",
 ]
 
 # Private aliases: names of the stub only, not of the module.
@@ -206,7 +207,7 @@ def fit(design: Union[_PathLike, Dict[str, Any]]) -> Dict[str, Any]:
     """Fit θ of a multi-patch design (§4.7), as ``monge fit``."""
 
 def approximate(
-    points: npt.ArrayLike,
+    target: Union[npt.ArrayLike, _PathLike, Any],
     grid: Tuple[int, int] = (40, 40),
     kind: _Kind = "circular",
     starts: int = 4,
@@ -214,4 +215,7 @@ def approximate(
     time_limit: Optional[float] = None,
     keep_boundary: bool = False,
 ) -> Dict[str, Any]:
-    """The design nearest to a target's points, as ``monge approximate``."""
+    """The design nearest to a target (points, a Rhino or COMPAS mesh, a Rhino surface or Brep, a file), as ``monge approximate``."""
+
+def target_points(target: Union[npt.ArrayLike, _PathLike, Any]) -> _Array:
+    """The points ``approximate`` takes from a target, as an array (N, 3)."""

@@ -1,17 +1,20 @@
 """Grasshopper and Hops: two guide curves and θ in, the mesh, its Gauss map
-and its metrics out.
+and its metrics out (``solve``); or a surface, mesh or points in, the nearest
+exact mesh and its deviation out (``approximate``).
 
-The logic of the Grasshopper script component and of the Hops endpoint in
-``examples/grasshopper/``, kept here so that it runs (and is tested) outside
-Rhino: the curves may be RhinoCommon curves (inside Rhino) or rhino3dm curves
-(Hops, tests), which share the members used here (``Domain.T0``/``T1``,
-``PointAt``, ``TangentAtStart``). No geometry is made here: the curves are
-sampled and the samples handed to ``monge.generate`` as ``points`` guides
-with the curves' exact start tangents.
+The logic of the Grasshopper script components and of the Hops endpoint in
+``examples/grasshopper/`` and docs/python.md, kept here so that it runs (and is
+tested) outside Rhino: the curves, surfaces and meshes may be RhinoCommon ones
+(inside Rhino) or rhino3dm ones (Hops, tests), which share the members used
+here (``Domain``, ``PointAt``, ``TangentAtStart``, ``Vertices``, ``Faces``). No
+geometry is made here: the curves are sampled and the samples handed to
+``monge.generate`` as ``points`` guides with the curves' exact start tangents;
+a target goes to ``monge.approximate`` as it is.
 """
 
 
 from ._monge import Design, DesignError, check, generate, info
+from ._monge import approximate as _approximate
 
 
 def sample_curve(curve, samples):
@@ -56,6 +59,20 @@ def metrics_text(mesh, design):
     return lines
 
 
+def rhino_mesh(mesh_type, vertices, faces, normals=None):
+    """A quad mesh of ``mesh_type`` (``Rhino.Geometry.Mesh`` in Rhino,
+    ``rhino3dm.Mesh`` elsewhere) with the ``vertices``, ``faces`` and optional
+    vertex ``normals`` that ``solve`` and ``approximate`` output."""
+    m = mesh_type()
+    for x, y, z in vertices:
+        m.Vertices.Add(x, y, z)
+    for a, b, c, d in faces:
+        m.Faces.AddFace(a, b, c, d)
+    for x, y, z in normals or []:
+        m.Normals.Add(x, y, z)
+    return m
+
+
 def solve(guide_u, guide_v, theta_deg, samples=21, kind="circular"):
     """Everything the components output: ``mesh`` (a ``monge.Mesh``),
     ``vertices`` and ``gauss`` (its node axes, the Gauss map, circular meshes
@@ -63,13 +80,60 @@ def solve(guide_u, guide_v, theta_deg, samples=21, kind="circular"):
     ``metrics`` as lines of text."""
     design = design_from_curves(guide_u, guide_v, theta_deg, samples, kind)
     mesh = generate(design)
+    return _outputs(mesh, metrics_text(mesh, design))
+
+
+def _outputs(mesh, metrics):
+    """The outputs of a component showing ``mesh`` (see ``solve``)."""
     return {
         "mesh": mesh,
         "vertices": mesh.vertices.reshape(-1, 3).tolist(),
         "faces": mesh.faces.tolist(),
         "gauss": None if mesh.normals is None else mesh.normals.reshape(-1, 3).tolist(),
-        "metrics": metrics_text(mesh, design),
+        "metrics": metrics,
     }
 
 
-__all__ = ["sample_curve", "design_from_curves", "metrics_text", "solve"]
+def approximation_text(result):
+    """What a designer looks at in ``monge.approximate``'s ``result``, as lines of
+    text: the panels, the largest and RMS deviation both ways in model units (and
+    relative to the target's size), the initial guess's, and the search."""
+    d, before, size = result["deviation"], result["before"], result["after"]["size"]
+    timed_out = ", stopped at the time limit" if result["timed_out"] else ""
+    return [
+        f"panels: {result['panels']}, θ = {result['theta_deg']:g}°",
+        f"largest deviation: {result['max_deviation']:.3g} model units "
+        f"({result['max_deviation'] / size:.2%} of the target's size {size:.4g}): "
+        f"mesh → target {d['mesh_to_target_max']:.3g}, target → mesh {d['target_to_mesh_max']:.3g}",
+        f"RMS deviation: mesh → target {d['mesh_to_target_rms']:.3g}, "
+        f"target → mesh {d['target_to_mesh_rms']:.3g} model units",
+        f"initial guess: largest deviation "
+        f"{max(before['mesh_to_target_max'], before['target_to_mesh_max']) * size:.3g} model units",
+        f"search: {result['evaluations']} meshes generated, {result['starts']} starts{timed_out}",
+    ]
+
+
+def approximate(geometry, **options):
+    """Everything a component rationalising ``geometry`` outputs: ``geometry`` is
+    what ``monge.approximate`` accepts (a Rhino mesh, point cloud, surface or
+    Brep, points, ...), ``options`` its keywords (``grid``, ``kind``,
+    ``time_limit``, ...). Returns, as ``solve`` does, ``mesh`` (a
+    ``monge.Mesh``), ``vertices``, ``faces``, ``gauss`` and ``metrics`` (the
+    deviation, ``approximation_text``, then the mesh's metrics, ``metrics_text``),
+    with the ``design`` found (``design.to_file(path)`` saves it) and ``result``,
+    ``monge.approximate``'s whole answer."""
+    result = _approximate(geometry, **options)
+    mesh, design = result["mesh"], result["design"]
+    outputs = _outputs(mesh, approximation_text(result) + metrics_text(mesh, design))
+    return {**outputs, "design": design, "result": result}
+
+
+__all__ = [
+    "sample_curve",
+    "design_from_curves",
+    "metrics_text",
+    "rhino_mesh",
+    "solve",
+    "approximation_text",
+    "approximate",
+]
