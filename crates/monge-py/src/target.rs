@@ -43,6 +43,19 @@ fn has_method(obj: &Bound<'_, PyAny>, name: &str) -> bool {
     obj.getattr(name).is_ok_and(|m| m.is_callable())
 }
 
+/// The items of a list, a tuple or a Rhino collection (`Count`: a `Point3dList`, a
+/// .NET list in Grasshopper) whose first item is a Rhino point (`X`); None otherwise.
+fn point_items<'py>(target: &Bound<'py, PyAny>) -> PyResult<Option<Vec<Bound<'py, PyAny>>>> {
+    let collection = target.is_instance_of::<PyList>()
+        || target.is_instance_of::<PyTuple>()
+        || has(target, "Count");
+    let Some(items) = collection.then(|| target.try_iter()).and_then(Result::ok) else {
+        return Ok(None);
+    };
+    let items: Vec<_> = items.collect::<PyResult<_>>()?;
+    Ok(items.first().is_some_and(|p| has(p, "X")).then_some(items))
+}
+
 /// A Rhino surface's parameter range in `direction` (0: u, 1: v).
 fn domain(surface: &Bound<'_, PyAny>, direction: i32) -> PyResult<[f64; 2]> {
     let d = surface.call_method1("Domain", (direction,))?;
@@ -96,11 +109,8 @@ fn rhino_geometry(target: &Bound<'_, PyAny>) -> PyResult<Option<Vec<DVec3>>> {
         .filter(|v| has_method(v, "ToPoint3dArray"))
     {
         rhino_points(&vertices.call_method0("ToPoint3dArray")?)?
-    } else if (target.is_instance_of::<PyList>() || target.is_instance_of::<PyTuple>())
-        && target.len().is_ok_and(|n| n > 0)
-        && has(&target.get_item(0)?, "X")
-    {
-        rhino_points(target)?
+    } else if let Some(items) = point_items(target)? {
+        items.iter().map(xyz).collect::<PyResult<_>>()?
     } else {
         return Ok(None);
     };

@@ -45,6 +45,14 @@ def rhino_points(points):
     return [rhino3dm.Point3d(*map(float, p)) for p in points]
 
 
+def point3d_list(points):
+    """A rhino3dm.Point3dList (a collection with `Count`, as .NET lists in Grasshopper)."""
+    lst = rhino3dm.Point3dList()
+    for p in points.tolist():
+        lst.Add(*p)
+    return lst
+
+
 def test_rhino_and_compas_targets_are_their_points(points, reference):
     mesh = monge.rhino.quad_mesh(points, [])  # double-precision vertices, no faces needed
     cloud = rhino3dm.PointCloud()
@@ -57,6 +65,7 @@ def test_rhino_and_compas_targets_are_their_points(points, reference):
         ("rhino3dm.Mesh", mesh),
         ("rhino3dm.PointCloud", cloud),
         ("list of rhino3dm.Point3d", rhino_points(points)),
+        ("rhino3dm.Point3dList", point3d_list(points)),
         ("list of tuples", [tuple(p) for p in points.tolist()]),
         ("compas Mesh", compas_mesh),
         ("OBJ path", pathlib.Path(TARGET)),

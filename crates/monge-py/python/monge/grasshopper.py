@@ -96,19 +96,16 @@ def _outputs(mesh, metrics):
 
 def approximation_text(result):
     """What a designer looks at in ``monge.approximate``'s ``result``, as lines of
-    text: the panels, the largest and RMS deviation both ways in model units (and
-    relative to the target's size), the initial guess's, and the search."""
-    d, before, size = result["deviation"], result["before"], result["after"]["size"]
+    text: the panels, the largest and RMS deviation both ways in model units,
+    and the search."""
+    d, size = result["deviation"], result["deviation"]["size"]
     timed_out = ", stopped at the time limit" if result["timed_out"] else ""
     return [
         f"panels: {result['panels']}, θ = {result['theta_deg']:g}°",
-        f"largest deviation: {result['max_deviation']:.3g} model units "
-        f"({result['max_deviation'] / size:.2%} of the target's size {size:.4g}): "
+        f"largest deviation: {result['max_deviation']:.3g} model units (the target's size is {size:.4g}): "
         f"mesh → target {d['mesh_to_target_max']:.3g}, target → mesh {d['target_to_mesh_max']:.3g}",
         f"RMS deviation: mesh → target {d['mesh_to_target_rms']:.3g}, "
         f"target → mesh {d['target_to_mesh_rms']:.3g} model units",
-        f"initial guess: largest deviation "
-        f"{max(before['mesh_to_target_max'], before['target_to_mesh_max']) * size:.3g} model units",
         f"search: {result['evaluations']} meshes generated, {result['starts']} starts{timed_out}",
     ]
 
