@@ -166,6 +166,11 @@ def test_the_result_is_a_mesh_to_write_and_its_figures_in_model_units(points, re
     distances = np.linalg.norm(points[:, None, :] - r["vertices"].reshape(-1, 3)[None], axis=2)
     assert 0 < d["target_to_mesh_max"] <= distances.min(axis=1).max() + 1e-12 * size
     assert 0 < d["mesh_to_target_max"] <= distances.min(axis=0).max() + 1e-12 * size
+    # Last (skipped without compas): a COMPAS mesh of it, measured exact by monge.check from COMPAS's arrays.
+    mc = pytest.importorskip("monge.compas")
+    c = mc.to_mesh(mesh)
+    assert c.number_of_faces() == r["panels"]
+    assert monge.check(*mc.from_mesh(c))["max_error"] <= 1e-9
 
 
 def test_the_conical_result_is_a_conical_mesh(points):
