@@ -9,6 +9,10 @@ index has no `monge`).
 In Grasshopper, place a Hops component and set its path to
 http://127.0.0.1:5000/monge_generate: it takes two curves, θ and the number of
 samples, and returns the mesh, its Gauss map and the metrics (or the error).
+With the path http://127.0.0.1:5000/monge_approximate it takes a surface or
+polysurface (a Brep), the faces along each side and the number of starts, and
+returns the exact mesh nearest to it and the metrics: the panels and the
+deviation in model units (or the error).
 """
 
 import sys
@@ -48,6 +52,29 @@ def monge_generate(guide_u, guide_v, theta, samples=21):
         return None, None, [f"error: {e}"]
     mesh = r["mesh"]
     return monge.rhino.rhino_mesh(mesh), monge.rhino.gauss_mesh(mesh), r["metrics"]
+
+
+@hops.component(
+    "/monge_approximate",
+    name="monge approximate",
+    nickname="monge≈",
+    description="The exact circular quad mesh with planar curvature lines nearest to a surface",
+    inputs=[
+        hs.HopsBrep("Target", "T", "The surface or polysurface to rationalise"),
+        hs.HopsInteger("Faces", "F", "Faces along each side"),
+        hs.HopsInteger("Starts", "S", "Starts of the search (more: slower, safer)"),
+    ],
+    outputs=[
+        hs.HopsMesh("Mesh", "M", "The quad mesh, node axes as vertex normals"),
+        hs.HopsString("Metrics", "I", "Panels, deviation in model units, measured errors"),
+    ],
+)
+def monge_approximate(target, faces=20, starts=4):
+    try:
+        r = mgh.approximate(target, grid=(faces, faces), starts=starts)
+    except monge.MongeError as e:
+        return None, [f"error: {e}"]
+    return monge.rhino.rhino_mesh(r["mesh"]), r["metrics"]
 
 
 if __name__ == "__main__":

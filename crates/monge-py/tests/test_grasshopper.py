@@ -118,3 +118,43 @@ def test_hops_solves_like_monge_generate(hops_client):
 def test_hops_reports_errors_as_metrics(hops_client):
     out = outputs(hops_client.post("/solve", data=json.dumps(hops_request(90))))
     assert any(json.loads(m).startswith("error: theta_deg = 90° is singular") for m in out["Metrics"])
+
+
+def test_hops_approximates_a_surface(hops_client):
+    # A curved rhino3dm surface (a Dupin cyclide patch's cyclidic net would do; a
+    # bicubic Bézier roof here) sent as Hops sends a Brep.
+    s = rhino3dm.NurbsSurface.Create(3, False, 4, 4, 4, 4)
+    for a in range(4):
+        for b in range(4):
+            z = 2.0 * np.sin(np.pi * a / 3) * np.sin(np.pi * b / 3)
+            s.Points[a, b] = rhino3dm.Point4d(10 * a / 3, 8 * b / 3, z, 1.0)
+    for knots in (s.KnotsU, s.KnotsV):
+        for k, t in enumerate([0.0, 0.0, 0.0, 1.0, 1.0, 1.0]):
+            knots[k] = t
+    brep = rhino3dm.Brep.CreateFromSurface(s)
+
+    def request(target):
+        def item(name, type_, data):
+            return {"ParamName": name, "InnerTree": {"{0}": [{"type": type_, "data": data}]}}
+
+        return {
+            "pointer": "/monge_approximate",
+            "values": [
+                item("Target", "Rhino.Geometry.Brep", json.dumps(target.Encode())),
+                item("Faces", "System.Int32", json.dumps(5)),
+                item("Starts", "System.Int32", json.dumps(1)),
+            ],
+        }
+
+    desc = json.loads(hops_client.get("/monge_approximate").data)
+    assert [i["Name"] for i in desc["Inputs"]] == ["Target", "Faces", "Starts"]
+    out = outputs(hops_client.post("/solve", data=json.dumps(request(brep))))
+    mesh = rhino3dm.CommonObject.Decode(json.loads(out["Mesh"][0]))
+    assert mesh.Faces.QuadCount == 25 and len(mesh.Vertices) == 36
+    # The same mesh as monge.approximate's from the same surface.
+    r = monge.approximate(brep, grid=(5, 5), starts=1)
+    v = np.array([[p.X, p.Y, p.Z] for p in mesh.Vertices.ToPoint3dArray()])
+    assert np.array_equal(v, r["vertices"].reshape(-1, 3))
+    metrics = [json.loads(m) for m in out["Metrics"]]
+    assert metrics[0] == f"panels: 25, θ = {r['theta_deg']:g}°"
+    assert metrics[1].startswith(f"largest deviation: {r['max_deviation']:.3g} model units")
