@@ -68,6 +68,7 @@ def test_rhino_and_compas_targets_are_their_points(points, reference):
         ("rhino3dm.Point3dList", point3d_list(points)),
         ("list of tuples", [tuple(p) for p in points.tolist()]),
         ("compas Mesh", compas_mesh),
+        ("compas Pointcloud", pytest.importorskip("compas.geometry").Pointcloud(points.tolist())),
         ("OBJ path", pathlib.Path(TARGET)),
         ("OBJ path as text", TARGET),
         ("(rows, cols, 3) array", points.reshape(41, 41, 3)),
