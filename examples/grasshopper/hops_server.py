@@ -69,7 +69,7 @@ def monge_generate(guide_u, guide_v, theta, samples=21):
         hs.HopsString("Metrics", "I", "Panels, deviation in model units, measured errors"),
     ],
 )
-def monge_approximate(target, faces=20, starts=4):
+def monge_approximate(target, faces, starts):
     try:
         r = mgh.approximate(target, grid=(faces, faces), starts=starts)
     except monge.MongeError as e:
