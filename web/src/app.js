@@ -15,8 +15,8 @@ import { depth, record, step } from './history.js';
 import { handleOnScreen, installHandles, showHandles } from './handles.js';
 import { showArcs, showAxes, showColours, showMarkers, showPlanes } from './layers.js';
 import {
-  arcLines, axesGroup, camera, coloured, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
-  quality, redraw, resize, setGrid, setPolyline, SETTLE_MS, surface, surfaceMaterial, timeNextFrame, wire,
+  arcLines, axesGroup, camera, coloured, drawn, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
+  quality, redraw, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial, timeNextFrame, wire,
 } from './view.js';
 
 let settleTimer = null;
@@ -63,6 +63,7 @@ function showMesh(mesh, t0, fast = false) {
   state.mesh = header;
   state.stale = false;
   unmark();
+  quality(fast);
   const circular = header.kind === 'circular';
   // A circular mesh's normals are its node axes (the Gauss map); a conical
   // mesh's vertex normals are left to three.js. The arrays are views into the
@@ -90,7 +91,6 @@ function showMesh(mesh, t0, fast = false) {
   labelExports(false);
   state.generations += 1;
   if (t0 !== null) timeNextFrame(t0);
-  quality(fast);
   redraw();
 }
 
@@ -106,13 +106,11 @@ function showMesh(mesh, t0, fast = false) {
 function change(t0, dragging = false, name = '<input>', source = null) {
   clearTimeout(settleTimer);
   settleTimer = null;
-  const start = performance.now();
   try {
     showMesh(generateMesh(JSON.stringify(state.design), name), t0, dragging);
   } catch (error) {
     showError(error, dragging, source, true);
   }
-  state.blocked.push(performance.now() - start);
   if (dragging) {
     settleTimer = setTimeout(() => {
       settleTimer = null;
@@ -123,12 +121,10 @@ function change(t0, dragging = false, name = '<input>', source = null) {
 
 /** After a drag: the metrics (of a design monge took), and the view in full quality. */
 function settle() {
-  const start = performance.now();
+  quality(false); // the mesh's bounds measured again, for the handles' size
   showHandles();
   if (!state.stale) measure();
-  quality(false);
   redraw();
-  state.blocked.push(performance.now() - start);
 }
 
 /**
@@ -163,11 +159,11 @@ function showError(error, fast = false, source = null, refused = false) {
   redraw();
 }
 
-/** Undo (`back`) or redo one step of the design's history. */
-function travel(back) {
+/** Undo (`back`) or redo one step of the design's history, asked at time `t0`. */
+function travel(back, t0) {
   if (!step(back)) return;
   syncControls();
-  change(performance.now());
+  change(t0);
 }
 
 installHandles(change, record);
@@ -177,8 +173,8 @@ onMeasured((answer, measured) => {
   showArcs(measured.net);
   showMetrics(answer, measured);
 });
-$('undo').addEventListener('click', () => travel(true));
-$('redo').addEventListener('click', () => travel(false));
+$('undo').addEventListener('click', (event) => travel(true, event.timeStamp));
+$('redo').addEventListener('click', (event) => travel(false, event.timeStamp));
 $('fit').addEventListener('click', () => {
   fitView();
   redraw();
@@ -190,7 +186,7 @@ window.addEventListener('keydown', (event) => {
   if (!(event.ctrlKey || event.metaKey) || event.altKey || (key !== 'z' && key !== 'y')) return;
   event.preventDefault();
   event.stopPropagation();
-  travel(key === 'z' && !event.shiftKey);
+  travel(key === 'z' && !event.shiftKey, event.timeStamp);
 }, { capture: true });
 
 /**
@@ -237,6 +233,12 @@ window.explorer = {
   metrics: () => current.metrics(),
   /** The mesh file `monge generate` writes (`obj` or `json`), as text. */
   exported: (format) => new TextDecoder().decode(current.export(format)),
+  /**
+   * What the last frames drew: `drag`, the primitives of the last drag frame;
+   * `steps`, the indices each step of the last full-quality frame drew, each
+   * at most `stepIndices`.
+   */
+  frames: () => ({ drag: drawn.drag, steps: [...drawn.steps], stepIndices: STEP_INDICES }),
   idle: () => !frameOwed() && settleTimer === null && !measurePending(),
   /** The cyclidic net drawn: { lines, arcs, segments } (chord ends), or { error }, or null. */
   arcs: () => (state.net && !state.net.error ? { ...state.net, segments: arcLines.visible ? arcLines.geometry.getAttribute('position').count / 2 : 0 } : state.net),

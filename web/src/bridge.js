@@ -64,12 +64,10 @@ export const measurePending = () => measuring;
 export function onMeasured(show) {
   worker.onmessage = ({ data }) => {
     if (data.id !== measureId) return; // a newer design is being measured
-    const start = performance.now();
     measuring = false;
     if (data.error) return; // the main thread shows monge's message for this design
     show(state.mesh, data);
     $('metrics').classList.remove('pending');
     redraw();
-    state.blocked.push(performance.now() - start);
   };
 }

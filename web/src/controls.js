@@ -76,7 +76,7 @@ export function syncControls() {
 export function installControls(change, done, refuse) {
   const field = (id) => ({ field: id });
   $('theta').addEventListener('input', (event) => {
-    const t0 = performance.now();
+    const t0 = event.timeStamp;
     state.design.theta_deg = Number(event.target.value);
     $('theta-value').textContent = state.design.theta_deg.toFixed(1);
     change(t0, true, '<input>', field('theta'));
@@ -86,7 +86,7 @@ export function installControls(change, done, refuse) {
     $(`samples-${g}`).addEventListener('change', (event) => {
       const spec = state.design[`guide_${g}`];
       (spec.bspline || spec.arc || spec.parabola).samples = Math.round(Number(event.target.value));
-      change(performance.now(), false, '<input>', field(`samples-${g}`));
+      change(event.timeStamp, false, '<input>', field(`samples-${g}`));
       done();
     });
   }
@@ -101,19 +101,19 @@ export function installControls(change, done, refuse) {
         return;
       }
       syncControls();
-      change(performance.now(), false, '<input>', field(`kind-${g}`));
+      change(event.timeStamp, false, '<input>', field(`kind-${g}`));
       done();
     });
   }
   $('kind').addEventListener('change', (event) => {
     if (event.target.value === 'conical') state.design.mesh = 'conical';
     else delete state.design.mesh;
-    change(performance.now(), false, '<input>', field('kind'));
+    change(event.timeStamp, false, '<input>', field('kind'));
     done();
   });
   $('offset').addEventListener('change', (event) => {
     state.offset = Number(event.target.value) || 0;
-    change(performance.now(), false, '<input>', field('offset'));
+    change(event.timeStamp, false, '<input>', field('offset'));
     done();
   });
   $('show-gauss').addEventListener('change', (event) => {

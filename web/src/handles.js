@@ -213,7 +213,7 @@ export function installHandles(change, done) {
 
   renderer.domElement.addEventListener('pointermove', (event) => {
     if (!drag) return;
-    const t0 = performance.now();
+    const t0 = event.timeStamp;
     const now = new THREE.Vector2(event.clientX, event.clientY);
     const delta = now.clone().sub(drag.last);
     drag.last = now;

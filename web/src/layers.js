@@ -37,7 +37,7 @@ export function showColours(mesh) {
     max = Math.max(max, x);
     folded += x;
   }
-  // Two triangles, six corners, a face, in the order of the faces (gridIndices).
+  // Two triangles, six corners, a face, in the order of the faces (gridTriangles in view.js).
   const geometry = surface.geometry.toNonIndexed();
   const colours = new Float32Array(3 * geometry.getAttribute('position').count);
   values.forEach((x, k) => {

@@ -14,7 +14,6 @@ export const state = {
   mesh: null,        // the header of the mesh shown (see Mesh.header in crates/monge-wasm)
   offset: 0,
   latencies: [],     // ms from input event to the frame that shows its mesh
-  blocked: [],       // ms of each main-thread task for monge: a change (module, upload), a drag's end, the worker's answer
   generations: 0,    // meshes drawn so far
   stale: false,      // the design changed and monge refused it: the mesh shown is the last valid design's
   valid: null,       // the last design monge took (JSON text): the mesh shown and exported is its

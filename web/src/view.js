@@ -15,7 +15,6 @@ scene.background = new THREE.Color(0xffffff);
 export const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1e5);
 camera.up.set(0, 0, 1); // designs are z-up
 export const orbit = new OrbitControls(camera, renderer.domElement);
-orbit.addEventListener('change', () => redraw());
 scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 1.6));
 const sun = new THREE.DirectionalLight(0xffffff, 1.4);
 camera.add(sun);
@@ -39,6 +38,7 @@ export const gaussWire = new THREE.LineSegments(new THREE.BufferGeometry(), new 
 const sphereWire = new THREE.Mesh(new THREE.SphereGeometry(0.995, 48, 24), new THREE.MeshBasicMaterial({ color: 0xdddddd, wireframe: true, transparent: true, opacity: 0.35 }));
 gauss.add(sphereWire, gaussSurface, gaussWire);
 for (const line of Object.values(guideLines)) line.renderOrder = 1;
+for (const grid of [surface, wire, gaussSurface, gaussWire]) grid.frustumCulled = false; // see setGrid
 /** The surface with one colour per face (by panel area or by fold), shown instead of `surface`. */
 export const coloured = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({
   vertexColors: true, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
@@ -56,57 +56,248 @@ arcLines.visible = false;
 planesGroup.visible = false;
 scene.add(arcLines, surface, coloured, wire, guideLines.u, guideLines.v, handles, markers, gauss, planesGroup);
 
-let frameRequested = false;
-let pendingLatency = null; // input time of the mesh uploaded but not yet drawn
-
 /**
- * Drag quality: while θ or a control point is being dragged the page draws
- * at half the pixel ratio and without the wireframes (the mesh's, the Gauss
- * map's and its sphere's), and asks for the mesh without its metrics; once
- * the drag has rested for SETTLE_MS it asks again, with the metrics, and
- * draws at full quality. WebGL drawn in software (no GPU) costs about the
- * pixels and lines it draws.
+ * Drag quality: while θ, a control point or the view is being dragged the
+ * page draws at half the pixel ratio, without the wireframes (the mesh's, the
+ * Gauss map's and its sphere's), each grid by at most DRAG_LINES of its
+ * curvature lines a family (every k-th and the last: the mesh's own
+ * vertices), and asks for the mesh without its metrics; once the drag has
+ * rested for SETTLE_MS it asks again, with the metrics, and draws at full
+ * quality. WebGL drawn in software (no GPU) costs about the vertices, pixels
+ * and lines it draws.
  */
 export const SETTLE_MS = 150;
 const DRAG_PIXEL_RATIO = 0.5;
+const DRAG_LINES = 51;
 
-/** Switches between drag quality (`fast`) and full quality. */
+/**
+ * The full-quality frame is drawn offscreen, in steps of at most STEP_INDICES
+ * indices (20 000 triangles or 30 000 segments), one step an animation frame
+ * once the previous one has been drawn (a fence), and then shown at once. The
+ * main thread never waits for the drawing (software GL draws in the GPU
+ * process), and an input that comes meanwhile abandons it and waits for one
+ * step at most.
+ */
+export const STEP_INDICES = 60000;
+
+let scheduled = false;  // an animation frame is requested
+let dirty = false;      // the scene changed since the last frame was drawn or begun
+let build = null;       // the full-quality frame being drawn: { steps, next, fence }
+let pendingLatency = null; // input time of the change not yet drawn
+const awaiting = [];    // input times of frames drawn whose task has not ended yet
+/** What the last frames drew (for the e2e test): the drag frame's primitives, the full frame's steps' indices. */
+export const drawn = { drag: null, steps: [] };
+const gl = renderer.getContext();
+/** The full-quality frame is drawn into `target`, then shown on the canvas by one textured quad. */
+const target = new THREE.WebGLRenderTarget(1, 1, { colorSpace: THREE.SRGBColorSpace });
+const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ map: target.texture, depthTest: false, depthWrite: false, toneMapped: false }));
+const shown = new THREE.Scene().add(quad);
+const shownCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+
+/**
+ * The end of a frame's task: a message posted in the animation frame is
+ * received after the frame's rendering and compositing (in software GL, the
+ * canvas read back), which the time from the input to it includes.
+ */
+const frameEnd = new MessageChannel();
+frameEnd.port1.onmessage = () => recordLatency(performance.now() - awaiting.shift());
+
+/** Switches between drag quality (`fast`) and full quality; the next frame drawn shows it. */
 export function quality(fast) {
   if (fast === state.fast) return;
   state.fast = fast;
-  renderer.setPixelRatio(window.devicePixelRatio * (fast ? DRAG_PIXEL_RATIO : 1));
+  if (!fast) {
+    bound(surface, wire);
+    bound(gaussSurface, gaussWire);
+  }
   wire.visible = !fast;
   gaussWire.visible = !fast;
   sphereWire.visible = !fast;
 }
 
-/** Draws one frame soon (at most one per animation frame). */
+/** The view is being orbited, zoomed or panned: drag quality until it rests. */
+let viewSettle = null;
+orbit.addEventListener('start', () => {
+  clearTimeout(viewSettle);
+  viewSettle = null;
+  quality(true);
+});
+orbit.addEventListener('end', () => {
+  viewSettle = setTimeout(() => {
+    viewSettle = null;
+    quality(false);
+    redraw();
+  }, SETTLE_MS);
+});
+orbit.addEventListener('change', () => redraw());
+
+/** Draws the scene again soon, in the quality asked for (a full-quality frame being drawn is begun again). */
 export function redraw() {
-  if (frameRequested) return;
-  frameRequested = true;
-  requestAnimationFrame(() => {
-    frameRequested = false;
-    renderer.render(scene, camera);
-    if (pendingLatency !== null) {
-      recordLatency(performance.now() - pendingLatency);
-      pendingLatency = null;
-    }
-  });
+  dirty = true;
+  schedule();
 }
 
-/** The next frame shows the result of the input at time `t0`: its latency is recorded then. */
+function schedule() {
+  if (scheduled) return;
+  scheduled = true;
+  requestAnimationFrame(tick);
+}
+
+/** One animation frame: a drag frame, or the next step of the full-quality frame, or showing it. */
+function tick() {
+  scheduled = false;
+  if (dirty) {
+    dirty = false;
+    abandon();
+    if (state.fast) {
+      drawDrag();
+      frameDrawn();
+      return;
+    }
+    build = { steps: fullSteps(), next: 0, fence: null };
+    drawn.steps = [];
+  }
+  if (!build) return;
+  if (build.fence) {
+    if (gl.getSyncParameter(build.fence, gl.SYNC_STATUS) !== gl.SIGNALED) {
+      schedule();
+      return;
+    }
+    gl.deleteSync(build.fence);
+    build.fence = null;
+  }
+  if (build.next < build.steps.length) {
+    drawStep(build.steps[build.next], build.next === 0);
+    build.next += 1;
+    build.fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    schedule();
+    return;
+  }
+  build = null;
+  if (!warm) warmUp();
+  pixelRatio(1);
+  renderer.render(shown, shownCamera);
+  frameDrawn();
+}
+
+/**
+ * The drag frames draw on the canvas, whose shaders (the colour space they
+ * write) and software GL pipelines differ from the target's, each compiled
+ * when first drawn (about half a second in software GL): the first full frame
+ * shown draws a drag frame under it, so that the first drag does not wait.
+ */
+let warm = false;
+function warmUp() {
+  warm = true;
+  const fast = state.fast;
+  quality(true);
+  drawDrag();
+  quality(fast);
+}
+
+/** The target sized as the canvas at the device's pixel ratio. */
+function fitTarget() {
+  const size = renderer.getSize(new THREE.Vector2()).multiplyScalar(window.devicePixelRatio).floor();
+  if (target.width !== size.x || target.height !== size.y) target.setSize(size.x, size.y);
+}
+
+function abandon() {
+  if (build?.fence) gl.deleteSync(build.fence);
+  build = null;
+}
+
+function pixelRatio(factor) {
+  const ratio = window.devicePixelRatio * factor;
+  if (renderer.getPixelRatio() !== ratio) renderer.setPixelRatio(ratio); // clears the canvas
+}
+
+/** The grids drawn by at most DRAG_LINES curvature lines a family. */
+function drawDrag() {
+  pixelRatio(DRAG_PIXEL_RATIO);
+  const grids = [surface, gaussSurface].filter((m) => m.geometry.userData.drag);
+  for (const m of grids) m.geometry.setIndex(m.geometry.userData.drag);
+  renderer.render(scene, camera);
+  drawn.drag = renderer.info.render.triangles + renderer.info.render.lines;
+  for (const m of grids) m.geometry.setIndex(m.geometry.userData.full);
+}
+
+const drawable = (o) => o.isMesh || o.isLine || o.isPoints;
+const indexCount = (o) => (o.geometry.index ?? o.geometry.getAttribute('position'))?.count ?? 0;
+
+/**
+ * The steps of the full-quality frame, in the order one render would draw
+ * them: the opaque objects, then the transparent ones (each by renderOrder), each step at most
+ * STEP_INDICES indices (whole faces and segments): a large object in ranges,
+ * small ones together. A step is { objects, range: [start, count] | null }.
+ */
+function fullSteps() {
+  const objects = [];
+  scene.traverseVisible((o) => { if (drawable(o)) objects.push(o); });
+  const steps = [];
+  for (const transparent of [false, true]) {
+    let small = { objects: [], range: null, indices: 0 };
+    // Those drawn over the rest (guides, handles, marks) last, as one render draws them.
+    const kind = objects.filter((k) => k.material.transparent === transparent).sort((a, b) => a.renderOrder - b.renderOrder);
+    for (const o of kind) {
+      const n = indexCount(o);
+      if (n > STEP_INDICES) {
+        for (let start = 0; start < n; start += STEP_INDICES) steps.push({ objects: [o], range: [start, Math.min(STEP_INDICES, n - start)] });
+        continue;
+      }
+      if (small.indices + n > STEP_INDICES) {
+        steps.push(small);
+        small = { objects: [], range: null, indices: 0 };
+      }
+      small.objects.push(o);
+      small.indices += n;
+    }
+    if (small.objects.length) steps.push(small);
+  }
+  return steps;
+}
+
+/** Draws one step offscreen, the first clearing the frame. */
+function drawStep({ objects, range }, first) {
+  if (first) fitTarget();
+  const hidden = [];
+  scene.traverseVisible((o) => { if (drawable(o) && !objects.includes(o)) hidden.push(o); });
+  for (const o of hidden) o.visible = false;
+  if (range) objects[0].geometry.setDrawRange(...range);
+  // Only the first step clears (a coloured background clears whatever autoClear says).
+  const background = scene.background;
+  if (!first) scene.background = null;
+  renderer.setRenderTarget(target);
+  renderer.autoClear = first;
+  renderer.render(scene, camera);
+  drawn.steps.push(range ? range[1] : objects.reduce((n, o) => n + indexCount(o), 0));
+  renderer.autoClear = true;
+  renderer.setRenderTarget(null);
+  scene.background = background;
+  if (range) objects[0].geometry.setDrawRange(0, Infinity);
+  for (const o of hidden) o.visible = true;
+}
+
+/** The next frame drawn shows the result of the input at time `t0` (an event's timeStamp): its latency is recorded then. */
 export function timeNextFrame(t0) {
   pendingLatency = t0;
 }
 
-/** Whether a mesh has been uploaded but not drawn yet. */
-export const frameOwed = () => pendingLatency !== null;
+/** A frame was drawn: the latency of the input it shows is measured at the end of its task. */
+function frameDrawn() {
+  if (pendingLatency === null) return;
+  awaiting.push(pendingLatency);
+  pendingLatency = null;
+  frameEnd.port2.postMessage(null);
+}
+
+/** Whether a frame is still to be drawn or shown, or its latency measured, or the view is settling. */
+export const frameOwed = () => scheduled || build !== null || pendingLatency !== null || awaiting.length > 0 || viewSettle !== null;
 
 function recordLatency(ms) {
   state.latencies.push(ms);
   const recent = state.latencies.slice(-50).sort((a, b) => a - b);
   const median = recent[Math.floor(recent.length / 2)];
-  $('latency').textContent = `input → drawn frame: ${ms.toFixed(1)} ms (median of the last ${recent.length}: ${median.toFixed(1)} ms)`;
+  $('latency').textContent = `input → end of the frame's task: ${ms.toFixed(1)} ms (median of the last ${recent.length}: ${median.toFixed(1)} ms)`;
 }
 
 export function resize() {
@@ -118,22 +309,45 @@ export function resize() {
 }
 window.addEventListener('resize', resize);
 
-/** Index buffers of a rows × cols grid: two triangles a face, and its edges. */
-function gridIndices(rows, cols) {
+/** Every `step`-th of `n` lines, and the last. */
+function everyStep(n, step) {
+  const lines = [];
+  for (let l = 0; l < n - 1; l += step) lines.push(l);
+  lines.push(n - 1);
+  return lines;
+}
+
+/** Two triangles a face of a rows × cols grid drawn by its rows `rs` and columns `cs`. */
+function gridTriangles(cols, rs, cs) {
   const tri = [];
+  const at = (i, j) => i * cols + j;
+  for (let a = 0; a + 1 < rs.length; a++) {
+    for (let b = 0; b + 1 < cs.length; b++) {
+      const [i, k, j, l] = [rs[a], rs[a + 1], cs[b], cs[b + 1]];
+      tri.push(at(i, j), at(k, j), at(k, l), at(i, j), at(k, l), at(i, l));
+    }
+  }
+  return tri;
+}
+
+/** The edges of a rows × cols grid. */
+function gridEdges(rows, cols) {
   const edges = [];
   const at = (i, j) => i * cols + j;
   for (let i = 0; i < rows; i++) {
     for (let j = 0; j < cols; j++) {
       if (j + 1 < cols) edges.push(at(i, j), at(i, j + 1));
       if (i + 1 < rows) edges.push(at(i, j), at(i + 1, j));
-      if (i + 1 < rows && j + 1 < cols) tri.push(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1));
     }
   }
-  return { tri, edges };
+  return edges;
 }
 
-/** Puts a grid into a surface and its wireframe, reusing buffers of the same size. */
+/**
+ * Puts a grid into a surface and its wireframe, reusing buffers of the same
+ * size; the surface's geometry keeps its full triangles and, when the grid
+ * has more than DRAG_LINES lines a family, the drag quality's.
+ */
 export function setGrid(mesh, lines, rows, cols, positions, normals) {
   let geometry = mesh.geometry;
   const position = geometry.getAttribute('position');
@@ -141,15 +355,16 @@ export function setGrid(mesh, lines, rows, cols, positions, normals) {
     geometry.dispose();
     lines.geometry.dispose();
     geometry = new THREE.BufferGeometry();
-    const { tri, edges } = gridIndices(rows, cols);
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
-    geometry.setIndex(tri);
-    geometry.userData = { rows, cols };
+    geometry.setIndex(gridTriangles(cols, everyStep(rows, 1), everyStep(cols, 1)));
+    const step = Math.ceil((Math.max(rows, cols) - 1) / (DRAG_LINES - 1));
+    const drag = step > 1 ? new THREE.Uint32BufferAttribute(gridTriangles(cols, everyStep(rows, step), everyStep(cols, step)), 1) : null;
+    geometry.userData = { rows, cols, full: geometry.index, drag };
     mesh.geometry = geometry;
     lines.geometry = new THREE.BufferGeometry();
     lines.geometry.setAttribute('position', geometry.getAttribute('position'));
-    lines.geometry.setIndex(edges);
+    lines.geometry.setIndex(gridEdges(rows, cols));
   }
   geometry.getAttribute('position').array.set(positions);
   geometry.getAttribute('position').needsUpdate = true;
@@ -159,8 +374,15 @@ export function setGrid(mesh, lines, rows, cols, positions, normals) {
   } else {
     geometry.computeVertexNormals();
   }
-  geometry.computeBoundingSphere();
-  lines.geometry.boundingSphere = geometry.boundingSphere; // the same positions
+  // Its bounds (the handles' size, the fitted view) are measured again when
+  // the drag rests; the grids are never culled, so stale bounds hide nothing.
+  if (!state.fast || !geometry.boundingSphere) bound(mesh, lines);
+}
+
+/** Measures the bounding sphere of a grid `mesh` and its wireframe `lines`. */
+function bound(mesh, lines) {
+  mesh.geometry.computeBoundingSphere();
+  lines.geometry.boundingSphere = mesh.geometry.boundingSphere; // the same positions
 }
 
 export function setPolyline(line, flat) {
