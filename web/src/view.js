@@ -88,11 +88,15 @@ const awaiting = [];    // input times of frames drawn whose task has not ended 
 /** What the last frames drew (for the e2e test): the drag frame's primitives, the full frame's steps' indices. */
 export const drawn = { drag: null, steps: [] };
 const gl = renderer.getContext();
-/** The full-quality frame is drawn into `target`, then shown on the canvas by one textured quad. */
-const target = new THREE.WebGLRenderTarget(1, 1, { colorSpace: THREE.SRGBColorSpace });
-const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ map: target.texture, depthTest: false, depthWrite: false, toneMapped: false }));
-const shown = new THREE.Scene().add(quad);
-const shownCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+/**
+ * The full-quality frame is drawn into `target`, then copied onto the canvas
+ * (blitFramebuffer). The target is marked as three.js marks an XR target so
+ * that it holds what the canvas would, 8-bit sRGB written by the same shaders:
+ * the copy is exact, and cheap, where a textured quad from an sRGB texture
+ * costs software GL about as much as the frame.
+ */
+const target = new THREE.WebGLRenderTarget(1, 1, { colorSpace: THREE.SRGBColorSpace, internalFormat: 'RGBA8' });
+target.isXRRenderTarget = true;
 
 /**
  * The end of a frame's task: a message posted in the animation frame is
@@ -176,15 +180,18 @@ function tick() {
   build = null;
   if (!warm) warmUp();
   pixelRatio(1);
-  renderer.render(shown, shownCamera);
+  renderer.state.bindFramebuffer(gl.READ_FRAMEBUFFER, renderer.properties.get(target).__webglFramebuffer);
+  renderer.state.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+  gl.blitFramebuffer(0, 0, target.width, target.height, 0, 0, target.width, target.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+  renderer.state.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
   frameDrawn();
 }
 
 /**
- * The drag frames draw on the canvas, whose shaders (the colour space they
- * write) and software GL pipelines differ from the target's, each compiled
- * when first drawn (about half a second in software GL): the first full frame
- * shown draws a drag frame under it, so that the first drag does not wait.
+ * The drag frames draw on the canvas, whose software GL pipelines differ from
+ * the target's, each compiled when first drawn (about half a second): the
+ * first full frame shown draws a drag frame under it, so that the first drag
+ * does not wait.
  */
 let warm = false;
 function warmUp() {
