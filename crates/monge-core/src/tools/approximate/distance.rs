@@ -34,8 +34,14 @@ impl<'a> MeshFaces<'a> {
     /// Distance from `p` to the nearest face around its nearest vertices (each planar
     /// face split into two triangles), and the part of it along that face.
     pub(super) fn distance_from(&self, p: DVec3) -> (f64, f64) {
+        self.nearest(p).1
+    }
+
+    /// The triangle nearest to `p` among the faces around its nearest vertices, and
+    /// [`triangle_offsets`] to it.
+    pub(super) fn nearest(&self, p: DVec3) -> (Triangle, (f64, f64)) {
         let (rows, cols) = (self.grid.rows, self.grid.cols);
-        let mut best = (f64::INFINITY, f64::INFINITY);
+        let mut best = ((0, 0, 0), (f64::INFINITY, f64::INFINITY));
         for n in self
             .tree
             .nearest_neighbor_iter(p.to_array())
@@ -44,14 +50,10 @@ impl<'a> MeshFaces<'a> {
             let (i, j) = (n.data / cols, n.data % cols);
             for fi in i.saturating_sub(1)..=i.min(rows - 2) {
                 for fj in j.saturating_sub(1)..=j.min(cols - 2) {
-                    let [a, b, c, d] = self.grid.face(fi, fj);
-                    for (x, y, z) in [(a, b, c), (a, c, d)] {
-                        let offset = p - closest_on_triangle(p, x, y, z);
-                        let distance = offset.length();
-                        if distance < best.0 {
-                            let normal = (y - x).cross(z - x).normalize_or_zero();
-                            let along = offset - offset.dot(normal) * normal;
-                            best = (distance, along.length());
+                    for half in 0..2 {
+                        let offsets = triangle_offsets(self.grid, (fi, fj, half), p);
+                        if offsets.0 < best.1 .0 {
+                            best = ((fi, fj, half), offsets);
                         }
                     }
                 }
@@ -59,6 +61,21 @@ impl<'a> MeshFaces<'a> {
         }
         best
     }
+}
+
+/// A triangle of a quad grid: face `(i, j)` and which half of it (`0`: corners 0, 1, 2;
+/// `1`: corners 0, 2, 3).
+pub(super) type Triangle = (usize, usize, u8);
+
+/// Distance from `p` to the triangle `t` of `grid`, and the part of it along the
+/// triangle's plane (zero when `p` lies over the triangle).
+pub(super) fn triangle_offsets(grid: &QuadGrid, t: Triangle, p: DVec3) -> (f64, f64) {
+    let [a, b, c, d] = grid.face(t.0, t.1);
+    let (x, y, z) = if t.2 == 0 { (a, b, c) } else { (a, c, d) };
+    let offset = p - closest_on_triangle(p, x, y, z);
+    let normal = (y - x).cross(z - x).normalize_or_zero();
+    let along = offset - offset.dot(normal) * normal;
+    (offset.length(), along.length())
 }
 
 /// Distance from `p` to the triangle `abc` (closest point by regions, Ericson,

@@ -7,9 +7,9 @@ use rstar::RTree;
 
 use crate::grid::{bbox_diagonal, QuadGrid, MAX_SIZE, MIN_SIZE};
 
-use super::distance::{Deviation, Indexed, MeshFaces};
+use super::distance::{Deviation, Indexed, MeshFaces, Triangle};
 use super::error::{ApproxError, MIN_POINTS};
-use super::quadric::principal_axes;
+use super::quadric::{principal_axes, Quadric};
 
 /// The target: its points, a spatial index, a normal for each point and an outward
 /// direction for each point of its boundary.
@@ -19,10 +19,18 @@ pub struct TargetCloud {
     pub(super) tree: RTree<Indexed>,
     /// Unit normal of the plane fitted to each point's neighbours.
     pub(super) normals: Vec<DVec3>,
+    /// The quadric fitted to each point's neighbours in the frame of its normal: the
+    /// surface near it to second order (a tangent plane alone is off by `κd²/2` at a
+    /// distance `d` from the point, as much as a random sampling's spacing makes it).
+    patches: Vec<Quadric>,
     /// Unit outward direction in the tangent plane at a boundary point, zero inside.
     outward: Vec<DVec3>,
     /// Mean distance from a point to its nearest neighbour.
     pub(super) spacing: f64,
+    /// The normal of the plane fitted to all the points: the side to which
+    /// [`TargetCloud::residuals`] turns the normals, so that a signed distance does not
+    /// flip sign from one target point to the next.
+    up: DVec3,
     pub(super) size: f64,
 }
 
@@ -70,6 +78,7 @@ impl TargetCloud {
                 .collect(),
         );
         let mut normals = Vec::with_capacity(points.len());
+        let mut patches = Vec::with_capacity(points.len());
         let mut outward = Vec::with_capacity(points.len());
         let mut nearest = 0.0;
         for p in points {
@@ -97,6 +106,7 @@ impl TargetCloud {
                 })
                 .fold((0.0, 0.0), |best, g| if g.0 > best.0 { g } else { best });
             normals.push(normal);
+            patches.push(Quadric::fit(&near, *p, normal));
             outward.push(if gap > BOUNDARY_GAP {
                 middle.cos() * x + middle.sin() * y
             } else {
@@ -107,8 +117,10 @@ impl TargetCloud {
             points: points.to_vec(),
             tree,
             normals,
+            patches,
             outward,
             spacing: nearest / points.len() as f64,
+            up: principal_axes(points).2,
             size: bbox_diagonal(points),
         })
     }
@@ -118,7 +130,7 @@ impl TargetCloud {
         self.size
     }
 
-    /// Distance from `v` to the target: to the tangent plane of the nearest target
+    /// Distance from `v` to the target: to the quadric fitted around the nearest target
     /// point, combined, at the target's boundary, with how far `v` lies beyond it
     /// (more than the sampling's mean spacing).
     pub(super) fn distance_from(&self, v: DVec3) -> f64 {
@@ -126,14 +138,82 @@ impl TargetCloud {
             .tree
             .nearest_neighbor(v.to_array())
             .expect("a target has points");
-        let i = nearest.data;
+        let (across, beyond) = self.offsets(v, nearest.data, self.spacing);
+        across.hypot(beyond)
+    }
+
+    /// The signed distance from `v` to the surface near target point `i` (its quadric,
+    /// along its normal turned to the side of [`TargetCloud::up`], so that the sign does
+    /// not flip from one point to the next), and, where `i` is on the target's boundary, how far `v` lies
+    /// beyond it by more than `allowance` (a boundary point's outward direction is only
+    /// known to its neighbours' spacing).
+    fn offsets(&self, v: DVec3, i: usize, allowance: f64) -> (f64, f64) {
         let d = v - self.points[i];
-        let normal = d.dot(self.normals[i]);
-        let along = d - normal * self.normals[i];
-        // Beyond the boundary by more than the sampling resolves (a boundary point's
-        // outward direction is only known to its neighbours' spacing).
-        let excess = (along.dot(self.outward[i]) - self.spacing).max(0.0);
-        normal.hypot(excess)
+        let along = d - d.dot(self.normals[i]) * self.normals[i];
+        let across = self.patches[i].height_above(v) * self.normals[i].dot(self.up).signum();
+        (across, (along.dot(self.outward[i]) - allowance).max(0.0))
+    }
+
+    /// Which target point is nearest to each vertex of `grid`, and which triangle of
+    /// `grid` is nearest to every `stride`-th target point: what
+    /// [`TargetCloud::residuals`] measures against. The spatial searches are all here,
+    /// so the residuals of designs near `grid` (a Jacobian's columns) cost none.
+    pub(super) fn matches(&self, grid: &QuadGrid, stride: usize) -> Matches {
+        let faces = MeshFaces::new(grid);
+        Matches {
+            vertices: grid
+                .vertices
+                .iter()
+                .map(|v| {
+                    self.tree
+                        .nearest_neighbor(v.to_array())
+                        .expect("a target has points")
+                        .data
+                })
+                .collect(),
+            points: self
+                .points
+                .iter()
+                .step_by(stride)
+                .map(|p| faces.nearest(*p).0)
+                .collect(),
+            stride,
+        }
+    }
+
+    /// The residuals of the approximation's least squares at `grid` (relative to the
+    /// target's size; their sum of squares is the objective), against `matches` (those
+    /// of `grid` itself, or of a design near it):
+    ///
+    /// - the surface: for every vertex, its signed distance to the surface near its
+    ///   matched target point and how far it overhangs the target's boundary by more
+    ///   than [`OVERHANG_SPACINGS`] spacings ([`TargetCloud::offsets`]: a guard against
+    ///   a side swinging out, not the edge's measure, which a random sampling's gaps
+    ///   would bias inwards), weighted by one over the square root of their number;
+    /// - the edges: each side of the mesh is cut into [`EDGE_WINDOWS`] windows, and in
+    ///   each the target points matched to the faces within [`EDGE_DEPTH`] rows of
+    ///   that side give their offsets beyond it (in the surface, across the side). The
+    ///   target's true edge lies beyond its outermost points by a gap that a sampling
+    ///   leaves (nil for a mesh's vertices, which are on the edge; for `n` random points
+    ///   over an area `A`, about `A / (n·L)` along a window of length `L`), estimated as
+    ///   for the largest of a uniform sample (the maximum plus the mean spacing of the
+    ///   largest values): the mean spacing of each window's [`EDGE_ORDER`] outermost
+    ///   offsets gives the area per point, from all the windows together. The residual
+    ///   of a window is its outermost offset plus that gap: the side is fitted to the
+    ///   envelope of the points as a whole, two-sided, not vertex by vertex; each weighted
+    ///   by one over the square root of the windows' number.
+    pub(super) fn residuals(&self, grid: &QuadGrid, matches: &Matches) -> Vec<f64> {
+        let weight = |n: usize| 1.0 / (self.size * (n as f64).sqrt());
+        let w_vertices = weight(grid.vertices.len());
+        let mut out = Vec::with_capacity(2 * grid.vertices.len() + 4 * EDGE_WINDOWS);
+        for (v, i) in grid.vertices.iter().zip(&matches.vertices) {
+            let (across, beyond) = self.offsets(*v, *i, OVERHANG_SPACINGS * self.spacing);
+            out.extend([w_vertices * across, w_vertices * beyond]);
+        }
+        let windows = edge_windows(grid, &self.points, matches);
+        let w_edges = EDGE_WEIGHT * weight(windows.len());
+        out.extend(edge_residuals(&windows).into_iter().map(|r| w_edges * r));
+        out
     }
 
     /// Distances both ways between `grid` and the target, relative to the target's size;
@@ -165,7 +245,7 @@ impl TargetCloud {
     }
 
     /// The distance from each vertex of `grid` to the target (model units), as
-    /// [`Deviation::mesh_to_target_max`] measures it: to the tangent plane of the
+    /// [`Deviation::mesh_to_target_max`] measures it: to the quadric fitted around the
     /// nearest target point, and beyond the target's boundary.
     ///
     /// ```
@@ -217,6 +297,156 @@ impl TargetCloud {
         let deviation = self.deviation_given(grid, &distances, 1);
         (distances, deviation)
     }
+}
+
+/// What the residuals of a mesh are measured against ([`TargetCloud::matches`]).
+pub(super) struct Matches {
+    /// The nearest target point of each vertex.
+    vertices: Vec<usize>,
+    /// The nearest triangle of every `stride`-th target point.
+    points: Vec<Triangle>,
+    stride: usize,
+}
+
+/// Overhang of a vertex beyond the target's boundary point nearest to it, in mean
+/// spacings of the target's points, that the least squares leave unpenalised: a random
+/// sampling's outermost points lie inside the true edge by up to about two.
+const OVERHANG_SPACINGS: f64 = 3.0;
+
+/// Windows along each side of the mesh in which the edge residuals are measured.
+pub(super) const EDGE_WINDOWS: usize = 2;
+
+/// Weight of the edges' residuals against the surface's: each window's outermost point is
+/// random (for `n` points, by about `1/n` of the size), and the sides' positions, which
+/// only the edges set, need no more; the surface's shape, which sets the sides' shapes,
+/// is left to the surface.
+const EDGE_WEIGHT: f64 = 0.3;
+
+/// Rows of faces along a side whose matched target points count for its edge.
+const EDGE_DEPTH: usize = 3;
+
+/// Outermost offsets of each window whose mean spacing estimates the sampling's gap.
+const EDGE_ORDER: usize = 4;
+
+/// One window of a side of the mesh: its length, the offsets of its target points
+/// beyond the side (negative inside), and how deep its strip of faces reaches.
+struct EdgeWindow {
+    length: f64,
+    offsets: Vec<f64>,
+    depth: f64,
+}
+
+/// The [`EDGE_WINDOWS`] windows of each side of `grid`, with the offsets of the target
+/// points (every `stride`-th of `points`) matched to faces of their strip.
+fn edge_windows(grid: &QuadGrid, points: &[DVec3], matches: &Matches) -> Vec<EdgeWindow> {
+    let (rows, cols) = (grid.rows, grid.cols);
+    // Each side: its vertices from one end, their neighbours one row inside, and for a
+    // triangle (face i, j), its place along the side and its depth in rows from it.
+    type Place = fn(usize, usize, usize, usize) -> (usize, usize);
+    let sides: [(Vec<usize>, Vec<usize>, Place); 4] = [
+        (
+            (0..cols).collect(),
+            (0..cols).map(|j| cols + j).collect(),
+            |i, j, _, _| (j, i),
+        ),
+        (
+            (0..cols).map(|j| (rows - 1) * cols + j).collect(),
+            (0..cols).map(|j| (rows - 2) * cols + j).collect(),
+            |i, j, rows, _| (j, rows - 2 - i),
+        ),
+        (
+            (0..rows).map(|i| i * cols).collect(),
+            (0..rows).map(|i| i * cols + 1).collect(),
+            |i, j, _, _| (i, j),
+        ),
+        (
+            (0..rows).map(|i| i * cols + cols - 1).collect(),
+            (0..rows).map(|i| i * cols + cols - 2).collect(),
+            |i, j, _, cols| (i, cols - 2 - j),
+        ),
+    ];
+    let mut windows = Vec::with_capacity(4 * EDGE_WINDOWS);
+    for (side, inner, place) in &sides {
+        let v = |k: usize| grid.vertices[side[k]];
+        let m = side.len() - 1;
+        // The outward direction at each vertex of the side: from its inner neighbour,
+        // across the side.
+        let outward: Vec<DVec3> = (0..=m)
+            .map(|k| {
+                let tangent = (v(k.min(m - 1) + 1) - v(k.saturating_sub(1))).normalize_or_zero();
+                let out = v(k) - grid.vertices[inner[k]];
+                (out - out.dot(tangent) * tangent).normalize_or_zero()
+            })
+            .collect();
+        let row = (0..=m)
+            .map(|k| v(k).distance(grid.vertices[inner[k]]))
+            .sum::<f64>()
+            / (m + 1) as f64;
+        let window_of = |k: usize| (k * EDGE_WINDOWS / m).min(EDGE_WINDOWS - 1);
+        let mut these: Vec<EdgeWindow> = (0..EDGE_WINDOWS)
+            .map(|_| EdgeWindow {
+                length: 0.0,
+                offsets: Vec::new(),
+                depth: EDGE_DEPTH as f64 * row,
+            })
+            .collect();
+        for k in 0..m {
+            these[window_of(k)].length += v(k).distance(v(k + 1));
+        }
+        for (t, p) in matches
+            .points
+            .iter()
+            .zip(points.iter().step_by(matches.stride))
+        {
+            let (along, depth) = place(t.0, t.1, rows, cols);
+            if depth >= EDGE_DEPTH {
+                continue;
+            }
+            // The nearer of the face's two vertices on the side.
+            let k = if p.distance(v(along)) <= p.distance(v(along + 1)) {
+                along
+            } else {
+                along + 1
+            };
+            these[window_of(along)]
+                .offsets
+                .push((*p - v(k)).dot(outward[k]));
+        }
+        windows.extend(these);
+    }
+    windows
+}
+
+/// The residual of each window ([`TargetCloud::residuals`]): its outermost offset plus
+/// the gap the sampling leaves beyond it, in model units. A window without points
+/// (the mesh reaches far beyond the target there) has its outermost point at least its
+/// strip's depth inside.
+fn edge_residuals(windows: &[EdgeWindow]) -> Vec<f64> {
+    let mut sorted: Vec<Vec<f64>> = windows
+        .iter()
+        .map(|w| {
+            let mut o = w.offsets.clone();
+            o.sort_by(|a, b| b.total_cmp(a));
+            o
+        })
+        .collect();
+    // Area per point: the mean spacing of the outermost offsets times the window's length.
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (w, o) in windows.iter().zip(&sorted) {
+        if o.len() >= EDGE_ORDER {
+            sum += (o[0] - o[EDGE_ORDER - 1]) / (EDGE_ORDER - 1) as f64 * w.length;
+            count += 1;
+        }
+    }
+    let area_per_point = sum / count.max(1) as f64;
+    windows
+        .iter()
+        .zip(sorted.iter_mut())
+        .map(|(w, o)| {
+            let outermost = o.first().copied().unwrap_or(-w.depth);
+            outermost + area_per_point / w.length.max(f64::MIN_POSITIVE)
+        })
+        .collect()
 }
 
 /// Largest and root-mean-square value (NaN wins the maximum).

@@ -35,6 +35,7 @@ pub(super) fn principal_axes_about(points: &[DVec3], c: DVec3) -> (DVec3, DVec3,
 }
 
 /// A height function `z = a x² + b xy + c y² + d x + e y + f` over a frame.
+#[derive(Clone, Debug)]
 pub(super) struct Quadric {
     origin: DVec3,
     x: DVec3,
@@ -82,6 +83,13 @@ impl Quadric {
             c[5] * scale,
         ];
         Quadric { origin, x, y, z, k }
+    }
+
+    /// How far `p` lies above the quadric along its frame's normal (negative below).
+    pub(super) fn height_above(&self, p: DVec3) -> f64 {
+        let (u, v) = self.uv(p);
+        let [a, b, c, d, e, f] = self.k;
+        (p - self.origin).dot(self.z) - (a * u * u + b * u * v + c * v * v + d * u + e * v + f)
     }
 
     /// Local coordinates `(u, v)` of the projection of `p` on the frame's plane.
