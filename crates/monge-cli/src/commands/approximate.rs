@@ -27,8 +27,10 @@ use crate::shared::Outcome;
 #[derive(Debug, clap::Args)]
 #[command(
     long_about = "Find the design (corner, two planar guides, θ) whose exactly generated mesh is \
-                  nearest to TARGET both ways (mesh → target and target → mesh), with BOBYQA from \
-                  the target's principal directions at its corners; prints the deviation before \
+                  nearest to TARGET both ways (mesh → target and target → mesh), by least squares \
+                  (BOBYQA where they stall away from the target) from the target's principal \
+                  directions at its corners, its edges fitted to the envelope of the target's \
+                  points (a scan's too); prints the deviation before \
                   and after, relative to the target's size, and the measured exactness.",
     after_help = format!("Example:\n  monge approximate examples/targets/roof-pcl.obj -o roof.json --grid 20x20\n\n{EXIT}")
 )]
