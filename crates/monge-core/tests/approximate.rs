@@ -494,66 +494,6 @@ fn keep_boundary_keeps_the_targets_boundary_curves_as_guides() {
 }
 
 #[test]
-fn patches_follow_a_target_at_least_as_closely_and_stay_exact() {
-    use monge_core::approximate::approximate_patches;
-    use monge_core::multipatch::build;
-    let f = |x: f64, y: f64| 0.04 * x * x + 0.1 * y * y;
-    let target: Vec<DVec3> = (0..21 * 21)
-        .map(|k| {
-            let (x, y) = ((k % 21) as f64 * 0.5, (k / 21) as f64 * 0.5);
-            DVec3::new(x, y, f(x, y))
-        })
-        .collect();
-    let options = quick(10);
-    let single = approximate(&target, &options, &mut |_| {}).unwrap();
-    let three = approximate_patches(&target, &single, 3, &options, &mut |_| {}).unwrap();
-    let objective = |d: &monge_core::approximate::Deviation| {
-        d.mesh_to_target_rms.powi(2) + d.beyond_mesh_rms.powi(2)
-    };
-    eprintln!(
-        "one patch {:?}\nthree patches {:?}",
-        single.after, three.after
-    );
-    assert!(objective(&three.after) <= objective(&single.after));
-    // Every patch exact on its own grid, measured independently; seams shared.
-    let mp = build(&three.design, &GenerateOptions::default()).unwrap();
-    assert_eq!(mp.patches.len(), 3);
-    for k in 0..3 {
-        assert!(measure(&mp.patch_grid(k)).max_error() <= 1e-9);
-    }
-    assert_eq!(mp.grid, three.grid);
-    // The errors.
-    let run = |single, k| approximate_patches(&target, single, k, &options, &mut |_| {});
-    assert!(matches!(
-        run(&single, 1).unwrap_err(),
-        ApproxError::TooManyPatches {
-            patches: 1,
-            segments: 10
-        }
-    ));
-    assert!(matches!(
-        run(&single, 6).unwrap_err(),
-        ApproxError::TooManyPatches {
-            patches: 6,
-            segments: 10
-        }
-    ));
-    let conical = approximate(
-        &target,
-        &ApproxOptions {
-            kind: monge_core::MeshKind::Conical,
-            ..quick(8)
-        },
-        &mut |_| {},
-    )
-    .unwrap();
-    assert_eq!(
-        run(&conical, 2).unwrap_err(),
-        ApproxError::PatchesNotCircular
-    );
-}
-
-#[test]
 fn a_time_limit_keeps_the_best_design_found_so_far() {
     // The limit is reached after a given number of meshes, not after a time: the same
     // stop whatever the machine's speed. One start: one order of the meshes.

@@ -6,6 +6,7 @@
 mod analytic;
 mod approximate;
 mod approximate_heldout;
+mod approximate_patches;
 mod boundary;
 mod common;
 mod conical;

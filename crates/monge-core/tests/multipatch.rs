@@ -30,6 +30,7 @@ fn first(theta: f64) -> PatchSpec {
         guide_v: Some(arc_v(0.0, 30.0, 11)),
         attach: None,
         guide: None,
+        guide_from: None,
     }
 }
 
@@ -40,6 +41,7 @@ fn attached(theta: f64, patch: usize, side: Side, guide: GuideSpec) -> PatchSpec
         guide_v: None,
         attach: Some(Attach { patch, side }),
         guide: Some(guide),
+        guide_from: None,
     }
 }
 
@@ -242,24 +244,23 @@ fn error_attach_not_earlier() {
 }
 
 #[test]
-fn error_mixed_sides() {
+fn error_hole_in_the_layout() {
+    // Below and beside patch 0, nothing at the far corner: an L, not one grid.
     let e = err(&design(vec![
         first(30.0),
         attached(10.0, 0, Side::LastRow, arc_u(20.0, 10.0, 5)),
         attached(10.0, 0, Side::LastColumn, arc_v(30.0, 10.0, 5)),
     ]));
-    assert!(
-        matches!(
-            e,
-            MultiPatchError::MixedSides {
-                patch: 2,
-                first: 1,
-                ..
-            }
-        ),
-        "{e}"
+    assert_eq!(
+        e,
+        MultiPatchError::Hole {
+            blocks: (2, 2),
+            missing: (1, 1),
+            patches: 3
+        }
     );
     assert!(e.to_string().contains("incompatible boundaries"), "{e}");
+    assert!(e.to_string().contains("block (1, 1) has no patch"), "{e}");
 }
 
 #[test]
@@ -411,4 +412,173 @@ fn error_generate() {
         } => {}
         e => panic!("{e}"),
     }
+}
+
+/// Patch 3 of a 2 × 2 layout: attached to patch 1's last column, its other guide
+/// patch 2's last row (`guide_from`).
+fn interior(theta: f64, from: Attach) -> PatchSpec {
+    PatchSpec {
+        theta_deg: theta,
+        guide_u: None,
+        guide_v: None,
+        attach: Some(Attach {
+            patch: 1,
+            side: Side::LastColumn,
+        }),
+        guide: None,
+        guide_from: Some(from),
+    }
+}
+
+/// 2 × 2 patches: 0 first, 1 below it, 2 beside it, 3 at the far corner taking both
+/// its guides from 1 and 2.
+fn two_by_two(theta3: f64) -> MultiPatchDesign {
+    design(vec![
+        first(30.0),
+        attached(-20.0, 0, Side::LastRow, arc_u(20.0, 15.0, 7)),
+        attached(15.0, 0, Side::LastColumn, arc_v(30.0, 20.0, 8)),
+        interior(
+            theta3,
+            Attach {
+                patch: 2,
+                side: Side::LastRow,
+            },
+        ),
+    ])
+}
+
+/// `|AC|·|BD| − |AB|·|CD| − |BC|·|DA|` relative to `|AC|·|BD|`: zero iff the
+/// convex quadrilateral ABCD is inscribed in a circle (Ptolemy), with the distance
+/// of D from the plane ABC relative to the face's size.
+fn planar_and_cyclic(q: [DVec3; 4]) -> (f64, f64) {
+    let [a, b, c, d] = q;
+    let n = (b - a).cross(c - a).normalize();
+    let size = a.distance(c).max(b.distance(d));
+    let planar = (d - a).dot(n).abs() / size;
+    let diagonals = a.distance(c) * b.distance(d);
+    let sides = a.distance(b) * c.distance(d) + b.distance(c) * d.distance(a);
+    (planar, (diagonals - sides).abs() / diagonals)
+}
+
+#[test]
+fn a_two_by_two_layout_is_one_circular_grid_with_shared_seams() {
+    let mp = build(&two_by_two(30.0), &opts()).unwrap();
+    assert_eq!(mp.layout, (2, 2));
+    assert_eq!((mp.grid.rows, mp.grid.cols), (9 + 7 - 1, 11 + 8 - 1));
+    assert_eq!(mp.patches[3].block, (1, 1));
+    assert_eq!(
+        (mp.patches[3].rows, mp.patches[3].cols),
+        ((8, 14), (10, 17))
+    );
+    // Every face, across all four seams, planar and inscribed in a circle.
+    let g = &mp.grid;
+    let mut worst = (0.0f64, 0.0f64);
+    for i in 0..g.rows - 1 {
+        for j in 0..g.cols - 1 {
+            let (p, c) = planar_and_cyclic(g.face(i, j));
+            worst = (worst.0.max(p), worst.1.max(c));
+        }
+    }
+    assert!(worst.0 < 1e-9 && worst.1 < 1e-9, "{worst:?}");
+    // The seams, stored once: the same bits seen from both patches.
+    for (a, sa, b, sb) in [
+        (0, Side::LastRow, 1, Side::FirstRow),
+        (0, Side::LastColumn, 2, Side::FirstColumn),
+        (1, Side::LastColumn, 3, Side::FirstColumn),
+        (2, Side::LastRow, 3, Side::FirstRow),
+    ] {
+        assert_eq!(bits(&mp.boundary(a, sa)), bits(&mp.boundary(b, sb)));
+    }
+    // Each patch as generated meets the lines kept in the grid, node axes included.
+    for (k, p) in mp.patches.iter().enumerate() {
+        assert!(
+            p.seam_gap <= 1e-14 && p.axis_gap <= 1e-12,
+            "patch {k}: {p:?}"
+        );
+    }
+    // The two lines of patch 3 leave the corner a little off 90° on a mesh.
+    let k3 = mp.patches[3].kink_deg;
+    println!("patch 3 turned by {k3}°");
+    assert!(k3 < 5.0, "{k3}");
+    // Node axes point to one side and turn smoothly across every seam.
+    let n = &g.normals;
+    for i in 0..g.rows {
+        for j in 0..g.cols {
+            assert!(n[g.index(i, j)].z > 0.0, "({i}, {j})");
+            if i > 0 {
+                assert!(n[g.index(i, j)].angle_between(n[g.index(i - 1, j)]) < 0.2);
+            }
+            if j > 0 {
+                assert!(n[g.index(i, j)].angle_between(n[g.index(i, j - 1)]) < 0.2);
+            }
+        }
+    }
+}
+
+#[test]
+fn error_unjoined_neighbour() {
+    // Patch 3 at the far corner with a continuation of its own: it would meet patch 2
+    // along a line of its own, not patch 2's last row.
+    let mut d = two_by_two(30.0);
+    d.patches[3].guide_from = None;
+    d.patches[3].guide = Some(arc_v(30.0, 20.0, 8));
+    let e = err(&d);
+    assert_eq!(
+        e,
+        MultiPatchError::Unjoined {
+            patch: 3,
+            other: 2,
+            kind: "row"
+        }
+    );
+    assert!(
+        e.to_string().contains("`guide_from` that row of patch 2"),
+        "{e}"
+    );
+}
+
+#[test]
+fn error_guide_from_elsewhere() {
+    // Patch 2's first column is patch 0's last column: not through patch 3's corner.
+    let mut d = two_by_two(30.0);
+    d.patches[3].guide_from = Some(Attach {
+        patch: 2,
+        side: Side::FirstRow,
+    });
+    let e = err(&d);
+    assert!(
+        matches!(
+            e,
+            MultiPatchError::GuideFromElsewhere {
+                patch: 3,
+                from: 2,
+                to: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("must be a row side"), "{e}");
+}
+
+#[test]
+fn error_guide_from_and_guide() {
+    let mut d = two_by_two(30.0);
+    d.patches[3].guide = Some(arc_v(30.0, 20.0, 8));
+    let e = err(&d);
+    assert!(
+        e.to_string().contains("both `guide` and `guide_from`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_two_by_two_design_file_reads_and_builds() {
+    let text = serde_json::to_string(&two_by_two(30.0)).unwrap();
+    assert!(
+        text.contains(r#""guide_from":{"patch":2,"side":"last_row"}"#),
+        "{text}"
+    );
+    let back: MultiPatchDesign = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, two_by_two(30.0));
 }

@@ -21,6 +21,7 @@ fn hippo(thetas: [f64; 3]) -> MultiPatchDesign {
             side: Side::LastRow,
         }),
         guide: Some(guide),
+        guide_from: None,
     };
     MultiPatchDesign {
         patches: vec![
@@ -36,6 +37,7 @@ fn hippo(thetas: [f64; 3]) -> MultiPatchDesign {
                 )),
                 attach: None,
                 guide: None,
+                guide_from: None,
             },
             later(thetas[1], 0, arc_u(20.0, 10.0, 5)),
             later(thetas[2], 1, arc_u(30.0, 20.0, 9)),
@@ -299,6 +301,7 @@ fn fit_never_returns_a_folded_mesh() {
         )),
         attach: None,
         guide: None,
+        guide_from: None,
     };
     let design = |theta_deg| MultiPatchDesign {
         patches: vec![patch(theta_deg)],

@@ -8,7 +8,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
     approximate, approximate_patches, deadline_after, ApproxOptions, Approximation, Deviation,
-    TargetCloud,
+    PatchLayout, TargetCloud,
 };
 use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
@@ -72,11 +72,12 @@ pub struct ApproximateArgs {
     /// from the initial guess's 95th percentile), as `monge render --deviation` does.
     #[arg(long, value_name = "PICTURE")]
     pub picture: Option<PathBuf>,
-    /// Then fit K patches with piecewise planar curvature lines (§4.7): guide_u cut into
-    /// K pieces, each patch with its own θ; DESIGN is then a multi-patch design (the
-    /// input of `monge patches`), written only if it follows the target more closely.
-    #[arg(long, value_name = "K")]
-    pub patches: Option<usize>,
+    /// Then fit UxV patches with piecewise planar curvature lines (§4.7), e.g. 2x3:
+    /// guide_u cut into U pieces and guide_v into V (K alone: Kx1), every guide and θ
+    /// free; DESIGN is then a multi-patch design (the input of `monge patches`),
+    /// written only if it follows the target more closely.
+    #[arg(long, value_name = "UxV")]
+    pub patches: Option<PatchLayout>,
 }
 
 /// Above this RMS distance (either way, relative to the target's size) the result is

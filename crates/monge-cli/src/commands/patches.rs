@@ -32,15 +32,19 @@ use crate::shared::Outcome;
          side it continues guide_u, for a column side guide_v; a `first_` side runs \
          backwards). Start tangents are forced so that the node axes continue across the \
          seam: draw the continuation in the plane of the guide it continues (one planar \
-         bottom guide cut in pieces) and the beams are C¹ there. All patches must follow \
-         each other along rows, or all along columns: the result is one grid, shared lines \
-         stored once.\n\n\
+         bottom guide cut in pieces) and the beams are C¹ there. Patches in several rows \
+         and columns (e.g. 2 × 2): a patch next to two earlier ones gives, instead of \
+         `guide`, `guide_from`: {{\"patch\": L, \"side\": S}}, the other earlier patch's line \
+         through the same corner (a row side when `attach` is a column side, and the other \
+         way round). The patches must fill a rectangle of blocks, each sharing its lines \
+         with its neighbours: the result is one grid, shared lines stored once.\n\n\
          Optional `symmetry`: a list of {{\"mirror\": {{\"point\", \"normal\"}}}} and \
          {{\"rotate\": {{\"point\", \"axis\", \"order\"}}}}, applied in order to all copies so \
          far (Figure 18: a mirror then order 5); the copies are merged where vertices \
          coincide (1e-9 of the size) into one quad mesh (OBJ/PLY/JSON with `quads`).\n\n\
          Without symmetry, JSON output has the grid plus `patches` (range, θ, mode, measured \
-         max error, seam and axis gaps, kink) and `line_planes` (for each row and column the \
+         max error, seam and axis gaps, kink; for a layout of several rows and columns also \
+         block, rows, columns and flipped) and `line_planes` (for each row and column the \
          plane it lies in within each patch it crosses). A summary goes to stderr.\n\n{THETA}"
     ),
     after_help = format!(
@@ -115,21 +119,52 @@ pub fn run(args: &PatchesArgs) -> anyhow::Result<Outcome> {
 
 /// One line per patch: where it lies, θ, mode, exactness and seam measures.
 fn patch_summary(mp: &MultiPatch) -> String {
-    let mut s = format!(
-        "{} patches along {} in a {} × {} grid\n",
-        mp.patches.len(),
-        if mp.along_rows { "rows" } else { "columns" },
-        mp.grid.rows,
-        mp.grid.cols
-    );
-    for (k, p) in mp.patches.iter().enumerate() {
-        s.push_str(&format!(
-            "patch {k}: {} {}..={}{}, θ = {}°, {}, measured max error {}, seam gap {}, axis gap {}, \
-             kink {}°{}\n",
+    let grid = is_grid(mp);
+    let mut s = if grid {
+        format!(
+            "{} patches in a layout of {} × {} in a {} × {} grid\n",
+            mp.patches.len(),
+            mp.layout.0,
+            mp.layout.1,
+            mp.grid.rows,
+            mp.grid.cols
+        )
+    } else {
+        format!(
+            "{} patches along {} in a {} × {} grid\n",
+            mp.patches.len(),
             if mp.along_rows { "rows" } else { "columns" },
-            p.range.0,
-            p.range.1,
-            if p.reversed { " (reversed)" } else { "" },
+            mp.grid.rows,
+            mp.grid.cols
+        )
+    };
+    for (k, p) in mp.patches.iter().enumerate() {
+        let place = if grid {
+            format!(
+                "rows {}..={}, columns {}..={}{}",
+                p.rows.0,
+                p.rows.1,
+                p.cols.0,
+                p.cols.1,
+                match p.flipped {
+                    (false, false) => "",
+                    (true, false) => " (rows reversed)",
+                    (false, true) => " (columns reversed)",
+                    (true, true) => " (rows and columns reversed)",
+                }
+            )
+        } else {
+            format!(
+                "{} {}..={}{}",
+                if mp.along_rows { "rows" } else { "columns" },
+                p.range.0,
+                p.range.1,
+                if p.reversed { " (reversed)" } else { "" },
+            )
+        };
+        s.push_str(&format!(
+            "patch {k}: {place}, θ = {}°, {}, measured max error {}, seam gap {}, axis gap {}, \
+             kink {}°{}\n",
             num(p.design.theta_deg),
             p.mode,
             num(measure(&mp.patch_grid(k)).max_error()),
@@ -146,6 +181,11 @@ fn patch_summary(mp: &MultiPatch) -> String {
     s
 }
 
+/// Whether the patches lie in several block rows and columns (else along one direction).
+fn is_grid(mp: &MultiPatch) -> bool {
+    mp.layout.0 > 1 && mp.layout.1 > 1
+}
+
 /// The patches as JSON (for the mesh file).
 fn patch_json(mp: &MultiPatch) -> Value {
     Value::Array(
@@ -153,7 +193,7 @@ fn patch_json(mp: &MultiPatch) -> Value {
             .iter()
             .enumerate()
             .map(|(k, p)| {
-                json!({
+                let mut entry = json!({
                     "theta_deg": p.design.theta_deg,
                     "range": [p.range.0, p.range.1],
                     "reversed": p.reversed,
@@ -165,7 +205,14 @@ fn patch_json(mp: &MultiPatch) -> Value {
                     "axis_gap": p.axis_gap,
                     "kink_deg": p.kink_deg,
                     "folded_faces": p.folded_faces,
-                })
+                });
+                if is_grid(mp) {
+                    entry["block"] = json!([p.block.0, p.block.1]);
+                    entry["rows"] = json!([p.rows.0, p.rows.1]);
+                    entry["columns"] = json!([p.cols.0, p.cols.1]);
+                    entry["flipped"] = json!([p.flipped.0, p.flipped.1]);
+                }
+                entry
             })
             .collect(),
     )

@@ -122,18 +122,20 @@ pub enum ApproxError {
          several patches"
     )]
     PatchesNotCircular,
-    /// Too many patches for the faces along guide_u.
+    /// Too many patches for the faces along a guide (or fewer than two in all).
     #[error(
-        "{patches} patches along guide_u need at least 2 faces each, but the grid has \
-         {segments} faces along guide_u: ask for at most {} patches (and at least 2), or a \
-         finer --grid",
+        "{patches} patches along {along} need at least 2 faces each, but the grid has \
+         {segments} faces along {along}: ask for at most {} patches (and at least 2 in all), \
+         or a finer --grid",
         segments / 2
     )]
     TooManyPatches {
-        /// Patches asked for.
+        /// Patches asked for along that guide.
         patches: usize,
-        /// Faces along guide_u.
+        /// Faces along that guide.
         segments: usize,
+        /// `guide_u` or `guide_v`.
+        along: &'static str,
     },
     /// No θ of a patch gives a mesh without folds with the patches before it.
     #[error(

@@ -15,7 +15,7 @@ const GUIDE_KNOTS: [f64; CONTROL_POINTS + 4] = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.
 
 /// The cubic B-spline basis functions of [`GUIDE_KNOTS`] at `u` ([`bspline::span`],
 /// [`bspline::basis`]).
-fn guide_basis(u: f64) -> [f64; CONTROL_POINTS] {
+pub(super) fn guide_basis(u: f64) -> [f64; CONTROL_POINTS] {
     let u = u.clamp(0.0, 1.0);
     let span = bspline::span(&GUIDE_KNOTS, 3, u);
     let mut out = [0.0; CONTROL_POINTS];

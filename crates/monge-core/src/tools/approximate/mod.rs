@@ -65,6 +65,7 @@ mod distance;
 mod error;
 mod fit_guide;
 mod index;
+mod layout;
 mod patches;
 mod quadric;
 mod start;
@@ -76,7 +77,8 @@ pub use error::{ApproxError, FLAT_CURVATURE, MIN_POINTS, UMBILIC_RATIO};
 use fit_guide::CONTROL_POINTS;
 use index::Matches;
 pub use index::TargetCloud;
-pub use patches::{approximate_patches, PatchApproximation};
+pub use layout::PatchLayout;
+pub use patches::{approximate_patches, PatchApproximation, PatchFit};
 
 /// Free numbers of a design: corner (3), rotation (3), plane tilts (2), θ, and per guide
 /// the second control point's distance and two coordinates of each later one.

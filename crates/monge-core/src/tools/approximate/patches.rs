@@ -1,31 +1,71 @@
 //! The second step of an approximation (§4.7): where one patch cannot follow the
-//! target, several patches with piecewise planar curvature lines.
+//! target, several patches with piecewise planar curvature lines, in a layout of
+//! `u × v` blocks ([`PatchLayout`]).
 //!
-//! The single patch's `guide_u` is cut into `K` pieces of nearly equal numbers of
-//! samples. Patch 0 keeps the first piece and `guide_v`; patch `k` is attached to the
-//! last row of patch `k − 1` and continues along piece `k` (one planar bottom guide
-//! cut into pieces, which [`crate::multipatch::build`] always accepts), with its own
-//! θ: the curvature lines across `guide_u` are planar in each patch and change plane
-//! at each seam, where the beams stay C¹ (§4.7). Each new patch's θ comes from a scan
-//! every 10° with the earlier patches fixed, then BOBYQA moves all the θ together,
-//! with the objective of the single patch (folded meshes infeasible).
+//! The single patch's guides are cut into pieces: `guide_u` into `u`, `guide_v` into
+//! `v`, of nearly equal numbers of samples. Patch `(a, b)` (design index `a·v + b`)
+//! is the first patch for `(0, 0)`; it is attached to the last row of patch
+//! `(a − 1, b)` for `a ≥ 1`, and to the last column of patch `(a, b − 1)` otherwise.
+//! The patches of the first block column continue `guide_u` with their own guide,
+//! those of the first block row continue `guide_v`, and the others take their second
+//! guide from the last column of patch `(a, b − 1)` (`guide_from`): the curvature
+//! lines are planar in each patch and change plane at each seam, where the panels
+//! stay planar and circular and the beams C¹ (§4.7).
+//!
+//! Every free guide — both of the first patch, each continuation — is a cubic
+//! B-spline of 5 control points in a plane through its start tangent (forced by the
+//! patches before it, [`ContinuationStart`]): the plane's tilt about that tangent, the
+//! second control point's distance along it and both in-plane coordinates of the
+//! others are free, as in [`approximate`](super::approximate). With every patch's θ,
+//! BOBYQA moves them all together from the single patch's own guides and θ, with the
+//! objective of the single patch (folded meshes infeasible). The result is never worse
+//! than the best design seen, the single patch included (then a design of one patch).
 
+use glam::DVec3;
+
+use super::distance::MeshFaces;
+use super::fit_guide::{guide_basis, CONTROL_POINTS};
 use super::{
-    ApproxError, ApproxOptions, Approximation, Deviation, Progress, TargetCloud, OBJECTIVE_POINTS,
+    ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress, TargetCloud,
+    OBJECTIVE_POINTS,
 };
-use crate::design::{GuideSpec, MeshKind};
+use crate::design::{GuideSpec, MeshKind, Tolerances};
 use crate::generate::GenerateOptions;
 use crate::grid::QuadGrid;
 use crate::guide::{Guide, GuideName};
-use crate::multipatch::{build, Attach, MultiPatchDesign, PatchSpec, Side};
+use crate::multipatch::{
+    build, build_with, Attach, ContinuationStart, MultiPatch, MultiPatchDesign, PatchSpec, Side,
+};
+
+/// One patch of a [`PatchApproximation`]: its θ and how far the target points nearest
+/// to it lie from the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct PatchFit {
+    /// Its block (along guide_u, along guide_v) in the layout.
+    pub block: (usize, usize),
+    /// Its θ in degrees, in its own frame.
+    pub theta_deg: f64,
+    /// Target points whose nearest mesh vertex lies in this patch.
+    pub target_points: usize,
+    /// Largest distance from those points to the mesh, relative to the target's size
+    /// (0 without points).
+    pub max: f64,
+    /// Their root-mean-square distance to the mesh, relative to the target's size.
+    pub rms: f64,
+}
 
 /// The result of [`approximate_patches`].
 #[derive(Clone, Debug)]
 pub struct PatchApproximation {
     /// The multi-patch design found (§4.7).
     pub design: MultiPatchDesign,
+    /// Its layout: the one asked for, or `1 × 1` when no design of several patches
+    /// came closer to the target than the single patch (then `design` is that patch).
+    pub layout: PatchLayout,
     /// Its mesh, the patches merged (shared lines once).
     pub grid: QuadGrid,
+    /// Per patch, in design order.
+    pub per_patch: Vec<PatchFit>,
     /// Deviation of the single patch it started from.
     pub before: Deviation,
     /// Deviation of the multi-patch mesh.
@@ -34,13 +74,295 @@ pub struct PatchApproximation {
     pub evaluations: usize,
 }
 
+/// Free numbers of one guide: the plane's tilt, the second control point along the
+/// tangent, `(along, up)` of each later one.
+const PER_GUIDE: usize = 2 + 2 * (CONTROL_POINTS - 2);
+
+/// A guide in the plane through `corner` containing `tangent`, of normal `normal`
+/// turned about `tangent` by `p[0]`; its control points from `p[1..]` (see
+/// [`PER_GUIDE`]).
+fn guide_in_plane(
+    corner: DVec3,
+    tangent: DVec3,
+    normal: DVec3,
+    p: &[f64],
+    samples: usize,
+) -> GuideSpec {
+    let m = p[0].cos() * normal + p[0].sin() * tangent.cross(normal);
+    let up = m.cross(tangent);
+    let mut control = vec![corner.to_array(), (corner + p[1] * tangent).to_array()];
+    for k in 0..CONTROL_POINTS - 2 {
+        control.push((corner + p[2 + 2 * k] * tangent + p[3 + 2 * k] * up).to_array());
+    }
+    GuideSpec::bspline(3, control, samples)
+}
+
+/// Least distance of a guide's second control point from its corner, for a piece of
+/// chord `chord`: a tenth of the control polygon's even spacing.
+fn min_reach(chord: f64) -> f64 {
+    0.1 * chord / (CONTROL_POINTS - 1) as f64
+}
+
+/// The free numbers of the guide of [`guide_in_plane`] (tilt 0) nearest to `piece`:
+/// linear least squares at the points' chord-length parameters, the guide from the
+/// corner to the piece's last point (projected on the plane).
+fn fit_piece(corner: DVec3, tangent: DVec3, normal: DVec3, piece: &[DVec3]) -> Option<Vec<f64>> {
+    let up = normal.cross(tangent);
+    let section: Vec<(f64, f64)> = piece
+        .iter()
+        .map(|p| ((*p - corner).dot(tangent), (*p - corner).dot(up)))
+        .collect();
+    let chords: Vec<f64> = std::iter::once(0.0)
+        .chain(section.windows(2).scan(0.0, |length, w| {
+            *length += (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+            Some(*length)
+        }))
+        .collect();
+    let total = chords[chords.len() - 1];
+    if total.is_nan() || total <= 0.0 {
+        return None;
+    }
+    let last = section[section.len() - 1];
+    let end = CONTROL_POINTS - 1;
+    // Rows: along and up of each point; unknowns: P1 along, then P2, P3 (along, up).
+    let m = section.len();
+    let unknowns = 1 + 2 * (CONTROL_POINTS - 3);
+    let mut matrix = nalgebra::DMatrix::<f64>::zeros(2 * m, unknowns);
+    let mut rhs = nalgebra::DVector::<f64>::zeros(2 * m);
+    for (r, (p, c)) in section.iter().zip(&chords).enumerate() {
+        let b = guide_basis(c / total);
+        matrix[(2 * r, 0)] = b[1];
+        for k in 0..CONTROL_POINTS - 3 {
+            matrix[(2 * r, 1 + 2 * k)] = b[2 + k];
+            matrix[(2 * r + 1, 2 + 2 * k)] = b[2 + k];
+        }
+        rhs[2 * r] = p.0 - b[end] * last.0;
+        rhs[2 * r + 1] = p.1 - b[end] * last.1;
+    }
+    let x = matrix.svd(true, true).solve(&rhs, 1e-12).ok()?;
+    let mut out = vec![0.0, x[0].max(min_reach(total))];
+    out.extend(x.iter().skip(1));
+    out.extend([last.0, last.1]);
+    out.iter().all(|v| v.is_finite()).then_some(out)
+}
+
+/// The layout's patches and pieces, and the design of given parameters: every θ, then
+/// [`PER_GUIDE`] numbers per free guide (`u` pieces of guide_u, then `v` of guide_v).
+struct Pieces {
+    layout: PatchLayout,
+    /// The single patch's corner, start tangents and guide-plane normals.
+    corner: DVec3,
+    tangents: [DVec3; 2],
+    normals: [DVec3; 2],
+    /// The pieces of the single patch's guide_u, then of its guide_v.
+    pieces: Vec<Vec<DVec3>>,
+    tolerance: Option<Tolerances>,
+}
+
+impl Pieces {
+    /// Index of patch `(a, b)` in the design.
+    fn index(&self, a: usize, b: usize) -> usize {
+        a * self.layout.v + b
+    }
+
+    /// Parameters of the free guide `slot` in `x`.
+    fn slot<'x>(&self, x: &'x [f64], slot: usize) -> &'x [f64] {
+        let at = self.layout.count() + slot * PER_GUIDE;
+        &x[at..at + PER_GUIDE]
+    }
+
+    /// The free guide a patch continues: guide_u's piece `a` for the first block
+    /// column, guide_v's piece `b` for the first block row, none inside.
+    fn slot_of(&self, k: usize) -> Option<usize> {
+        let (a, b) = (k / self.layout.v, k % self.layout.v);
+        match (a, b) {
+            (_, 0) => Some(a),
+            (0, _) => Some(self.layout.u + b),
+            _ => None,
+        }
+    }
+
+    /// The design of `x`; the continuations are placeholders of the right number of
+    /// samples, which [`Pieces::build`] replaces.
+    fn design(&self, x: &[f64]) -> MultiPatchDesign {
+        let (u, v) = (self.layout.u, self.layout.v);
+        let free = |slot: usize, axis: usize| {
+            guide_in_plane(
+                self.corner,
+                self.tangents[axis],
+                self.normals[axis],
+                self.slot(x, slot),
+                self.pieces[slot].len(),
+            )
+        };
+        let patches = (0..u * v)
+            .map(|k| {
+                let (a, b) = (k / v, k % v);
+                let mut spec = PatchSpec {
+                    theta_deg: x[k],
+                    guide_u: None,
+                    guide_v: None,
+                    attach: None,
+                    guide: None,
+                    guide_from: None,
+                };
+                match (a, b) {
+                    (0, 0) => {
+                        spec.guide_u = Some(free(0, 0));
+                        spec.guide_v = Some(free(u, 1));
+                    }
+                    (_, 0) => {
+                        spec.attach = Some(Attach {
+                            patch: self.index(a - 1, 0),
+                            side: Side::LastRow,
+                        });
+                        spec.guide = Some(free(a, 0));
+                    }
+                    (0, _) => {
+                        spec.attach = Some(Attach {
+                            patch: b - 1,
+                            side: Side::LastColumn,
+                        });
+                        spec.guide = Some(free(u + b, 1));
+                    }
+                    _ => {
+                        spec.attach = Some(Attach {
+                            patch: self.index(a - 1, b),
+                            side: Side::LastRow,
+                        });
+                        spec.guide_from = Some(Attach {
+                            patch: self.index(a, b - 1),
+                            side: Side::LastColumn,
+                        });
+                    }
+                }
+                spec
+            })
+            .collect();
+        MultiPatchDesign {
+            patches,
+            tolerance: self.tolerance,
+            fit: None,
+            symmetry: vec![],
+        }
+    }
+
+    /// The design of `x` and its mesh, each continuation in the plane its start forces
+    /// ([`ContinuationStart::plane_normal`] turned by its tilt). With `fit`, each
+    /// continuation's numbers in `x` are first fitted to its piece.
+    fn build(&self, x: &mut [f64], fit: bool) -> Option<(MultiPatchDesign, MultiPatch)> {
+        let mut design = self.design(x);
+        let count = self.layout.count();
+        let mut guides: Vec<Option<GuideSpec>> = vec![None; count];
+        let mut failed = false;
+        let mp = build_with(
+            &design,
+            &GenerateOptions::default(),
+            &mut |k, start: &ContinuationStart, placeholder| {
+                let slot = self.slot_of(k).expect("a continuation has a slot");
+                if fit {
+                    match fit_piece(
+                        start.corner,
+                        start.tangent,
+                        start.plane_normal,
+                        &self.pieces[slot],
+                    ) {
+                        Some(p) => {
+                            let at = count + slot * PER_GUIDE;
+                            x[at..at + PER_GUIDE].copy_from_slice(&p);
+                        }
+                        None => failed = true,
+                    }
+                }
+                let at = count + slot * PER_GUIDE;
+                let guide = guide_in_plane(
+                    start.corner,
+                    start.tangent,
+                    start.plane_normal,
+                    &x[at..at + PER_GUIDE],
+                    placeholder.sample_count(),
+                );
+                guides[k] = Some(guide.clone());
+                guide
+            },
+        )
+        .ok()?;
+        if failed {
+            return None;
+        }
+        for (spec, guide) in design.patches.iter_mut().zip(guides) {
+            if guide.is_some() {
+                spec.guide = guide;
+            }
+        }
+        Some((design, mp))
+    }
+}
+
+/// Folded faces of a mesh (§5.2), all of them if a vertex is not finite.
+fn folds(grid: &QuadGrid) -> usize {
+    if grid.vertices.iter().all(|v| v.is_finite()) {
+        grid.folds().count()
+    } else {
+        (grid.rows - 1) * (grid.cols - 1)
+    }
+}
+
+/// Per patch: θ, and the distances to the mesh of the target points nearest to it.
+fn per_patch(target: &TargetCloud, mp: &MultiPatch, v: usize) -> Vec<PatchFit> {
+    let faces = MeshFaces::new(&mp.grid);
+    let cols = mp.grid.cols;
+    let mut sums = vec![(0usize, 0.0f64, 0.0f64); mp.patches.len()];
+    let owner = |at: usize| {
+        let (i, j) = (at / cols, at % cols);
+        mp.patches
+            .iter()
+            .position(|p| (p.rows.0..=p.rows.1).contains(&i) && (p.cols.0..=p.cols.1).contains(&j))
+            .expect("every vertex lies in a patch")
+    };
+    let tree = rstar::RTree::bulk_load(
+        mp.grid
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(i, p)| super::distance::Indexed::new(p.to_array(), i))
+            .collect(),
+    );
+    for p in &target.points {
+        let nearest = tree
+            .nearest_neighbor(p.to_array())
+            .expect("a mesh has vertices");
+        let k = owner(nearest.data);
+        let d = faces.distance_from(*p).0;
+        let s = &mut sums[k];
+        *s = (s.0 + 1, s.1.max(d), s.2 + d * d);
+    }
+    mp.patches
+        .iter()
+        .zip(sums)
+        .enumerate()
+        .map(|(k, (p, (n, max, sq)))| PatchFit {
+            block: (k / v, k % v),
+            theta_deg: p.design.theta_deg,
+            target_points: n,
+            max: max / target.size,
+            rms: if n == 0 {
+                0.0
+            } else {
+                (sq / n as f64).sqrt() / target.size
+            },
+        })
+        .collect()
+}
+
 /// Several patches following the target more closely than the single patch `single`
-/// (§4.7; see the module documentation): `patches` pieces of its `guide_u`, each with
-/// its own θ. Circular meshes only; every piece needs at least two faces.
+/// (§4.7; see the module documentation): `layout.u` pieces of its `guide_u` times
+/// `layout.v` pieces of its `guide_v`, every guide and θ free. Circular meshes only;
+/// every piece needs at least two faces.
 ///
 /// ```
 /// use glam::DVec3;
-/// use monge_core::approximate::{approximate, approximate_patches, ApproxOptions};
+/// use monge_core::approximate::{approximate, approximate_patches, ApproxOptions, PatchLayout};
 /// // A paraboloid, which has no planar curvature lines.
 /// let target: Vec<DVec3> = (0..121)
 ///     .map(|k| {
@@ -50,167 +372,213 @@ pub struct PatchApproximation {
 ///     .collect();
 /// let options = ApproxOptions { faces: (8, 8), starts: 1, max_evaluations: 60, ..Default::default() };
 /// let single = approximate(&target, &options, &mut |_| {}).unwrap();
-/// let two = approximate_patches(&target, &single, 2, &options, &mut |_| {}).unwrap();
-/// assert_eq!(two.design.patches.len(), 2);
-/// assert!(two.after.mesh_to_target_rms.is_finite());
+/// let two = approximate_patches(&target, &single, PatchLayout { u: 2, v: 1 }, &options, &mut |_| {})
+///     .unwrap();
+/// // Never worse than the single patch.
+/// assert!(two.after.mesh_to_target_rms <= single.after.mesh_to_target_rms * 1.000001);
+/// assert_eq!(two.per_patch.len(), two.layout.u * two.layout.v);
 /// ```
 pub fn approximate_patches(
-    points: &[glam::DVec3],
+    points: &[DVec3],
     single: &Approximation,
-    patches: usize,
+    layout: PatchLayout,
     options: &ApproxOptions,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<PatchApproximation, ApproxError> {
     if single.design.mesh != MeshKind::Circular {
         return Err(ApproxError::PatchesNotCircular);
     }
-    let guide: Vec<_> = single.grid.column(0).map(|p| p.to_array()).collect();
-    let segments = guide.len() - 1;
-    if patches < 2 || segments < 2 * patches {
-        return Err(ApproxError::TooManyPatches { patches, segments });
+    let grid = &single.grid;
+    for (patches, segments, along) in [
+        (layout.u, grid.rows - 1, "guide_u"),
+        (layout.v, grid.cols - 1, "guide_v"),
+    ] {
+        if patches == 0 || layout.count() < 2 || segments < 2 * patches {
+            return Err(ApproxError::TooManyPatches {
+                patches,
+                segments,
+                along,
+            });
+        }
     }
     let target = TargetCloud::new(points)?;
-    // The first piece keeps guide_u's own start tangent (a polyline's would be its
-    // first chord).
-    let tangent = Guide::from_spec(
-        &single.design.guide_u,
-        GuideName::U,
-        &single.design.tolerance.unwrap_or_default(),
-    )
-    .map_err(|_| ApproxError::NoPatchStart { patch: 0 })?
-    .tangent
-    .to_array();
-    let stride = points.len().div_ceil(OBJECTIVE_POINTS);
-    let cut = |k: usize| k * segments / patches;
-    let specs: Vec<PatchSpec> = (0..patches)
-        .map(|k| {
-            let piece = guide[cut(k)..=cut(k + 1)].to_vec();
-            if k == 0 {
-                PatchSpec {
-                    theta_deg: single.design.theta_deg,
-                    guide_u: Some(GuideSpec::Points {
-                        points: piece,
-                        tangent: Some(tangent),
-                    }),
-                    guide_v: Some(single.design.guide_v.clone()),
-                    attach: None,
-                    guide: None,
-                }
-            } else {
-                PatchSpec {
-                    theta_deg: 0.0,
-                    guide_u: None,
-                    guide_v: None,
-                    attach: Some(Attach {
-                        patch: k - 1,
-                        side: Side::LastRow,
-                    }),
-                    guide: Some(GuideSpec::points(piece)),
-                }
-            }
-        })
-        .collect();
-    let tolerance = single.design.tolerance;
-    let design_of = |thetas: &[f64]| MultiPatchDesign {
-        patches: specs
-            .iter()
-            .zip(thetas)
-            .map(|(s, t)| PatchSpec {
-                theta_deg: *t,
-                ..s.clone()
-            })
-            .collect(),
-        tolerance,
-        fit: None,
-        symmetry: vec![],
+    let tol = single.design.tolerance.unwrap_or_default();
+    let frame = |spec: &GuideSpec, name| {
+        Guide::from_spec(spec, name, &tol)
+            .map(|g| (g.tangent, g.plane_normal))
+            .map_err(|_| ApproxError::NoPatchStart { patch: 0 })
     };
+    let (t_u, m_u) = frame(&single.design.guide_u, GuideName::U)?;
+    let (t_v, m_v) = frame(&single.design.guide_v, GuideName::V)?;
+    let line_u: Vec<DVec3> = grid.column(0).collect();
+    let line_v: Vec<DVec3> = grid.row(0).collect();
+    let cut = |line: &[DVec3], n: usize| -> Vec<Vec<DVec3>> {
+        let segments = line.len() - 1;
+        (0..n)
+            .map(|k| line[k * segments / n..=(k + 1) * segments / n].to_vec())
+            .collect()
+    };
+    let mut pieces = cut(&line_u, layout.u);
+    pieces.extend(cut(&line_v, layout.v));
+    let ortho = |m: DVec3, t: DVec3| (m - m.dot(t) * t).normalize();
+    let setup = Pieces {
+        layout,
+        corner: grid.vertex(0, 0),
+        tangents: [t_u, t_v],
+        normals: [ortho(m_u, t_u), ortho(m_v, t_v)],
+        pieces,
+        tolerance: single.design.tolerance,
+    };
+    let count = layout.count();
+    let n = count + (layout.u + layout.v) * PER_GUIDE;
+    let mut x0 = vec![single.design.theta_deg; n];
+    for (slot, axis) in [(0, 0), (layout.u, 1)] {
+        let p = fit_piece(
+            setup.corner,
+            setup.tangents[axis],
+            setup.normals[axis],
+            &setup.pieces[slot],
+        )
+        .ok_or(ApproxError::NoPatchStart { patch: 0 })?;
+        x0[count + slot * PER_GUIDE..count + (slot + 1) * PER_GUIDE].copy_from_slice(&p);
+    }
+    let stride = points.len().div_ceil(OBJECTIVE_POINTS);
+    let stop = || {
+        options
+            .deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
+    };
+    let single_f = target.deviation_strided(grid, stride).objective();
     let mut evaluations = 0;
-    let budget = patches * 359 + options.max_evaluations;
-    let mut best = f64::INFINITY;
-    // The objective of the first `thetas.len()` patches; NaN when they cannot be built
-    // or fold.
-    let mut objective = |thetas: &[f64]| -> f64 {
-        evaluations += 1;
-        let f = build(&design_of(thetas), &GenerateOptions::default())
-            .ok()
-            .filter(|mp| mp.grid.folds().count() == 0)
-            .map_or(f64::NAN, |mp| {
-                target.deviation_strided(&mp.grid, stride).objective()
-            });
-        if f < best {
-            best = f;
+    let budget = count * 359 + options.max_evaluations.max(2 * n + 2);
+    let mut best: (f64, Option<Vec<f64>>) = (single_f, None);
+    // The objective at `x`, NaN when it cannot be built, folds or the time is up; the
+    // best point seen is kept.
+    // With the folded faces (every face when it cannot be built).
+    let mut evaluate = |x: &mut [f64], fit: bool| -> (usize, f64) {
+        if stop() {
+            return (usize::MAX, f64::NAN);
         }
-
+        evaluations += 1;
+        let (folded, f) = match setup.build(x, fit) {
+            Some((_, mp)) => match folds(&mp.grid) {
+                0 => (0, target.deviation_strided(&mp.grid, stride).objective()),
+                n => (n, f64::NAN),
+            },
+            None => (usize::MAX, f64::NAN),
+        };
+        if f < best.0 {
+            best = (f, Some(x.to_vec()));
+        }
         progress(&Progress {
             evaluations,
             budget,
-            best_rms: best.sqrt(),
+            best_rms: best.0.sqrt(),
         });
-        f
+        (folded, f)
     };
-    // The single patch's θ continues its surface in every patch (the same θ in each
-    // patch's own frame); where that folds, each new patch's θ by a scan, the earlier
-    // ones fixed.
-    let mut thetas = vec![single.design.theta_deg; patches];
-    if !objective(&thetas).is_finite() {
-        thetas.truncate(1);
-        for patch in 1..patches {
-            // Every degree: the θ that keep a continuation fair can be a narrow window.
-            let scan = (-179..=179).map(f64::from);
-            let theta = scan
-                .map(|theta| {
-                    let mut trial = thetas.clone();
-                    trial.push(theta);
-                    (objective(&trial), theta)
-                })
-                .filter(|(f, _)| f.is_finite())
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-                .ok_or(ApproxError::NoPatchStart { patch })?
-                .1;
-            thetas.push(theta);
+    // The continuations fitted to their pieces in the planes their starts force, the
+    // single patch's θ in every patch (it continues the surface along a chain).
+    let mut start = x0.clone();
+    let (mut folded, mut f0) = evaluate(&mut start, true);
+    // Where that folds, each patch's θ in turn by a scan every degree, the others kept:
+    // the fewest folded faces, then the nearest to the target.
+    for k in 0..count {
+        if folded == 0 || stop() {
+            break;
+        }
+        for theta in (-179..=179).map(f64::from) {
+            let mut trial = start.clone();
+            trial[k] = theta;
+            let (n, f) = evaluate(&mut trial, true);
+            if n < folded || (n == folded && f < f0) {
+                (folded, f0, start) = (n, f, trial);
+            }
         }
     }
-    // All θ together, within 30° of their start.
-    let unit = objective(&thetas);
-    if !unit.is_finite() {
-        return Err(ApproxError::NoPatchStart { patch: 0 });
+    if f0.is_finite() {
+        // All together: θ within 30° of their start, each guide's tilt within 0.5 rad,
+        // its control points within half its piece's chord.
+        let chord = |slot: usize| {
+            let p = &setup.pieces[slot];
+            p[0].distance(p[p.len() - 1])
+        };
+        let span = |i: usize| {
+            if i < count {
+                30.0
+            } else {
+                let (slot, at) = ((i - count) / PER_GUIDE, (i - count) % PER_GUIDE);
+                if at == 0 {
+                    0.5
+                } else {
+                    0.5 * chord(slot)
+                }
+            }
+        };
+        let lower: Vec<f64> = (0..n)
+            .map(|i| {
+                let low = start[i] - span(i);
+                // The second control point stays ahead of the corner.
+                match (i >= count, (i.wrapping_sub(count)) % PER_GUIDE) {
+                    (true, 1) => low.max(min_reach(chord((i - count) / PER_GUIDE))),
+                    _ => low,
+                }
+            })
+            .collect();
+        let upper: Vec<f64> = (0..n).map(|i| start[i] + span(i)).collect();
+        let to_real = |t: &[f64]| -> Vec<f64> {
+            t.iter()
+                .zip(lower.iter().zip(&upper))
+                .map(|(t, (l, u))| l + t * (u - l))
+                .collect()
+        };
+        let mut t = vec![0.5; n];
+        let mut config = bobyqa::Config::new(n);
+        config.rho_begin = 0.05;
+        config.rho_end = 1e-7;
+        config.max_fun = options.max_evaluations.max(2 * n + 2);
+        let mut solver = bobyqa::Bobyqa::new(n, config).expect("a valid BOBYQA configuration");
+        solver.minimize(
+            |t: &[f64]| evaluate(&mut to_real(t), false).1 / f0,
+            &mut t,
+            &vec![0.0; n],
+            &vec![1.0; n],
+        );
     }
-    let lower: Vec<f64> = thetas.iter().map(|t| (t - 30.0).max(-179.0)).collect();
-    let upper: Vec<f64> = thetas.iter().map(|t| (t + 30.0).min(179.0)).collect();
-    let to_real = |t: &[f64]| -> Vec<f64> {
-        t.iter()
-            .zip(lower.iter().zip(&upper))
-            .map(|(t, (l, u))| l + t * (u - l))
-            .collect()
+    let (design, mp, out_layout) = match &best.1 {
+        Some(x) => {
+            let (design, mp) = setup
+                .build(&mut x.clone(), false)
+                .expect("the best design was built");
+            (design, mp, layout)
+        }
+        None => {
+            // The single patch stays the best: a design of one patch.
+            let design = MultiPatchDesign {
+                patches: vec![PatchSpec {
+                    theta_deg: single.design.theta_deg,
+                    guide_u: Some(single.design.guide_u.clone()),
+                    guide_v: Some(single.design.guide_v.clone()),
+                    attach: None,
+                    guide: None,
+                    guide_from: None,
+                }],
+                tolerance: single.design.tolerance,
+                fit: None,
+                symmetry: vec![],
+            };
+            let mp = build(&design, &GenerateOptions::default())
+                .map_err(|_| ApproxError::NoPatchStart { patch: 0 })?;
+            (design, mp, PatchLayout { u: 1, v: 1 })
+        }
     };
-    let mut t: Vec<f64> = thetas
-        .iter()
-        .zip(lower.iter().zip(&upper))
-        .map(|(x, (l, u))| (x - l) / (u - l))
-        .collect();
-    let mut config = bobyqa::Config::new(patches);
-    config.rho_begin = 0.05;
-    config.rho_end = 1e-7;
-    config.max_fun = options.max_evaluations.max(2 * patches + 2);
-    let mut solver = bobyqa::Bobyqa::new(patches, config).expect("a valid BOBYQA configuration");
-    let outcome = solver.minimize(
-        |t: &[f64]| objective(&to_real(t)) / unit,
-        &mut t,
-        &vec![0.0; patches],
-        &vec![1.0; patches],
-    );
-    if outcome.found_finite() && outcome.f < 1.0 {
-        thetas = to_real(&t);
-    }
-    let design = design_of(&thetas);
-    let grid = build(&design, &GenerateOptions::default())
-        .map_err(|_| ApproxError::NoPatchStart { patch: 0 })?
-        .grid;
     Ok(PatchApproximation {
-        after: target.deviation(&grid),
+        after: target.deviation(&mp.grid),
+        per_patch: per_patch(&target, &mp, out_layout.v),
         before: single.after,
         design,
-        grid,
+        layout: out_layout,
+        grid: mp.grid,
         evaluations,
     })
 }

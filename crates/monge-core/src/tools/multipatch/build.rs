@@ -1,13 +1,13 @@
 //! Building a multi-patch mesh (§4.7): the first patch from its two guides, every
-//! later one attached to an earlier one, then one grid.
+//! later one attached to earlier ones, then one grid.
 
 use crate::design::{Design, MeshKind};
 use crate::generate::{generate, GenerateOptions};
 
 use super::assemble::{assemble, Built};
-use super::attach::attach_patch;
-use super::chain::check_structure;
+use super::attach::{attach_patch, Continuation};
 use super::error::MultiPatchError;
+use super::layout::check_layout;
 use super::mesh::MultiPatch;
 use super::spec::MultiPatchDesign;
 
@@ -20,11 +20,12 @@ use super::spec::MultiPatchDesign;
 /// let design = MultiPatchDesign {
 ///     patches: vec![
 ///         PatchSpec { theta_deg: 30.0, guide_u: Some(arc([0.0, 0.0, -4.0], [0.0; 3], [0.0, -1.0, 0.0], 20.0)),
-///                     guide_v: Some(arc([0.0, 0.0, -3.0], [0.0; 3], [1.0, 0.0, 0.0], 25.0)), attach: None, guide: None },
+///                     guide_v: Some(arc([0.0, 0.0, -3.0], [0.0; 3], [1.0, 0.0, 0.0], 25.0)), attach: None, guide: None,
+///                     guide_from: None },
 ///         PatchSpec { theta_deg: -20.0, guide_u: None, guide_v: None,
 ///                     attach: Some(Attach { patch: 0, side: Side::LastRow }),
 ///                     guide: Some(arc([0.0, 0.0, -4.0], [-4.0 * 20f64.to_radians().sin(), 0.0, 4.0 * 20f64.to_radians().cos() - 4.0],
-///                                     [0.0, -1.0, 0.0], 20.0)) },
+///                                     [0.0, -1.0, 0.0], 20.0)), guide_from: None },
 ///     ],
 ///     tolerance: None, fit: None, symmetry: vec![],
 /// };
@@ -36,8 +37,21 @@ pub fn build(
     design: &MultiPatchDesign,
     options: &GenerateOptions,
 ) -> Result<MultiPatch, MultiPatchError> {
+    build_with(design, options, &mut |_, _, guide| guide.clone())
+}
+
+/// [`build`], each continuation chosen by `continuation` from where it starts
+/// ([`ContinuationStart`](super::ContinuationStart)) and the design's own `guide` (the
+/// guide it returns must start at the corner, with the forced tangent in its plane):
+/// a search can move a continuation in the plane it must lie in, which depends on
+/// the patches before it.
+pub fn build_with(
+    design: &MultiPatchDesign,
+    options: &GenerateOptions,
+    continuation: &mut Continuation,
+) -> Result<MultiPatch, MultiPatchError> {
     let tol = design.tolerance.unwrap_or_default();
-    let chain = check_structure(design)?;
+    let layout = check_layout(design)?;
     let mut built: Vec<Built> = Vec::with_capacity(design.patches.len());
     for (k, spec) in design.patches.iter().enumerate() {
         let Some(attach) = spec.attach else {
@@ -53,24 +67,24 @@ pub fn build(
             built.push(Built {
                 generated,
                 design: d,
-                sign: 1.0,
-                parent: None,
                 seam_gap_abs: 0.0,
                 axis_gap: 0.0,
                 kink_deg: 0.0,
             });
             continue;
         };
-        let parent = &built[attach.patch];
-        built.push(attach_patch(
+        let from = spec.guide_from.map(|f| &built[f.patch]);
+        let next = attach_patch(
             k,
             spec,
-            attach,
-            parent,
+            &built[attach.patch],
+            from,
             &tol,
             design.tolerance,
             options,
-        )?);
+            continuation,
+        )?;
+        built.push(next);
     }
-    Ok(assemble(built, &chain))
+    Ok(assemble(built, &layout))
 }

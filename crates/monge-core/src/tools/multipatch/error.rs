@@ -5,6 +5,8 @@ use crate::design::Xyz;
 use crate::generate::GenerateError;
 use crate::guide::GuideError;
 
+use super::side::Attach;
+
 /// Why a multi-patch design cannot be built (§4.7).
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum MultiPatchError {
@@ -18,8 +20,8 @@ pub enum MultiPatchError {
         problem: &'static str,
     },
     /// A later patch lacks `attach` or `guide`, or has `guide_u`/`guide_v`.
-    #[error("patch {patch} is attached to an earlier patch: it needs `attach` and `guide` (the continuation), \
-             and no `guide_u` or `guide_v` ({problem})")]
+    #[error("patch {patch} is attached to an earlier patch: it needs `attach` and `guide` (the continuation) \
+             or `guide_from`, and no `guide_u` or `guide_v` ({problem})")]
     LaterPatch {
         /// The patch.
         patch: usize,
@@ -34,21 +36,91 @@ pub enum MultiPatchError {
         /// The patch it names.
         to: usize,
     },
-    /// Rows and columns are mixed: the patches would not form one grid.
-    #[error("incompatible boundaries: patch {patch} attaches to the {side} of patch {to}, but patch {first} \
-             attaches to a {first_kind}; all patches must follow each other along rows, or all along columns, \
-             to make one grid")]
-    MixedSides {
+    /// The patches leave a block of their layout empty: the mesh would not be one grid.
+    #[error("incompatible boundaries: the {patches} patches lie in a layout of {} × {} blocks (rows × columns \
+             of patches) but block {missing:?} has no patch, so they do not make one grid; add a patch there \
+             (attached to one neighbour, with `guide_from` the other), or attach all patches along rows, or all \
+             along columns", blocks.0, blocks.1)]
+    Hole {
+        /// Block rows and columns of the layout.
+        blocks: (usize, usize),
+        /// The first empty block (row, column).
+        missing: (usize, usize),
+        /// Patches in the design.
+        patches: usize,
+    },
+    /// `guide_from` names a line that does not pass through the patch's corner.
+    #[error("incompatible boundaries: patch {patch} is attached to the {attach_side} of patch {to}, but its \
+             `guide_from`, the {side} of patch {from}, is not the other line through that corner (it must be a \
+             {} side of the patch next to patch {patch} across it, starting at the same vertex)",
+             if attach_side.ends_with("row") { "column" } else { "row" })]
+    GuideFromElsewhere {
         /// The patch.
         patch: usize,
-        /// Its side's name.
+        /// The side named by `guide_from`.
         side: &'static str,
-        /// The patch it attaches to.
+        /// The patch named by `guide_from`.
+        from: usize,
+        /// The side named by `attach`.
+        attach_side: &'static str,
+        /// The patch named by `attach`.
         to: usize,
-        /// The first attached patch.
-        first: usize,
+    },
+    /// A patch lies next to an earlier one without sharing its line.
+    #[error("incompatible boundaries: patch {patch} lies next to patch {other} but takes neither guide from the \
+             {kind} between them, so the two would meet along two different lines; give patch {patch} \
+             `guide_from` that {kind} of patch {other} (or attach it there)")]
+    Unjoined {
+        /// The later patch.
+        patch: usize,
+        /// The earlier neighbour.
+        other: usize,
         /// `row` or `column`.
-        first_kind: &'static str,
+        kind: &'static str,
+    },
+    /// The two lines of a `guide_from` patch do not start at the same vertex.
+    #[error("incompatible boundaries: patch {patch}'s two guides, the {} of patch {} and the {} of patch {}, \
+             start {distance:.3e} apart ({relative:.1e} of the size; tolerance {tolerance:.0e}), at {corner:?} \
+             and {other:?}; they must start at the same vertex",
+             attach.side.name(), attach.patch, from.side.name(), from.patch)]
+    CornerMismatch {
+        /// The patch.
+        patch: usize,
+        /// Its `attach`.
+        attach: Attach,
+        /// Its `guide_from`.
+        from: Attach,
+        /// First vertex of the attached line.
+        corner: Xyz,
+        /// First vertex of the `guide_from` line.
+        other: Xyz,
+        /// Their distance.
+        distance: f64,
+        /// The distance relative to the larger line's size.
+        relative: f64,
+        /// [`Tolerances::start`](crate::design::Tolerances::start).
+        tolerance: f64,
+    },
+    /// The two lines of a `guide_from` patch have different node axes at their corner.
+    #[error("incompatible boundaries: patch {patch}'s two guides, the {} of patch {} and the {} of patch {}, \
+             have node axes {axis:?} and {other:?} at their common corner, {angle:.3e} rad apart (tolerance \
+             {tolerance:.0e}): the normals could not continue across both seams",
+             attach.side.name(), attach.patch, from.side.name(), from.patch)]
+    AxisMismatch {
+        /// The patch.
+        patch: usize,
+        /// Its `attach`.
+        attach: Attach,
+        /// Its `guide_from`.
+        from: Attach,
+        /// Node axis of the attached line at the corner, in the new patch's orientation.
+        axis: Xyz,
+        /// Node axis of the `guide_from` line there.
+        other: Xyz,
+        /// Angle between them.
+        angle: f64,
+        /// [`Tolerances::angle`](crate::design::Tolerances::angle).
+        tolerance: f64,
     },
     /// The side is already shared with another patch.
     #[error("incompatible boundaries: the {side} of patch {to} is already shared with patch {taken_by}, so patch \

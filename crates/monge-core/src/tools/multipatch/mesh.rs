@@ -22,6 +22,15 @@ pub struct PatchInfo {
     /// Whether the patch runs backwards in the assembled grid (its own `i`, or `j`
     /// for column chains, decreasing); its normals are then negated there.
     pub reversed: bool,
+    /// Its block (row, column) in the layout ([`MultiPatch::layout`]).
+    pub block: (usize, usize),
+    /// First and last row of the patch in the assembled grid (inclusive).
+    pub rows: (usize, usize),
+    /// First and last column of the patch in the assembled grid (inclusive).
+    pub cols: (usize, usize),
+    /// Whether the patch's own `i`, then `j`, runs backwards in the assembled grid;
+    /// its normals are negated there when exactly one does.
+    pub flipped: (bool, bool),
     /// The patch's own grid size `(rows, cols)`.
     pub size: (usize, usize),
     /// The generation mode of the patch (§3.1 or §3.2).
@@ -38,7 +47,9 @@ pub struct PatchInfo {
     /// the earlier patch's (continuity of the normals, §4.7; 0 for the first patch).
     pub axis_gap: f64,
     /// Angle in degrees between the continuation's own start tangent and the forced
-    /// one (0 for the first patch): the kink the continuation would have had.
+    /// one (0 for the first patch): the kink the continuation would have had. For a
+    /// patch with `guide_from`: the angle by which each line's start tangent was
+    /// turned so that they meet at 90° (half their departure from 90°).
     pub kink_deg: f64,
 }
 
@@ -47,8 +58,12 @@ pub struct PatchInfo {
 pub struct MultiPatch {
     /// The assembled grid; shared lines are stored once.
     pub grid: QuadGrid,
-    /// Whether the patches follow each other along rows (index `i`), else columns.
+    /// Whether the patches follow each other along rows (index `i`), else columns:
+    /// true when the layout has one block column.
     pub along_rows: bool,
+    /// Block rows × block columns of the layout: `(K, 1)` for patches following each
+    /// other along rows, `(1, K)` along columns, `(U, V)` for `U × V` patches.
+    pub layout: (usize, usize),
     /// The patches, in design order.
     pub patches: Vec<PatchInfo>,
 }
@@ -57,22 +72,20 @@ impl MultiPatch {
     /// Assembled-grid index of vertex `(i, j)` of patch `k`'s own grid (§4.7).
     pub fn own_to_grid(&self, k: usize, i: usize, j: usize) -> (usize, usize) {
         let p = &self.patches[k];
-        let (along, across) = if self.along_rows { (i, j) } else { (j, i) };
-        let n = if self.along_rows { p.size.0 } else { p.size.1 };
-        let along = p.range.0 + if p.reversed { n - 1 - along } else { along };
-        if self.along_rows {
-            (along, across)
-        } else {
-            (across, along)
-        }
+        let (rows, cols) = p.size;
+        (
+            p.rows.0 + if p.flipped.0 { rows - 1 - i } else { i },
+            p.cols.0 + if p.flipped.1 { cols - 1 - j } else { j },
+        )
     }
 
     /// Patch `k` as its own grid, cut out of the assembled one (shared lines with
     /// the bits of the assembled grid), with the normals of the assembled grid
-    /// negated back if the patch is reversed, so that it can be measured (§4.7).
+    /// negated back where exactly one of its directions is flipped, so that it can be measured (§4.7).
     pub fn patch_grid(&self, k: usize) -> QuadGrid {
         let (rows, cols) = self.patches[k].size;
-        let sign = if self.patches[k].reversed { -1.0 } else { 1.0 };
+        let (fi, fj) = self.patches[k].flipped;
+        let sign = if fi == fj { 1.0 } else { -1.0 };
         let mut vertices = Vec::with_capacity(rows * cols);
         let mut normals = Vec::with_capacity(rows * cols);
         for i in 0..rows {

@@ -48,17 +48,15 @@ impl MultiPatch {
             for index in 0..count {
                 let mut planes = Vec::new();
                 for (k, p) in self.patches.iter().enumerate() {
-                    let (lo, hi) = p.range;
-                    // A line along the chain crosses every patch; a line across it lies in those whose range holds it.
-                    let crosses = row != self.along_rows;
-                    let (from, to) = if crosses {
-                        (lo, hi)
-                    } else if (lo..=hi).contains(&index) {
-                        let n = if row { self.grid.cols } else { self.grid.rows };
-                        (0, n - 1)
+                    // The piece of the line in each patch whose rows (columns) hold it.
+                    let (holds, (from, to)) = if row {
+                        (p.rows, p.cols)
                     } else {
-                        continue;
+                        (p.cols, p.rows)
                     };
+                    if !(holds.0..=holds.1).contains(&index) {
+                        continue;
+                    }
                     let points: Vec<DVec3> = (from..=to)
                         .map(|t| {
                             if row {
@@ -86,7 +84,7 @@ impl MultiPatch {
 }
 
 /// Least-squares plane of `points`: (centroid, unit normal, largest distance).
-fn fit_plane(points: &[DVec3]) -> (DVec3, DVec3, f64) {
+pub(super) fn fit_plane(points: &[DVec3]) -> (DVec3, DVec3, f64) {
     let origin = points[0];
     let centroid = points.iter().map(|p| *p - origin).sum::<DVec3>() / points.len() as f64 + origin;
     let mut cov = Matrix3::<f64>::zeros();

@@ -28,6 +28,16 @@ impl Side {
         matches!(self, Side::LastRow | Side::LastColumn)
     }
 
+    /// The side facing this one across the seam: the other patch's side there (§4.7).
+    pub fn opposite(self) -> Side {
+        match self {
+            Side::FirstRow => Side::LastRow,
+            Side::LastRow => Side::FirstRow,
+            Side::FirstColumn => Side::LastColumn,
+            Side::LastColumn => Side::FirstColumn,
+        }
+    }
+
     /// The name used in design files (§4.7).
     pub fn name(self) -> &'static str {
         match self {

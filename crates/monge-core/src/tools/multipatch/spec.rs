@@ -12,7 +12,8 @@ use super::side::Attach;
 /// One patch of a multi-patch design (§4.7).
 ///
 /// The first patch gives `guide_u` and `guide_v` (a [`Design`](crate::design::Design)'s guides); every
-/// other patch gives `attach` and `guide`, the continuation (see the module docs).
+/// other patch gives `attach` and either `guide`, the continuation, or `guide_from`,
+/// the line of another earlier patch through the same corner (see the module docs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PatchSpec {
@@ -30,6 +31,12 @@ pub struct PatchSpec {
     /// Later patches: the continuation guide, starting at the boundary's first vertex.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub guide: Option<GuideSpec>,
+    /// Later patches of a layout of several rows and columns of patches, instead of
+    /// `guide`: the side of another earlier patch whose line is the other guide (a
+    /// column side when `attach` is a row side, and the other way round); both lines
+    /// start at the same vertex.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub guide_from: Option<Attach>,
 }
 
 /// A multi-patch design file (§4.7): patches, and optionally a fit (§4.7,
