@@ -452,9 +452,8 @@ pub fn approximate_patches(
     let mut evaluations = 0;
     let budget = count * 359 + options.max_evaluations.max(2 * n + 2);
     let mut best: (f64, Option<Vec<f64>>) = (single_f, None);
-    // The objective at `x`, NaN when it cannot be built, folds or the time is up; the
-    // best point seen is kept.
-    // With the folded faces (every face when it cannot be built).
+    // The folded faces at `x` (all when it cannot be built) and the objective, NaN when
+    // it folds or the time is up; the best point seen is kept.
     let mut evaluate = |x: &mut [f64], fit: bool| -> (usize, f64) {
         if stop() {
             return (usize::MAX, f64::NAN);
