@@ -18,7 +18,8 @@
 //! second control point's distance along it and both in-plane coordinates of the
 //! others are free, as in [`approximate`](super::approximate). With every patch's θ,
 //! BOBYQA moves them all together from the single patch's own guides and θ, with the
-//! objective of the single patch (folded meshes infeasible). The result is never worse
+//! objective of the single patch (a folded mesh counts as worse than the start by its
+//! number of folded faces, never as a result). The result is never worse
 //! than the best design seen, the single patch included (then a design of one patch).
 
 use glam::DVec3;
@@ -74,76 +75,64 @@ pub struct PatchApproximation {
     pub evaluations: usize,
 }
 
-/// Free numbers of one guide: the plane's tilt, the second control point along the
-/// tangent, `(along, up)` of each later one.
-const PER_GUIDE: usize = 2 + 2 * (CONTROL_POINTS - 2);
+/// Free numbers of one guide: the plane's tilt, then the along and up coordinates of
+/// the displacement's B-spline coefficients (all but the corner's).
+const PER_GUIDE: usize = 1 + 2 * (CONTROL_POINTS - 1);
 
-/// A guide in the plane through `corner` containing `tangent`, of normal `normal`
-/// turned about `tangent` by `p[0]`; its control points from `p[1..]` (see
-/// [`PER_GUIDE`]).
-fn guide_in_plane(
-    corner: DVec3,
-    tangent: DVec3,
-    normal: DVec3,
-    p: &[f64],
-    samples: usize,
-) -> GuideSpec {
-    let m = p[0].cos() * normal + p[0].sin() * tangent.cross(normal);
-    let up = m.cross(tangent);
-    let mut control = vec![corner.to_array(), (corner + p[1] * tangent).to_array()];
-    for k in 0..CONTROL_POINTS - 2 {
-        control.push((corner + p[2 + 2 * k] * tangent + p[3 + 2 * k] * up).to_array());
-    }
-    GuideSpec::bspline(3, control, samples)
+/// A piece of a guide in its plane: `(along, up)` of each sample from the corner, and
+/// its chord-length parameter in `[0, 1]`.
+#[derive(Clone, Debug)]
+struct Section {
+    points: Vec<(f64, f64)>,
+    parameters: Vec<f64>,
 }
 
-/// Least distance of a guide's second control point from its corner, for a piece of
-/// chord `chord`: a tenth of the control polygon's even spacing.
-fn min_reach(chord: f64) -> f64 {
-    0.1 * chord / (CONTROL_POINTS - 1) as f64
-}
-
-/// The free numbers of the guide of [`guide_in_plane`] (tilt 0) nearest to `piece`:
-/// linear least squares at the points' chord-length parameters, the guide from the
-/// corner to the piece's last point (projected on the plane).
-fn fit_piece(corner: DVec3, tangent: DVec3, normal: DVec3, piece: &[DVec3]) -> Option<Vec<f64>> {
-    let up = normal.cross(tangent);
-    let section: Vec<(f64, f64)> = piece
-        .iter()
-        .map(|p| ((*p - corner).dot(tangent), (*p - corner).dot(up)))
-        .collect();
-    let chords: Vec<f64> = std::iter::once(0.0)
-        .chain(section.windows(2).scan(0.0, |length, w| {
-            *length += (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
-            Some(*length)
-        }))
-        .collect();
-    let total = chords[chords.len() - 1];
-    if total.is_nan() || total <= 0.0 {
-        return None;
-    }
-    let last = section[section.len() - 1];
-    let end = CONTROL_POINTS - 1;
-    // Rows: along and up of each point; unknowns: P1 along, then P2, P3 (along, up).
-    let m = section.len();
-    let unknowns = 1 + 2 * (CONTROL_POINTS - 3);
-    let mut matrix = nalgebra::DMatrix::<f64>::zeros(2 * m, unknowns);
-    let mut rhs = nalgebra::DVector::<f64>::zeros(2 * m);
-    for (r, (p, c)) in section.iter().zip(&chords).enumerate() {
-        let b = guide_basis(c / total);
-        matrix[(2 * r, 0)] = b[1];
-        for k in 0..CONTROL_POINTS - 3 {
-            matrix[(2 * r, 1 + 2 * k)] = b[2 + k];
-            matrix[(2 * r + 1, 2 + 2 * k)] = b[2 + k];
+impl Section {
+    /// `piece` in the plane through its first point spanned by `tangent` and
+    /// `normal × tangent`.
+    fn of(piece: &[DVec3], tangent: DVec3, normal: DVec3) -> Self {
+        let up = normal.cross(tangent);
+        let points: Vec<(f64, f64)> = piece
+            .iter()
+            .map(|p| ((*p - piece[0]).dot(tangent), (*p - piece[0]).dot(up)))
+            .collect();
+        let mut chords = vec![0.0];
+        for w in piece.windows(2) {
+            chords.push(chords[chords.len() - 1] + w[0].distance(w[1]));
         }
-        rhs[2 * r] = p.0 - b[end] * last.0;
-        rhs[2 * r + 1] = p.1 - b[end] * last.1;
+        let total = chords[chords.len() - 1].max(f64::MIN_POSITIVE);
+        Section {
+            points,
+            parameters: chords.iter().map(|c| c / total).collect(),
+        }
     }
-    let x = matrix.svd(true, true).solve(&rhs, 1e-12).ok()?;
-    let mut out = vec![0.0, x[0].max(min_reach(total))];
-    out.extend(x.iter().skip(1));
-    out.extend([last.0, last.1]);
-    out.iter().all(|v| v.is_finite()).then_some(out)
+
+    /// The piece placed at `corner` in the plane containing `tangent` of normal
+    /// `normal` turned about `tangent` by `p[0]`, each sample displaced in that plane
+    /// by a cubic B-spline whose coefficients are `p[1..]` (the corner's is zero, so
+    /// the guide starts at the corner): a `points` guide with the forced tangent.
+    fn guide(&self, corner: DVec3, tangent: DVec3, normal: DVec3, p: &[f64]) -> GuideSpec {
+        let m = p[0].cos() * normal + p[0].sin() * tangent.cross(normal);
+        let up = m.cross(tangent);
+        let points = self
+            .points
+            .iter()
+            .zip(&self.parameters)
+            .map(|((s, w), u)| {
+                let b = guide_basis(*u);
+                let (mut s, mut w) = (*s, *w);
+                for k in 1..CONTROL_POINTS {
+                    s += b[k] * p[2 * k - 1];
+                    w += b[k] * p[2 * k];
+                }
+                (corner + s * tangent + w * up).to_array()
+            })
+            .collect();
+        GuideSpec::Points {
+            points,
+            tangent: Some(tangent.to_array()),
+        }
+    }
 }
 
 /// The layout's patches and pieces, and the design of given parameters: every θ, then
@@ -156,6 +145,9 @@ struct Pieces {
     normals: [DVec3; 2],
     /// The pieces of the single patch's guide_u, then of its guide_v.
     pieces: Vec<Vec<DVec3>>,
+    /// Each piece in the plane of its guide: the single patch's for the first patch's
+    /// two, the one its start forced at the first build for the continuations.
+    sections: std::cell::RefCell<Vec<Section>>,
     tolerance: Option<Tolerances>,
 }
 
@@ -186,13 +178,13 @@ impl Pieces {
     /// samples, which [`Pieces::build`] replaces.
     fn design(&self, x: &[f64]) -> MultiPatchDesign {
         let (u, v) = (self.layout.u, self.layout.v);
+        let sections = self.sections.borrow();
         let free = |slot: usize, axis: usize| {
-            guide_in_plane(
+            sections[slot].guide(
                 self.corner,
                 self.tangents[axis],
                 self.normals[axis],
                 self.slot(x, slot),
-                self.pieces[slot].len(),
             )
         };
         let patches = (0..u * v)
@@ -249,47 +241,34 @@ impl Pieces {
 
     /// The design of `x` and its mesh, each continuation in the plane its start forces
     /// ([`ContinuationStart::plane_normal`] turned by its tilt). With `fit`, each
-    /// continuation's numbers in `x` are first fitted to its piece.
-    fn build(&self, x: &mut [f64], fit: bool) -> Option<(MultiPatchDesign, MultiPatch)> {
+    /// continuation's piece is first placed in that plane (with no displacement it
+    /// then continues the single patch's guide).
+    fn build(&self, x: &[f64], fit: bool) -> Option<(MultiPatchDesign, MultiPatch)> {
         let mut design = self.design(x);
         let count = self.layout.count();
         let mut guides: Vec<Option<GuideSpec>> = vec![None; count];
-        let mut failed = false;
         let mp = build_with(
             &design,
             &GenerateOptions::default(),
             &mut |k, start: &ContinuationStart, placeholder| {
-                let slot = self.slot_of(k).expect("a continuation has a slot");
+                let Some(slot) = self.slot_of(k) else {
+                    return placeholder.clone();
+                };
                 if fit {
-                    match fit_piece(
-                        start.corner,
-                        start.tangent,
-                        start.plane_normal,
-                        &self.pieces[slot],
-                    ) {
-                        Some(p) => {
-                            let at = count + slot * PER_GUIDE;
-                            x[at..at + PER_GUIDE].copy_from_slice(&p);
-                        }
-                        None => failed = true,
-                    }
+                    self.sections.borrow_mut()[slot] =
+                        Section::of(&self.pieces[slot], start.tangent, start.plane_normal);
                 }
-                let at = count + slot * PER_GUIDE;
-                let guide = guide_in_plane(
+                let guide = self.sections.borrow()[slot].guide(
                     start.corner,
                     start.tangent,
                     start.plane_normal,
-                    &x[at..at + PER_GUIDE],
-                    placeholder.sample_count(),
+                    self.slot(x, slot),
                 );
                 guides[k] = Some(guide.clone());
                 guide
             },
         )
         .ok()?;
-        if failed {
-            return None;
-        }
         for (spec, guide) in design.patches.iter_mut().zip(guides) {
             if guide.is_some() {
                 spec.guide = guide;
@@ -421,27 +400,28 @@ pub fn approximate_patches(
     let mut pieces = cut(&line_u, layout.u);
     pieces.extend(cut(&line_v, layout.v));
     let ortho = |m: DVec3, t: DVec3| (m - m.dot(t) * t).normalize();
+    let normals = [ortho(m_u, t_u), ortho(m_v, t_v)];
+    // The first patch's two pieces in the single patch's own guide planes; the
+    // continuations' once their starts are known (first build).
+    let sections = (0..pieces.len())
+        .map(|slot| {
+            let axis = usize::from(slot >= layout.u);
+            Section::of(&pieces[slot], [t_u, t_v][axis], normals[axis])
+        })
+        .collect();
     let setup = Pieces {
         layout,
         corner: grid.vertex(0, 0),
         tangents: [t_u, t_v],
-        normals: [ortho(m_u, t_u), ortho(m_v, t_v)],
+        normals,
         pieces,
+        sections: std::cell::RefCell::new(sections),
         tolerance: single.design.tolerance,
     };
     let count = layout.count();
     let n = count + (layout.u + layout.v) * PER_GUIDE;
-    let mut x0 = vec![single.design.theta_deg; n];
-    for (slot, axis) in [(0, 0), (layout.u, 1)] {
-        let p = fit_piece(
-            setup.corner,
-            setup.tangents[axis],
-            setup.normals[axis],
-            &setup.pieces[slot],
-        )
-        .ok_or(ApproxError::NoPatchStart { patch: 0 })?;
-        x0[count + slot * PER_GUIDE..count + (slot + 1) * PER_GUIDE].copy_from_slice(&p);
-    }
+    let mut x0 = vec![0.0; n];
+    x0[..count].fill(single.design.theta_deg);
     let stride = points.len().div_ceil(OBJECTIVE_POINTS);
     let stop = || {
         options
@@ -454,7 +434,7 @@ pub fn approximate_patches(
     let mut best: (f64, Option<Vec<f64>>) = (single_f, None);
     // The folded faces at `x` (all when it cannot be built) and the objective, NaN when
     // it folds or the time is up; the best point seen is kept.
-    let mut evaluate = |x: &mut [f64], fit: bool| -> (usize, f64) {
+    let mut evaluate = |x: &[f64], fit: bool| -> (usize, f64) {
         if stop() {
             return (usize::MAX, f64::NAN);
         }
@@ -478,8 +458,8 @@ pub fn approximate_patches(
     };
     // The continuations fitted to their pieces in the planes their starts force, the
     // single patch's θ in every patch (it continues the surface along a chain).
-    let mut start = x0.clone();
-    let (mut folded, mut f0) = evaluate(&mut start, true);
+    let mut start = x0;
+    let (mut folded, mut f0) = evaluate(&start, true);
     // Where that folds, each patch's θ in turn by a scan every degree, the others kept:
     // the fewest folded faces, then the nearest to the target.
     for k in 0..count {
@@ -489,15 +469,19 @@ pub fn approximate_patches(
         for theta in (-179..=179).map(f64::from) {
             let mut trial = start.clone();
             trial[k] = theta;
-            let (n, f) = evaluate(&mut trial, true);
+            let (n, f) = evaluate(&trial, true);
             if n < folded || (n == folded && f < f0) {
                 (folded, f0, start) = (n, f, trial);
             }
         }
     }
-    if f0.is_finite() {
-        // All together: θ within 30° of their start, each guide's tilt within 0.5 rad,
-        // its control points within half its piece's chord.
+    if folded == 0 {
+        // The pieces placed as the chosen start forces them.
+        (folded, f0) = evaluate(&start, true);
+    }
+    if folded == 0 && f0.is_finite() {
+        // All together: θ within 30° of their start, each guide's tilt within 0.3 rad,
+        // its displacement's coefficients within a quarter of its piece's chord.
         let chord = |slot: usize| {
             let p = &setup.pieces[slot];
             p[0].distance(p[p.len() - 1])
@@ -508,22 +492,13 @@ pub fn approximate_patches(
             } else {
                 let (slot, at) = ((i - count) / PER_GUIDE, (i - count) % PER_GUIDE);
                 if at == 0 {
-                    0.5
+                    0.3
                 } else {
-                    0.5 * chord(slot)
+                    0.25 * chord(slot)
                 }
             }
         };
-        let lower: Vec<f64> = (0..n)
-            .map(|i| {
-                let low = start[i] - span(i);
-                // The second control point stays ahead of the corner.
-                match (i >= count, (i.wrapping_sub(count)) % PER_GUIDE) {
-                    (true, 1) => low.max(min_reach(chord((i - count) / PER_GUIDE))),
-                    _ => low,
-                }
-            })
-            .collect();
+        let lower: Vec<f64> = (0..n).map(|i| start[i] - span(i)).collect();
         let upper: Vec<f64> = (0..n).map(|i| start[i] + span(i)).collect();
         let to_real = |t: &[f64]| -> Vec<f64> {
             t.iter()
@@ -538,7 +513,14 @@ pub fn approximate_patches(
         config.max_fun = options.max_evaluations.max(2 * n + 2);
         let mut solver = bobyqa::Bobyqa::new(n, config).expect("a valid BOBYQA configuration");
         solver.minimize(
-            |t: &[f64]| evaluate(&mut to_real(t), false).1 / f0,
+            |t: &[f64]| match evaluate(&to_real(t), false) {
+                // In units of the start's objective; a folded design worse than the
+                // start by its folds (a finite value keeps the model going), one that
+                // cannot be built worse still.
+                (0, f) => f / f0,
+                (usize::MAX, _) => 1e3,
+                (folded, _) => 2.0 + folded as f64,
+            },
             &mut t,
             &vec![0.0; n],
             &vec![1.0; n],
@@ -546,9 +528,7 @@ pub fn approximate_patches(
     }
     let (design, mp, out_layout) = match &best.1 {
         Some(x) => {
-            let (design, mp) = setup
-                .build(&mut x.clone(), false)
-                .expect("the best design was built");
+            let (design, mp) = setup.build(x, false).expect("the best design was built");
             (design, mp, layout)
         }
         None => {
