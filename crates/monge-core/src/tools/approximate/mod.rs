@@ -56,6 +56,7 @@ mod index;
 mod patches;
 mod quadric;
 mod start;
+mod tolerance;
 
 use start::{initial_guesses, Start};
 
@@ -64,6 +65,7 @@ pub use error::{ApproxError, FLAT_CURVATURE, MIN_POINTS, UMBILIC_RATIO};
 use fit_guide::CONTROL_POINTS;
 pub use index::TargetCloud;
 pub use patches::{approximate_patches, PatchApproximation};
+pub use tolerance::*;
 
 /// Free numbers of a design: corner (3), rotation (3), plane tilts (2), θ, and per guide
 /// the second control point's distance and two coordinates of each later one.
