@@ -387,10 +387,13 @@ fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
     let (m, t) = paraboloid_distances(&mesh);
     assert!((m.max(t) - best).abs() < 0.05 * best, "{m} {t} {best}");
     let svg = fs::read_to_string(&picture).unwrap();
-    assert!(
-        svg.contains("TARGET, BY ITS DISTANCE TO THE RESULT")
-            || svg.contains("target, by its distance to the result")
+    assert!(svg.contains("target, by its distance to the result"));
+    // On the tolerance's scale.
+    assert_eq!(
+        svg.matches("dark red from 0.001 (the tolerance)").count(),
+        1
     );
+    assert_eq!(svg.matches("dark red from 0.001<").count(), 2);
     // One dot per target point.
     assert!(
         svg.matches("<circle").count() >= 41 * 41,

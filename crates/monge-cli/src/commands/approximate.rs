@@ -75,8 +75,8 @@ pub struct ApproximateArgs {
     /// Also draw the target's points coloured by their distance to the result, and the
     /// initial guess and the result coloured by their distance to the target, side by
     /// side (`.png` or `.svg`), on one scale (white 0, dark red from the initial guess's
-    /// 95th percentile), as `monge render --deviation` does; the boundaries between
-    /// patches are drawn on the result in green.
+    /// 95th percentile, or from --tolerance), as `monge render --deviation` does; the
+    /// boundaries between patches are drawn on the result in green.
     #[arg(long, value_name = "PICTURE")]
     pub picture: Option<PathBuf>,
     /// Then fit K patches with piecewise planar curvature lines (§4.7): guide_u cut into
@@ -169,14 +169,16 @@ fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
 }
 
 /// The picture: the target's points coloured by their distance to the result, then the
-/// initial guess and the result coloured by their distance to the target, all on the
-/// initial guess's scale; the patch boundaries drawn on the result.
+/// initial guess and the result coloured by their distance to the target, all on one
+/// scale (dark red from `tolerance` if given, in model units, else from the initial
+/// guess's 95th percentile); the patch boundaries drawn on the result.
 fn picture_bytes(
     r: &Approximation,
     result: &QuadGrid,
     boundaries: Vec<Highlight>,
     points: &[DVec3],
     target: &TargetCloud,
+    tolerance: Option<f64>,
     format: Picture,
 ) -> anyhow::Result<Vec<u8>> {
     let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
@@ -190,7 +192,7 @@ fn picture_bytes(
         Scene::new(mesh(&r.initial).context("the initial guess")?),
         target,
         "initial guess",
-        None,
+        tolerance,
     );
     let mut scene = Scene::new(result.clone());
     scene.highlights.extend(boundaries);
@@ -212,8 +214,13 @@ fn picture_bytes(
             ..Scene::new(empty)
         }),
         caption: format!(
-            "target, by its distance to the result\nwhite 0, dark red from {}\nlargest {}",
+            "target, by its distance to the result\nwhite 0, dark red from {}{}\nlargest {}",
             num(scale),
+            if tolerance.is_some() {
+                " (the tolerance)"
+            } else {
+                ""
+            },
             num(largest)
         ),
     };
@@ -334,7 +341,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             Some(p) => patch_boundaries(&build(&p.design, &GenerateOptions::default())?),
             None => Vec::new(),
         };
-        let bytes = picture_bytes(&r, grid, boundaries, &points, &target, format)?;
+        let bytes = picture_bytes(&r, grid, boundaries, &points, &target, None, format)?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
     out.commit()?;
@@ -459,7 +466,16 @@ fn finish_tolerance(
         }
     };
     if let Some((path, format)) = picture {
-        let bytes = picture_bytes(&fit.single, &fit.grid, boundaries, points, &target, format)?;
+        let tolerance = Some(fit.limit * fit.deviation.size);
+        let bytes = picture_bytes(
+            &fit.single,
+            &fit.grid,
+            boundaries,
+            points,
+            &target,
+            tolerance,
+            format,
+        )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
     out.commit()?;
