@@ -283,12 +283,15 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         let fit = approximate_to_tolerance(&points, &options, &mut |p| {
             bar.set_position(p.evaluations as u64);
             bar.set_message(format!(
-                "{} patch{}, best RMS {:.2e} of the size{}",
+                "{} patch{}: best RMS {:.2e} of the size{}",
                 p.patches,
                 if p.patches == 1 { "" } else { "es" },
                 p.search.best_rms,
                 if p.best_max.is_finite() {
-                    format!("; nearest design so far within {:.2e}", p.best_max)
+                    format!(
+                        "; nearest design so far: largest distance {:.2e}",
+                        p.best_max
+                    )
                 } else {
                     String::new()
                 }
