@@ -34,9 +34,9 @@ use glam::DVec3;
                   and after, relative to the target's size, and the measured exactness.",
     after_help = format!(
         "Examples:\n  monge approximate examples/targets/roof-pcl.obj -o roof.json --grid 20x20\n  \
-         monge approximate examples/targets/paraboloid.obj -o roof.json --tolerance 0.05m\n\n{EXIT} \
-         With --tolerance, 1 also when the design found is not within the tolerance (it is \
-         written all the same: the nearest found)."
+         monge approximate examples/targets/paraboloid.obj -o roof.json --tolerance 0.05m\n\n\
+         With --tolerance, the exit status is 1 also when the design found is not within the \
+         tolerance (it is written all the same: the nearest found).\n\n{EXIT}"
     )
 )]
 pub struct ApproximateArgs {
@@ -507,7 +507,8 @@ fn finish_tolerance(
     text.push_str(&format!(
         "result: {}\n\
          largest distance mesh → target {}, target → mesh {}; RMS {} and {} model units\n\
-         panels {}, distinct node types {} (as `monge fabricate` groups them)\n",
+         panels {}, distinct node types {} (beam angles within {}°, as `monge fabricate \
+         --angle-tol` groups them)\n",
         match fit.chosen {
             Chosen::InitialGuess =>
                 "the initial guess of one patch (nearer than every fit)".to_owned(),
@@ -520,6 +521,7 @@ fn finish_tolerance(
         num(d.target_to_mesh_rms * size),
         report.panels,
         report.node_types,
+        num(report.node_angle_tol.to_degrees()),
     ));
     for (k, p) in report.per_patch.iter().enumerate() {
         text.push_str(&format!(

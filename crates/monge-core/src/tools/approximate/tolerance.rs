@@ -471,6 +471,9 @@ pub struct FitReport {
     /// Distinct node types, as [`fabricate`] groups them with
     /// [`FabricationOptions::default`].
     pub node_types: usize,
+    /// Nodes whose beam angles agree within this many radians share a type
+    /// ([`FabricationOptions::angle_tol`]).
+    pub node_angle_tol: f64,
     /// Distances both ways, relative to the target's size.
     pub deviation: Deviation,
     /// Each patch, in design order.
@@ -505,6 +508,7 @@ pub fn fit_report(target: &TargetCloud, design: &FitDesign) -> Result<FitReport,
         Ok(FitReport {
             panels: f.summary.panels,
             node_types: f.summary.node_types,
+            node_angle_tol: options.angle_tol,
             deviation,
             per_patch,
         })
