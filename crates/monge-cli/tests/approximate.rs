@@ -7,7 +7,7 @@ use std::fs;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
-use common::{examples, generate_and_check, monge, refuses};
+use common::{examples, generate_and_check, monge, monge_to, refuses};
 
 /// `monge approximate` of the shipped paraboloid into `design`, quick: a grid of `n` × `n`
 /// faces, one start, `evaluations` meshes per search.
@@ -56,6 +56,7 @@ fn approximate_draws_the_initial_guess_and_the_result() {
         ));
     let svg = fs::read_to_string(&picture).unwrap();
     for caption in [
+        "target, by its distance to the result",
         "initial guess",
         "result",
         "white 0, dark red from",
@@ -69,8 +70,9 @@ fn approximate_draws_the_initial_guess_and_the_result() {
         .skip(1)
         .map(|s| s.split([' ', '<']).next().unwrap())
         .collect();
-    assert_eq!(scales.len(), 2);
-    assert_eq!(scales[0], scales[1]);
+    // The target's points, the initial guess and the result, on one scale.
+    assert_eq!(scales.len(), 3);
+    assert!(scales.iter().all(|s| *s == scales[0]), "{scales:?}");
     // A picture of another format is refused before any work, and nothing is written.
     let design = dir.path().join("other.json");
     refuses(
@@ -218,4 +220,245 @@ fn approximate_reads_an_iges_surface_as_target() {
         .success()
         .stdout(predicate::str::contains("target: 4096 points"));
     generate_and_check(&design, &dir.path().join("fit.obj"));
+}
+
+/// The points of an OBJ file's `v` lines, read by hand.
+fn obj_points(path: &std::path::Path) -> Vec<[f64; 3]> {
+    fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let x: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
+            [x[0], x[1], x[2]]
+        })
+        .collect()
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Distance from `p` to the segment `ab`.
+fn to_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (ab, ap) = (sub(b, a), sub(p, a));
+    let t = (dot(ap, ab) / dot(ab, ab)).clamp(0.0, 1.0);
+    let d = sub(ap, [ab[0] * t, ab[1] * t, ab[2] * t]);
+    dot(d, d).sqrt()
+}
+
+/// Distance from `p` to the triangle `abc`: to its plane if the foot lies inside
+/// (barycentric coordinates), else to its nearest edge.
+fn to_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(p, a));
+    let (uu, uv, vv, wu, wv) = (dot(u, u), dot(u, v), dot(v, v), dot(w, u), dot(w, v));
+    let det = uu * vv - uv * uv;
+    let (s, t) = ((vv * wu - uv * wv) / det, (uu * wv - uv * wu) / det);
+    if s >= 0.0 && t >= 0.0 && s + t <= 1.0 {
+        let foot = [
+            a[0] + s * u[0] + t * v[0],
+            a[1] + s * u[1] + t * v[1],
+            a[2] + s * u[2] + t * v[2],
+        ];
+        let d = sub(p, foot);
+        return dot(d, d).sqrt();
+    }
+    to_segment(p, a, b)
+        .min(to_segment(p, b, c))
+        .min(to_segment(p, c, a))
+}
+
+/// The largest distances, by brute force, from the mesh vertices of `mesh` (an OBJ of
+/// quads) to the shipped paraboloid z = 0.04 x² + 0.1 y² over [0, 10]² (sampled every
+/// 0.02, nearest sample) and from the paraboloid's shipped points to the mesh's
+/// triangles.
+fn paraboloid_distances(mesh: &std::path::Path) -> (f64, f64) {
+    let surface = |x: f64, y: f64| [x, y, 0.04 * x * x + 0.1 * y * y];
+    let fine: Vec<[f64; 3]> = (0..=500)
+        .flat_map(|i| (0..=500).map(move |j| surface(i as f64 / 50.0, j as f64 / 50.0)))
+        .collect();
+    let vertices = obj_points(mesh);
+    let mesh_to_target = vertices
+        .iter()
+        .map(|v| {
+            fine.iter()
+                .map(|q| dot(sub(*v, *q), sub(*v, *q)))
+                .fold(f64::INFINITY, f64::min)
+                .sqrt()
+        })
+        .fold(0.0, f64::max);
+    let faces = common::obj_faces(mesh);
+    let target = obj_points(&examples().join("targets/paraboloid.obj"));
+    let target_to_mesh = target
+        .iter()
+        .map(|p| {
+            faces
+                .iter()
+                .flat_map(|f| (1..f.len() - 1).map(move |k| to_triangle(*p, f[0], f[k], f[k + 1])))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max);
+    (mesh_to_target, target_to_mesh)
+}
+
+/// The number after `label` in `text`.
+fn number_after(text: &str, label: &str) -> f64 {
+    let rest = &text[text
+        .find(label)
+        .unwrap_or_else(|| panic!("no `{label}` in {text}"))
+        + label.len()..];
+    let word = rest.split_whitespace().next().unwrap();
+    word.trim_end_matches([';', ',']).parse().unwrap()
+}
+
+#[test]
+fn approximate_to_a_tolerance_met_writes_a_design_within_it() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    let out = paraboloid(&design, 6, 60)
+        .args(["--tolerance", "0.2"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("within the tolerance: largest distance"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
+    assert!(
+        stdout.contains("panels 36, distinct node types"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("patch 1 (block 1 × 1): θ"), "{stdout}");
+    // Measured independently: the mesh of the design written, both ways, by brute force.
+    let mesh = dir.path().join("fit.obj");
+    generate_and_check(&design, &mesh);
+    let (m, t) = paraboloid_distances(&mesh);
+    let size = number_after(&stdout, "size");
+    assert!(m.max(t) <= 0.2 * size, "{m} {t} {size}");
+    // The numbers printed are these distances (the target's own sampling, 0.25 apart,
+    // and its boundary known to that spacing, account for the difference).
+    let printed_m = number_after(&stdout, "largest distance mesh → target");
+    let printed_t = number_after(&stdout, "target → mesh");
+    assert!((printed_m - m).abs() < 0.3, "{printed_m} {m}");
+    assert!((printed_t - t).abs() < 0.05 * t + 1e-9, "{printed_t} {t}");
+}
+
+#[test]
+fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    let picture = dir.path().join("fit.svg");
+    let out = paraboloid(&design, 8, 60)
+        .args(["--tolerance", "1mm", "--max-patches", "2"])
+        .arg("--picture")
+        .arg(&picture)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("tolerance 0.001 model units"), "{stdout}");
+    assert!(stdout.contains("NOT within the tolerance"), "{stdout}");
+    assert!(
+        stdout.contains("2 patches tried (--max-patches 2)"),
+        "{stdout}"
+    );
+    // Never farther than the one-patch fit; the design and the picture are written.
+    let one = number_after(&stdout, "1 patch: largest distance");
+    let best = number_after(&stdout, "the nearest design found is");
+    assert!(best <= one, "{stdout}");
+    assert!(best > 0.001);
+    let command = if stdout.contains("result: 2 patches") {
+        "patches"
+    } else {
+        "generate"
+    };
+    let mesh = dir.path().join("fit.obj");
+    monge()
+        .arg(command)
+        .arg(&design)
+        .arg("-o")
+        .arg(&mesh)
+        .assert()
+        .success();
+    let (m, t) = paraboloid_distances(&mesh);
+    assert!((m.max(t) - best).abs() < 0.05 * best, "{m} {t} {best}");
+    let svg = fs::read_to_string(&picture).unwrap();
+    assert!(svg.contains("target, by its distance to the result"));
+    // On the tolerance's scale.
+    assert_eq!(
+        svg.matches("dark red from 0.001 (the tolerance)").count(),
+        1
+    );
+    assert_eq!(svg.matches("dark red from 0.001<").count(), 2);
+    // One dot per target point.
+    assert!(
+        svg.matches("<circle").count() >= 41 * 41,
+        "{}",
+        svg.matches("<circle").count()
+    );
+}
+
+#[test]
+fn approximate_to_a_tolerance_says_when_patches_cannot_help() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    let out = paraboloid(&design, 6, 40)
+        .args(["--kind", "conical", "--tolerance", "1e-4"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("2 patches cannot be fitted: patches (§4.7) continue circular meshes"),
+        "{stdout}"
+    );
+    monge_to("generate", &design, dir.path().join("fit.obj"))
+        .assert()
+        .success();
+}
+
+#[test]
+fn approximate_refuses_bad_tolerances_before_any_work() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    for (tolerance, expected) in [
+        ("-1", "give a positive, finite number"),
+        ("0", "give a positive, finite number"),
+        ("0.05parsecs", "unknown unit `parsecs`"),
+        ("5", "(e.g. 5m)"),
+        ("abc", "is not a tolerance"),
+        ("inf", "is not a tolerance"),
+    ] {
+        refuses(
+            paraboloid(&design, 6, 40).arg(format!("--tolerance={tolerance}")),
+            &["--tolerance", expected],
+            &[&design],
+        );
+    }
+    refuses(
+        paraboloid(&design, 6, 40).args(["--tolerance", "-1"]),
+        &["give a positive"],
+        &[&design],
+    );
+    refuses(
+        paraboloid(&design, 6, 40).args(["--tolerance", "5e-3", "--patches", "2"]),
+        &["cannot be used with"],
+        &[&design],
+    );
+    refuses(
+        paraboloid(&design, 6, 40).args(["--max-patches", "3"]),
+        &["--tolerance"],
+        &[&design],
+    );
+    refuses(
+        paraboloid(&design, 6, 40).args(["--tolerance", "5e-3", "--max-patches", "0"]),
+        &["--max-patches"],
+        &[&design],
+    );
 }

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use monge_core::QuadGrid;
 
-use crate::{Highlight, Panel, Projection, RenderError, RenderOptions, Rgb, Scene, MAX_SIDE};
+use crate::{Dot, Highlight, Panel, Projection, RenderError, RenderOptions, Rgb, Scene, MAX_SIDE};
 
 /// A colour with opacity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -249,10 +249,11 @@ fn pt(x: f64, y: f64) -> Pt {
     [x as f32, y as f32]
 }
 
-/// The points that `scene`'s mesh panel is fitted to: the mesh's vertices and
-/// the highlights' points.
+/// The points that `scene`'s mesh panel is fitted to: the mesh's vertices, the
+/// dots and the highlights' points.
 fn scene_points(scene: &Scene) -> Vec<DVec3> {
     let mut all = scene.mesh.vertices.clone();
+    all.extend(scene.dots.iter().map(|d| d.point));
     all.extend(
         scene
             .highlights
@@ -491,6 +492,36 @@ fn draw_highlights(
     }
 }
 
+/// Radius of a [`Dot`], pixels.
+const DOT_RADIUS: f32 = 2.5;
+/// Outline of a [`Dot`].
+const DOT_OUTLINE: Pen = Pen {
+    color: Rgba::new(110, 114, 124, 255),
+    width: 0.6,
+};
+
+/// The dots, far ones first (stable on their order).
+fn draw_dots(dots: &[Dot], projector: &Projector, shapes: &mut Vec<Shape>) {
+    let discs = dots
+        .iter()
+        .enumerate()
+        .filter_map(|(index, d)| {
+            let (center, depth) = projector.project(d.point)?;
+            Some(Face {
+                depth,
+                index,
+                shape: Shape::Circle {
+                    center,
+                    radius: DOT_RADIUS,
+                    fill: Some(Rgba::opaque(d.color)),
+                    stroke: Some(DOT_OUTLINE),
+                },
+            })
+        })
+        .collect();
+    paint(discs, shapes);
+}
+
 /// The edge pen, if edges are drawn.
 fn edge_pen(o: &RenderOptions) -> Option<Pen> {
     (o.edge_width > 0.0).then_some(Pen {
@@ -546,6 +577,7 @@ fn draw_mesh(scene: &Scene, r: Rect, o: &RenderOptions, scale: f64, shapes: &mut
         });
     }
     paint(faces, shapes);
+    draw_dots(&scene.dots, &projector, shapes);
     draw_highlights(
         highlights,
         o.highlight_width,
@@ -680,6 +712,35 @@ mod tests {
             })
             .collect();
         assert_eq!(order, ["1", "0", "2"]);
+    }
+
+    #[test]
+    fn dots_alone_are_drawn_far_to_near_in_their_colours() {
+        let o = RenderOptions::default();
+        let w = Camera::new(o.view.azimuth_deg, o.view.elevation_deg).w;
+        let (near, far) = (Rgb::new(1, 2, 3), Rgb::new(4, 5, 6));
+        let scene = Scene {
+            dots: vec![
+                Dot {
+                    point: w,
+                    color: near,
+                },
+                Dot {
+                    point: -w + DVec3::X,
+                    color: far,
+                },
+            ],
+            ..Scene::new(QuadGrid::new(0, 0, Vec::new(), Vec::new()))
+        };
+        let fills: Vec<Rgba> = sheet(&[Cell::of(&scene)], 1, &o)
+            .unwrap()
+            .into_iter()
+            .filter_map(|s| match s {
+                Shape::Circle { fill, .. } => fill,
+                _ => None,
+            })
+            .collect();
+        assert_eq!(fills, [Rgba::opaque(far), Rgba::opaque(near)]);
     }
 
     #[test]

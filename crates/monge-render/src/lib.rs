@@ -176,6 +176,16 @@ pub struct Highlight {
     pub color: Rgb,
 }
 
+/// A point drawn as a small disc on top of the mesh (e.g. a target point coloured by
+/// its distance to a design).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dot {
+    /// Where, in the mesh's coordinates.
+    pub point: DVec3,
+    /// Its colour (outlined in grey, so that white shows on white).
+    pub color: Rgb,
+}
+
 /// What one picture (or one panel of a contact sheet) shows.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -191,6 +201,9 @@ pub struct Scene {
     /// its corners' colours (shaded), front and back alike, instead of the options'
     /// front and back colours (see [`heat`]).
     pub vertex_colors: Option<Vec<Rgb>>,
+    /// Points drawn over the mesh, far ones first, under the highlights (also fitted
+    /// into the panel); a scene may be dots alone, on a mesh without vertices.
+    pub dots: Vec<Dot>,
 }
 
 impl Scene {
@@ -206,6 +219,7 @@ impl Scene {
             highlights,
             gauss: None,
             vertex_colors: None,
+            dots: Vec::new(),
         }
     }
 }

@@ -7,21 +7,23 @@ use std::time::Duration;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
-    approximate, approximate_patches, deadline_after, ApproxOptions, Approximation, Deviation,
-    PatchLayout, TargetCloud,
+    approximate, approximate_patches, approximate_to_tolerance, deadline_after, fit_report,
+    target_distances, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, PatchLayout,
+    Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
 };
 use monge_core::conical::conical_dual;
 use monge_core::measure::{conical_error, measure};
-use monge_core::multipatch::{build, MultiPatchDesign};
+use monge_core::multipatch::{build, MultiPatch, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{check_output, read_points, write_design_into, write_multipatch_into, Outputs};
-use monge_render::{RenderOptions, Scene};
+use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 
 use crate::shared::args::{Named, KINDS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{num, print};
 use crate::shared::picture::{distance_panel, sheet, Picture};
 use crate::shared::Outcome;
+use glam::DVec3;
 
 /// Find the design whose exact mesh is nearest to a target mesh or point cloud.
 #[derive(Debug, clap::Args)]
@@ -32,7 +34,12 @@ use crate::shared::Outcome;
                   directions at its corners, its edges fitted to the envelope of the target's \
                   points (a scan's too); prints the deviation before \
                   and after, relative to the target's size, and the measured exactness.",
-    after_help = format!("Example:\n  monge approximate examples/targets/roof-pcl.obj -o roof.json --grid 20x20\n\n{EXIT}")
+    after_help = format!(
+        "Examples:\n  monge approximate examples/targets/roof-pcl.obj -o roof.json --grid 20x20\n  \
+         monge approximate examples/targets/paraboloid.obj -o roof.json --tolerance 0.05m\n\n\
+         With --tolerance, the exit status is 1 also when the design found is not within the \
+         tolerance (it is written all the same: the nearest found).\n\n{EXIT}"
+    )
 )]
 pub struct ApproximateArgs {
     /// The target: a mesh or point cloud (`.obj`, `.ply` ASCII or binary, or `.json` with `vertices` or
@@ -67,9 +74,11 @@ pub struct ApproximateArgs {
     /// corner (traced through its points and fitted), and only θ is searched.
     #[arg(long)]
     pub keep_boundary: bool,
-    /// Also draw the initial guess and the result side by side (`.png` or `.svg`), each
-    /// mesh coloured by its distance to the target on the same scale (white 0, dark red
-    /// from the initial guess's 95th percentile), as `monge render --deviation` does.
+    /// Also draw the target's points coloured by their distance to the result, and the
+    /// initial guess and the result coloured by their distance to the target, side by
+    /// side (`.png` or `.svg`), on one scale (white 0, dark red from the initial guess's
+    /// 95th percentile, or from --tolerance), as `monge render --deviation` does; the
+    /// boundaries between patches are drawn on the result in green.
     #[arg(long, value_name = "PICTURE")]
     pub picture: Option<PathBuf>,
     /// Then fit UxV patches with piecewise planar curvature lines (§4.7), e.g. 2x3:
@@ -78,6 +87,35 @@ pub struct ApproximateArgs {
     /// written only if it follows the target more closely.
     #[arg(long, value_name = "UxV")]
     pub patches: Option<PatchLayout>,
+    /// Fit one patch, then 2x1, 2x2, 3x2, … patches (as --patches) until the mesh is within TOL of
+    /// the target both ways (the largest distances): a number is relative to the target's
+    /// size (`5e-3`), a number and a unit a length (`0.05m`, `5cm`, `50mm`, the target's
+    /// coordinates taken as metres). DESIGN is the nearest design found, within TOL or
+    /// not (then exit status 1, and why: the patch budget, --time-limit, patches that
+    /// cannot be fitted).
+    #[arg(
+        long,
+        value_name = "TOL",
+        value_parser = parse_tolerance,
+        conflicts_with = "patches",
+        allow_hyphen_values = true
+    )]
+    pub tolerance: Option<Tolerance>,
+    /// With --tolerance: the most patches tried.
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "tolerance",
+        default_value_t = ToleranceOptions::default().max_patches,
+        value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..)
+    )]
+    pub max_patches: usize,
+}
+
+/// `--tolerance`: [`Tolerance`]'s own parser and message.
+fn parse_tolerance(text: &str) -> Result<Tolerance, String> {
+    text.parse()
+        .map_err(|e: monge_core::approximate::ToleranceError| e.to_string())
 }
 
 /// Above this RMS distance (either way, relative to the target's size) the result is
@@ -110,12 +148,45 @@ fn line(name: &str, d: &Deviation) -> String {
     )
 }
 
-/// The picture of the initial guess and the result side by side, coloured by their
-/// distance to the target on the initial guess's scale.
+/// Colour of the boundaries between patches on the result.
+const PATCH_BOUNDARY_COLOR: Rgb = Rgb::new(0, 150, 80);
+
+/// The lines where the patches of `mp` meet (§4.7), in the assembled grid: each
+/// patch's first row and first column where another patch lies before it.
+fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
+    let g = &mp.grid;
+    let line = |points: Vec<DVec3>| Highlight {
+        points,
+        color: PATCH_BOUNDARY_COLOR,
+    };
+    let mut lines = Vec::new();
+    for p in &mp.patches {
+        let ((i0, i1), (j0, j1)) = (p.rows, p.cols);
+        if i0 > 0 {
+            lines.push(line(
+                (j0..=j1).map(|j| g.vertices[g.index(i0, j)]).collect(),
+            ));
+        }
+        if j0 > 0 {
+            lines.push(line(
+                (i0..=i1).map(|i| g.vertices[g.index(i, j0)]).collect(),
+            ));
+        }
+    }
+    lines
+}
+
+/// The picture: the target's points coloured by their distance to the result, then the
+/// initial guess and the result coloured by their distance to the target, all on one
+/// scale (dark red from `tolerance` if given, in model units, else from the initial
+/// guess's 95th percentile); the patch boundaries drawn on the result.
 fn picture_bytes(
     r: &Approximation,
     result: &QuadGrid,
+    boundaries: Vec<Highlight>,
+    points: &[DVec3],
     target: &TargetCloud,
+    tolerance: Option<f64>,
     format: Picture,
 ) -> anyhow::Result<Vec<u8>> {
     let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
@@ -129,15 +200,44 @@ fn picture_bytes(
         Scene::new(mesh(&r.initial).context("the initial guess")?),
         target,
         "initial guess",
-        None,
+        tolerance,
     );
-    let (after, _, _) = distance_panel(Scene::new(result.clone()), target, "result", Some(scale));
+    let mut scene = Scene::new(result.clone());
+    scene.highlights.extend(boundaries);
+    let (after, _, _) = distance_panel(scene, target, "result", Some(scale));
+    let distances = target_distances(target, result);
+    let largest = distances.iter().copied().fold(0.0, f64::max);
+    let dots = points
+        .iter()
+        .zip(&distances)
+        .map(|(p, d)| Dot {
+            point: *p,
+            color: heat(d / scale),
+        })
+        .collect();
+    let empty = QuadGrid::new(0, 0, Vec::new(), Vec::new());
+    let target_panel = Panel {
+        scene: Some(Scene {
+            dots,
+            ..Scene::new(empty)
+        }),
+        caption: format!(
+            "target, by its distance to the result\nwhite 0, dark red from {}{}\nlargest {}",
+            num(scale),
+            if tolerance.is_some() {
+                " (the tolerance)"
+            } else {
+                ""
+            },
+            num(largest)
+        ),
+    };
     let options = RenderOptions {
-        width: 1600,
+        width: 2100,
         height: 700,
         ..RenderOptions::default()
     };
-    sheet(&[before, after], 2, &options, format)
+    sheet(&[target_panel, before, after], 3, &options, format)
 }
 
 /// The largest error of the patches of `design`, each measured on its own grid as by
@@ -182,6 +282,33 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     // The spinner and the elapsed time keep moving while the starts run in parallel
     // (their counts arrive when they end).
     bar.enable_steady_tick(Duration::from_millis(200));
+    if let Some(tolerance) = args.tolerance {
+        let options = ToleranceOptions {
+            tolerance,
+            max_patches: args.max_patches,
+            approx: options,
+        };
+        let fit = approximate_to_tolerance(&points, &options, &mut |p| {
+            bar.set_position(p.evaluations as u64);
+            bar.set_message(format!(
+                "{} patch{}: best RMS {:.2e} of the size{}",
+                p.patches,
+                if p.patches == 1 { "" } else { "es" },
+                p.search.best_rms,
+                if p.best_max.is_finite() {
+                    format!(
+                        "; nearest design so far: largest distance {:.2e}",
+                        p.best_max
+                    )
+                } else {
+                    String::new()
+                }
+            ));
+        })
+        .with_context(|| file.clone())?;
+        bar.finish_and_clear();
+        return finish_tolerance(args, &points, &fit, picture);
+    }
     let r = approximate(&points, &options, &mut |p| {
         bar.set_position(p.evaluations as u64);
         bar.set_message(format!("best RMS {:.2e} of the size", p.best_rms));
@@ -221,7 +348,11 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     };
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
-        let bytes = picture_bytes(&r, grid, &target, format)?;
+        let boundaries = match better {
+            Some(p) => patch_boundaries(&build(&p.design, &GenerateOptions::default())?),
+            None => Vec::new(),
+        };
+        let bytes = picture_bytes(&r, grid, boundaries, &points, &target, None, format)?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
     out.commit()?;
@@ -296,4 +427,166 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         ))?;
     }
     Ok(Outcome::Success)
+}
+
+/// The exactness of `design` measured as by `monge check`: its mesh, or each patch on
+/// its own grid.
+fn exactness(design: &FitDesign) -> anyhow::Result<f64> {
+    Ok(match design {
+        FitDesign::Single(d) => {
+            let g = generate(d, &GenerateOptions::default())?.grid;
+            let m = measure(&g);
+            match d.mesh {
+                MeshKind::Circular => m.max_error(),
+                MeshKind::Conical => m.max_error_conical(conical_error(&g)),
+            }
+        }
+        FitDesign::Patches(d) => patches_exactness(d)?,
+    })
+}
+
+/// A distance relative to the target's size, in model units and relative.
+fn both(relative: f64, size: f64) -> String {
+    format!(
+        "{} model units ({} of the size)",
+        num(relative * size),
+        num(relative)
+    )
+}
+
+/// Writes the design of a `--tolerance` fit (and its picture), prints the report a
+/// designer looks at, and says whether it is within the tolerance.
+fn finish_tolerance(
+    args: &ApproximateArgs,
+    points: &[DVec3],
+    fit: &ToleranceFit,
+    picture: Option<(&PathBuf, Picture)>,
+) -> anyhow::Result<Outcome> {
+    let file = args.target.display().to_string();
+    let target = TargetCloud::new(points).with_context(|| file.clone())?;
+    let report = fit_report(&target, &fit.design).with_context(|| file.clone())?;
+    let mut out = Outputs::new();
+    let boundaries = match &fit.design {
+        FitDesign::Single(d) => {
+            write_design_into(d, &args.output, &mut out)?;
+            Vec::new()
+        }
+        FitDesign::Patches(d) => {
+            write_multipatch_into(d, &args.output, &mut out)?;
+            patch_boundaries(&build(d, &GenerateOptions::default())?)
+        }
+    };
+    if let Some((path, format)) = picture {
+        let tolerance = Some(fit.limit * fit.deviation.size);
+        let bytes = picture_bytes(
+            &fit.single,
+            &fit.grid,
+            boundaries,
+            points,
+            &target,
+            tolerance,
+            format,
+        )?;
+        out.write(path, |w| w.write_all(&bytes))?;
+    }
+    out.commit()?;
+    let size = fit.deviation.size;
+    let mut text = format!(
+        "target: {} points, size {}; tolerance {} model units ({} of the size), both ways\n",
+        points.len(),
+        num(size),
+        num(fit.limit * size),
+        num(fit.limit)
+    );
+    for step in &fit.steps {
+        let name = match step.patches {
+            1 => "1 patch".to_owned(),
+            k => format!("{k} patches (§4.7)"),
+        };
+        match &step.outcome {
+            Ok(d) => text.push_str(&format!(
+                "{name}: largest distance {}\n",
+                both(d.max(), size)
+            )),
+            Err(e) => text.push_str(&format!("{name}: not fitted: {e}\n")),
+        }
+    }
+    let d = &report.deviation;
+    text.push_str(&format!(
+        "result: {}\n\
+         largest distance mesh → target {}, target → mesh {}; RMS {} and {} model units\n\
+         panels {}, distinct node types {} (beam angles within {}°, as `monge fabricate \
+         --angle-tol` groups them)\n",
+        match fit.chosen {
+            Chosen::InitialGuess =>
+                "the initial guess of one patch (nearer than every fit)".to_owned(),
+            Chosen::OnePatch => "1 patch".to_owned(),
+            Chosen::Patches(k) => format!("{k} patches (§4.7)"),
+        },
+        both(d.mesh_to_target_max, size),
+        both(d.target_to_mesh_max, size),
+        num(d.mesh_to_target_rms * size),
+        num(d.target_to_mesh_rms * size),
+        report.panels,
+        report.node_types,
+        num(report.node_angle_tol.to_degrees()),
+    ));
+    for (k, p) in report.per_patch.iter().enumerate() {
+        text.push_str(&format!(
+            "patch {} (block {} × {}): θ {}°, largest distance target → mesh {} model units (RMS {}, {} points)\n",
+            k + 1,
+            p.block.0 + 1,
+            p.block.1 + 1,
+            num(p.theta_deg),
+            num(p.max * size),
+            num(p.rms * size),
+            p.target_points,
+        ));
+    }
+    text.push_str(&format!(
+        "exactness of the result (generated, measured): {}\n{} meshes generated\nwrote {}{}\n",
+        num(exactness(&fit.design)?),
+        fit.evaluations,
+        args.output.display(),
+        match fit.design {
+            FitDesign::Single(_) => "",
+            FitDesign::Patches(_) => " (a multi-patch design: `monge patches` reads it)",
+        }
+    ));
+    if let Some(path) = &args.picture {
+        text.push_str(&format!(
+            "wrote {} (the target coloured by its distance to the result; the initial guess and \
+             the result coloured by their distance to the target)\n",
+            path.display()
+        ));
+    }
+    let largest = both(fit.deviation.max(), size);
+    let tolerance = format!("{} model units", num(fit.limit * size));
+    let why = match &fit.stop {
+        Stop::Met => None,
+        Stop::MaxPatches(n) => Some(format!(
+            "{n} patch{} tried (--max-patches {n}); allow more patches, give a finer --grid or \
+             a larger --tolerance",
+            if *n == 1 { "" } else { "es" }
+        )),
+        Stop::TimeLimit => {
+            Some("the time limit ended the search (--time-limit); give more time".to_owned())
+        }
+        Stop::Refused { patches, error } => {
+            Some(format!("{patches} patches cannot be fitted: {error}"))
+        }
+    };
+    text.push_str(&match why {
+        None => format!("within the tolerance: largest distance {largest} ≤ {tolerance}\n"),
+        Some(why) => format!(
+            "NOT within the tolerance: the nearest design found is {largest} from the target, \
+             above {tolerance}: {why}\n"
+        ),
+    });
+    print(&text)?;
+    Ok(if fit.met() {
+        Outcome::Success
+    } else {
+        Outcome::Failed
+    })
 }

@@ -220,6 +220,7 @@ fn load(
                 gauss: if gauss { gauss_net(&mesh.grid) } else { None },
                 mesh: mesh.grid,
                 vertex_colors: None,
+                dots: Vec::new(),
             };
             Ok((scene, "developable".to_owned()))
         }
@@ -275,6 +276,7 @@ fn scene(
                 highlights: guide_highlights(&g.info.guide_u.points, &g.info.guide_v.points),
                 gauss: None,
                 vertex_colors: None,
+                dots: Vec::new(),
             }
         }
     };
@@ -308,6 +310,7 @@ fn smooth_scene(grid: &QuadGrid, k: usize, path: &Path) -> anyhow::Result<Scene>
         highlights,
         gauss: None,
         vertex_colors: None,
+        dots: Vec::new(),
     })
 }
 

@@ -13,6 +13,7 @@ pub mod warnings;
 pub enum Outcome {
     /// Everything as expected: exit status 0.
     Success,
-    /// `check` found a metric above its tolerance: exit status 1.
+    /// `check` found a metric above its tolerance, or `approximate` no design within its
+    /// --tolerance: exit status 1.
     Failed,
 }

@@ -69,6 +69,7 @@ mod layout;
 mod patches;
 mod quadric;
 mod start;
+mod tolerance;
 
 use start::{initial_guesses, Start};
 
@@ -79,6 +80,8 @@ use index::Matches;
 pub use index::TargetCloud;
 pub use layout::PatchLayout;
 pub use patches::{approximate_patches, PatchApproximation, PatchFit};
+
+pub use tolerance::*;
 
 /// Free numbers of a design: corner (3), rotation (3), plane tilts (2), θ, and per guide
 /// the second control point's distance and two coordinates of each later one.

@@ -288,7 +288,7 @@ fn folds(grid: &QuadGrid) -> usize {
 }
 
 /// Per patch: θ, and the distances to the mesh of the target points nearest to it.
-fn per_patch(target: &TargetCloud, mp: &MultiPatch, v: usize) -> Vec<PatchFit> {
+pub(super) fn per_patch(target: &TargetCloud, mp: &MultiPatch) -> Vec<PatchFit> {
     let faces = MeshFaces::new(&mp.grid);
     let cols = mp.grid.cols;
     let mut sums = vec![(0usize, 0.0f64, 0.0f64); mp.patches.len()];
@@ -319,9 +319,8 @@ fn per_patch(target: &TargetCloud, mp: &MultiPatch, v: usize) -> Vec<PatchFit> {
     mp.patches
         .iter()
         .zip(sums)
-        .enumerate()
-        .map(|(k, (p, (n, max, sq)))| PatchFit {
-            block: (k / v, k % v),
+        .map(|(p, (n, max, sq))| PatchFit {
+            block: p.block,
             theta_deg: p.design.theta_deg,
             target_points: n,
             max: max / target.size,
@@ -557,7 +556,7 @@ pub fn approximate_patches(
     };
     Ok(PatchApproximation {
         after: target.deviation(&mp.grid),
-        per_patch: per_patch(&target, &mp, out_layout.v),
+        per_patch: per_patch(&target, &mp),
         before: single.after,
         design,
         layout: out_layout,

@@ -1,0 +1,576 @@
+//! A tolerance in, a design out (monge's extension; the patches are §4.7's
+//! piecewise planar curvature lines): [`approximate_to_tolerance`] fits one patch,
+//! then more patches ([`refinements`]: 2 × 1, 2 × 2, 3 × 2, …), until the mesh is within the tolerance of the target both
+//! ways (the largest distances, mesh → target and target → mesh), or says why it
+//! stopped short ([`Stop`]): the patch budget, the time limit, or patches that cannot
+//! be fitted. It never returns a design farther from the target than the best one it
+//! saw, the initial guess included.
+//!
+//! [`fit_report`] gives what a designer looks at: the panels, the distinct node types
+//! (as [`crate::fabrication`] groups them), the deviation, and each patch's deviation
+//! and θ; [`target_distances`] colours the target by its distance to the result.
+
+use std::str::FromStr;
+use std::time::Instant;
+
+use glam::DVec3;
+
+use crate::conical::conical_dual;
+use crate::design::{Design, MeshKind};
+use crate::fabrication::{fabricate, BaseMesh, FabricationError, FabricationOptions};
+use crate::generate::{generate, GenerateError, GenerateOptions};
+use crate::grid::QuadGrid;
+use crate::multipatch::{build, MultiPatchDesign, MultiPatchError};
+
+use super::distance::MeshFaces;
+use super::patches::per_patch;
+use super::{
+    approximate, approximate_patches, fair_mesh, ApproxError, ApproxOptions, Approximation,
+    Deviation, PatchFit, PatchLayout, Progress, TargetCloud,
+};
+
+/// How close the result must come to the target, both ways.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tolerance {
+    /// A fraction of the target's size (its bounding-box diagonal), below 1.
+    Relative(f64),
+    /// A length in model units.
+    Length(f64),
+}
+
+/// The units a length tolerance may be written in, and their lengths in model units:
+/// the target's coordinates are taken as metres.
+pub const LENGTH_UNITS: [(&str, f64); 3] = [("m", 1.0), ("cm", 0.01), ("mm", 0.001)];
+
+impl Tolerance {
+    /// The tolerance as a fraction of a target of `size`.
+    pub fn relative_to(&self, size: f64) -> f64 {
+        match *self {
+            Tolerance::Relative(r) => r,
+            Tolerance::Length(l) => l / size,
+        }
+    }
+}
+
+impl FromStr for Tolerance {
+    type Err = ToleranceError;
+
+    /// A number alone is relative to the target's size (`5e-3`); a number and a unit
+    /// of [`LENGTH_UNITS`] is a length (`0.05m`, `5cm`, `50mm`).
+    ///
+    /// ```
+    /// use monge_core::approximate::{Tolerance, ToleranceError};
+    /// assert_eq!("5e-3".parse(), Ok(Tolerance::Relative(5e-3)));
+    /// assert_eq!("5cm".parse::<Tolerance>().unwrap(), Tolerance::Length(0.05));
+    /// assert!(matches!("-1".parse::<Tolerance>(), Err(ToleranceError::NotPositive { .. })));
+    /// assert!(matches!("0.05parsecs".parse::<Tolerance>(), Err(ToleranceError::UnknownUnit { .. })));
+    /// ```
+    fn from_str(text: &str) -> Result<Self, ToleranceError> {
+        let trimmed = text.trim();
+        let number_end = trimmed
+            .char_indices()
+            .rev()
+            .take_while(|(_, c)| c.is_alphabetic())
+            .last()
+            .map_or(trimmed.len(), |(k, _)| k);
+        let (number, unit) = trimmed.split_at(number_end);
+        let value: f64 = number
+            .trim()
+            .parse()
+            .map_err(|_| ToleranceError::NotANumber {
+                text: text.to_owned(),
+            })?;
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(ToleranceError::NotPositive {
+                text: text.to_owned(),
+            });
+        }
+        if unit.is_empty() {
+            return if value < 1.0 {
+                Ok(Tolerance::Relative(value))
+            } else {
+                Err(ToleranceError::RelativeTooLarge { value })
+            };
+        }
+        LENGTH_UNITS
+            .iter()
+            .find(|(name, _)| *name == unit)
+            .map(|(_, metres)| Tolerance::Length(value * metres))
+            .ok_or_else(|| ToleranceError::UnknownUnit {
+                text: text.to_owned(),
+                unit: unit.to_owned(),
+            })
+    }
+}
+
+/// Why a tolerance fit cannot start, or its result cannot be measured.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum ToleranceError {
+    /// The tolerance is not a number (with or without a unit).
+    #[error(
+        "`{text}` is not a tolerance: give a number relative to the target's size (e.g. 5e-3) \
+         or a length with its unit (e.g. 0.05m, 5cm, 50mm)"
+    )]
+    NotANumber {
+        /// The text given.
+        text: String,
+    },
+    /// The tolerance's unit is not one of [`LENGTH_UNITS`].
+    #[error(
+        "`{text}`: unknown unit `{unit}`; give a length in m, cm or mm (the target's \
+         coordinates taken as metres), or a number without a unit, relative to the target's \
+         size (e.g. 5e-3)"
+    )]
+    UnknownUnit {
+        /// The text given.
+        text: String,
+        /// Its unit.
+        unit: String,
+    },
+    /// The tolerance is zero, negative, NaN or infinite.
+    #[error("a tolerance of `{text}`: give a positive, finite number (e.g. 5e-3 or 0.05m)")]
+    NotPositive {
+        /// The text given.
+        text: String,
+    },
+    /// A relative tolerance of 1 or more: any design is within it.
+    #[error(
+        "a relative tolerance of {value} is {value} times the target's size, which any design \
+         meets: give a fraction of the size below 1 (e.g. 5e-3), or a length with its unit \
+         (e.g. {value}m)"
+    )]
+    RelativeTooLarge {
+        /// The number given.
+        value: f64,
+    },
+    /// No patch at all: [`ToleranceOptions::max_patches`] is 0.
+    #[error("at most 0 patches: allow at least 1")]
+    NoPatches,
+    /// The first patch cannot be fitted.
+    #[error(transparent)]
+    Approx(#[from] ApproxError),
+    /// The design found cannot be generated again (for its report).
+    #[error("the design found: {0}")]
+    Generate(#[from] GenerateError),
+    /// The multi-patch design found cannot be built again (for its report).
+    #[error("the multi-patch design found: {0}")]
+    MultiPatch(#[from] MultiPatchError),
+    /// The mesh found cannot be fabricated (for its node types).
+    #[error("the mesh found: {0}")]
+    Fabrication(#[from] FabricationError),
+}
+
+/// Options of [`approximate_to_tolerance`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToleranceOptions {
+    /// The tolerance, both ways (default 5e-3 of the target's size).
+    pub tolerance: Tolerance,
+    /// The most patches tried (default 6); 1 fits one patch only.
+    pub max_patches: usize,
+    /// The options of each fit; its deadline ends the whole search (checked between
+    /// the fits, and during the first).
+    pub approx: ApproxOptions,
+}
+
+impl Default for ToleranceOptions {
+    fn default() -> Self {
+        ToleranceOptions {
+            tolerance: Tolerance::Relative(5e-3),
+            max_patches: 6,
+            approx: ApproxOptions::default(),
+        }
+    }
+}
+
+/// What [`approximate_to_tolerance`] reports while it runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToleranceProgress {
+    /// Patches of the fit under way.
+    pub patches: usize,
+    /// Meshes generated so far, over all the fits.
+    pub evaluations: usize,
+    /// The fit under way.
+    pub search: Progress,
+    /// Largest distance both ways of the best design so far, relative to the target's
+    /// size (infinite before the first fit ends).
+    pub best_max: f64,
+}
+
+/// Why [`approximate_to_tolerance`] stopped.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stop {
+    /// The result is within the tolerance both ways.
+    Met,
+    /// Not within it with [`ToleranceOptions::max_patches`] patches.
+    MaxPatches(usize),
+    /// The deadline ([`ApproxOptions::deadline`]) came first.
+    TimeLimit,
+    /// This many patches cannot be fitted, nor any more (a grid too coarse for them, a
+    /// conical mesh).
+    Refused {
+        /// Patches asked for.
+        patches: usize,
+        /// Why.
+        error: ApproxError,
+    },
+}
+
+/// One fit of [`approximate_to_tolerance`]: its patches and its deviation, or why it
+/// failed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    /// Patches of the fit.
+    pub patches: usize,
+    /// Its deviation, or why it could not be fitted.
+    pub outcome: Result<Deviation, ApproxError>,
+}
+
+/// The design of a fit: one patch, or several (§4.7).
+#[derive(Clone, Debug, PartialEq)]
+pub enum FitDesign {
+    /// One design (`monge generate` reads it).
+    Single(Design),
+    /// A multi-patch design (`monge patches` reads it).
+    Patches(MultiPatchDesign),
+}
+
+impl FitDesign {
+    /// Its patches.
+    pub fn patches(&self) -> usize {
+        match self {
+            FitDesign::Single(_) => 1,
+            FitDesign::Patches(d) => d.patches.len(),
+        }
+    }
+}
+
+/// Which design [`approximate_to_tolerance`] kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Chosen {
+    /// The initial guess of the one-patch fit, nearer than every fit.
+    InitialGuess,
+    /// The one-patch fit.
+    OnePatch,
+    /// The fit of this many patches.
+    Patches(usize),
+}
+
+/// The result of [`approximate_to_tolerance`].
+#[derive(Clone, Debug)]
+pub struct ToleranceFit {
+    /// The design kept: the nearest to the target of all seen (largest distance both
+    /// ways), the fewest patches among equals.
+    pub design: FitDesign,
+    /// Its mesh (the patches merged).
+    pub grid: QuadGrid,
+    /// Its deviation.
+    pub deviation: Deviation,
+    /// Which design it is.
+    pub chosen: Chosen,
+    /// The tolerance, relative to the target's size.
+    pub limit: f64,
+    /// Why the search stopped.
+    pub stop: Stop,
+    /// The one-patch fit (its initial guess, its result).
+    pub single: Approximation,
+    /// Every fit, one patch first.
+    pub steps: Vec<Step>,
+    /// Meshes generated in all.
+    pub evaluations: usize,
+}
+
+impl ToleranceFit {
+    /// Whether the design is within the tolerance both ways.
+    pub fn met(&self) -> bool {
+        self.deviation.max() <= self.limit
+    }
+}
+
+/// The layouts tried after one patch, each refining the last along the direction
+/// with fewer patches: 2 × 1, 2 × 2, 3 × 2, 3 × 3, … while they have at most
+/// `max_patches` patches.
+///
+/// ```
+/// use monge_core::approximate::{refinements, PatchLayout};
+/// let tried: Vec<String> = refinements(6).map(|l| l.to_string()).collect();
+/// assert_eq!(tried, ["2x1", "2x2", "3x2"]);
+/// ```
+pub fn refinements(max_patches: usize) -> impl Iterator<Item = PatchLayout> {
+    std::iter::successors(Some(PatchLayout { u: 1, v: 1 }), |l| {
+        Some(if l.u <= l.v {
+            PatchLayout { u: l.u + 1, v: l.v }
+        } else {
+            PatchLayout { u: l.u, v: l.v + 1 }
+        })
+    })
+    .skip(1)
+    .take_while(move |l| l.count() <= max_patches)
+}
+
+/// The fit of `layout` from the one-patch fit `single`: the one call of
+/// [`approximate_patches`].
+fn fit_patches(
+    points: &[DVec3],
+    single: &Approximation,
+    layout: PatchLayout,
+    options: &ApproxOptions,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(FitDesign, QuadGrid, Deviation, usize), ApproxError> {
+    let p = approximate_patches(points, single, layout, options, progress)?;
+    Ok((FitDesign::Patches(p.design), p.grid, p.after, p.evaluations))
+}
+
+/// A design seen, its mesh and deviation.
+struct Seen {
+    design: FitDesign,
+    grid: QuadGrid,
+    deviation: Deviation,
+    chosen: Chosen,
+}
+
+/// The design nearest to a target within `options.tolerance` both ways: one patch
+/// ([`super::approximate`]), then the layouts of [`refinements`] of up to
+/// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`]: the one-patch
+/// result's guides cut into pieces, every guide and θ free, §4.7), until one is within
+/// the tolerance. The
+/// result is the nearest design seen (largest distance both ways; the initial guess
+/// included), whether or not within the tolerance ([`ToleranceFit::met`],
+/// [`ToleranceFit::stop`]). `progress` is called after every mesh generated.
+///
+/// Errors: the tolerance and patch budget ([`ToleranceError`]), and whatever keeps
+/// the first patch from being fitted ([`ApproxError`]: an umbilic, a flat target, …).
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::approximate::{approximate_to_tolerance, ApproxOptions, Stop, Tolerance, ToleranceOptions};
+/// // A paraboloid, which has no planar curvature lines.
+/// let target: Vec<DVec3> = (0..121)
+///     .map(|k| {
+///         let (x, y) = ((k % 11) as f64, (k / 11) as f64);
+///         DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+///     })
+///     .collect();
+/// let approx = ApproxOptions { faces: (8, 8), starts: 1, max_evaluations: 40, ..Default::default() };
+/// let options = ToleranceOptions { tolerance: Tolerance::Relative(1e-6), max_patches: 2, approx };
+/// let fit = approximate_to_tolerance(&target, &options, &mut |_| {}).unwrap();
+/// assert!(!fit.met());
+/// assert_eq!(fit.stop, Stop::MaxPatches(2));
+/// assert!(fit.deviation.max() <= fit.single.after.max());
+/// ```
+pub fn approximate_to_tolerance(
+    points: &[DVec3],
+    options: &ToleranceOptions,
+    progress: &mut dyn FnMut(&ToleranceProgress),
+) -> Result<ToleranceFit, ToleranceError> {
+    if options.max_patches == 0 {
+        return Err(ToleranceError::NoPatches);
+    }
+    let mut done = 0;
+    let mut best_max = f64::INFINITY;
+    let single = approximate(points, &options.approx, &mut |p| {
+        progress(&ToleranceProgress {
+            patches: 1,
+            evaluations: p.evaluations,
+            search: *p,
+            best_max,
+        });
+    })?;
+    done += single.evaluations;
+    let limit = options.tolerance.relative_to(single.after.size);
+    let mut steps = vec![Step {
+        patches: 1,
+        outcome: Ok(single.after),
+    }];
+    let mut best = Seen {
+        design: FitDesign::Single(single.design.clone()),
+        grid: single.grid.clone(),
+        deviation: single.after,
+        chosen: Chosen::OnePatch,
+    };
+    if single.before.max() < best.deviation.max()
+        && let Some(grid) = fair_mesh(&single.initial)
+    {
+        best = Seen {
+            design: FitDesign::Single(single.initial.clone()),
+            grid,
+            deviation: single.before,
+            chosen: Chosen::InitialGuess,
+        };
+    }
+    best_max = best.deviation.max();
+    let past_deadline = || options.approx.deadline.is_some_and(|d| Instant::now() >= d);
+    let mut stop = Stop::MaxPatches(options.max_patches);
+    if best_max <= limit {
+        stop = Stop::Met;
+    } else if single.timed_out {
+        stop = Stop::TimeLimit;
+    } else {
+        for layout in refinements(options.max_patches) {
+            let patches = layout.count();
+            if past_deadline() {
+                stop = Stop::TimeLimit;
+                break;
+            }
+            let fit = fit_patches(points, &single, layout, &options.approx, &mut |p| {
+                progress(&ToleranceProgress {
+                    patches,
+                    evaluations: done + p.evaluations,
+                    search: *p,
+                    best_max,
+                });
+            });
+            match fit {
+                Ok((design, grid, deviation, evaluations)) => {
+                    done += evaluations;
+                    steps.push(Step {
+                        patches,
+                        outcome: Ok(deviation),
+                    });
+                    if deviation.max() < best_max {
+                        best_max = deviation.max();
+                        best = Seen {
+                            design,
+                            grid,
+                            deviation,
+                            chosen: Chosen::Patches(patches),
+                        };
+                    }
+                    if best_max <= limit {
+                        stop = Stop::Met;
+                        break;
+                    }
+                }
+                // No more patches can help: a grid too coarse for them, a conical mesh.
+                Err(
+                    error @ (ApproxError::TooManyPatches { .. } | ApproxError::PatchesNotCircular),
+                ) => {
+                    stop = Stop::Refused { patches, error };
+                    break;
+                }
+                Err(error) => steps.push(Step {
+                    patches,
+                    outcome: Err(error),
+                }),
+            }
+        }
+    }
+    Ok(ToleranceFit {
+        design: best.design,
+        grid: best.grid,
+        deviation: best.deviation,
+        chosen: best.chosen,
+        limit,
+        stop,
+        single,
+        steps,
+        evaluations: done,
+    })
+}
+
+/// What a designer looks at (§6's counts and the deviation).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FitReport {
+    /// Panels (faces of the mesh).
+    pub panels: usize,
+    /// Distinct node types, as [`fabricate`] groups them with
+    /// [`FabricationOptions::default`].
+    pub node_types: usize,
+    /// Nodes whose beam angles agree within this many radians share a type
+    /// ([`FabricationOptions::angle_tol`]).
+    pub node_angle_tol: f64,
+    /// Distances both ways, relative to the target's size.
+    pub deviation: Deviation,
+    /// Each patch, in design order.
+    pub per_patch: Vec<PatchFit>,
+}
+
+/// The report of the fit `design` (its mesh `grid`) of `target`: panels, node types,
+/// deviation, and per patch its θ and deviation.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::approximate::{approximate, fit_report, FitDesign, TargetCloud};
+/// use monge_core::approximate::ApproxOptions;
+/// let target: Vec<DVec3> = (0..121)
+///     .map(|k| {
+///         let (x, y) = ((k % 11) as f64, (k / 11) as f64);
+///         DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+///     })
+///     .collect();
+/// let options = ApproxOptions { faces: (6, 4), starts: 1, max_evaluations: 40, ..Default::default() };
+/// let fit = approximate(&target, &options, &mut |_| {}).unwrap();
+/// let cloud = TargetCloud::new(&target).unwrap();
+/// let report = fit_report(&cloud, &FitDesign::Single(fit.design.clone())).unwrap();
+/// assert_eq!(report.panels, 24);
+/// assert_eq!(report.per_patch.len(), 1);
+/// assert_eq!(report.deviation, fit.after);
+/// ```
+pub fn fit_report(target: &TargetCloud, design: &FitDesign) -> Result<FitReport, ToleranceError> {
+    let options = FabricationOptions::default();
+    let report = |base: BaseMesh<'_>, deviation: Deviation, per_patch: Vec<PatchFit>| {
+        let f = fabricate(base, &options)?;
+        Ok(FitReport {
+            panels: f.summary.panels,
+            node_types: f.summary.node_types,
+            node_angle_tol: options.angle_tol,
+            deviation,
+            per_patch,
+        })
+    };
+    match design {
+        FitDesign::Single(d) => {
+            let circular = generate(d, &GenerateOptions::default())?.grid;
+            let dual = (d.mesh == MeshKind::Conical).then(|| conical_dual(&circular));
+            let (grid, base) = match &dual {
+                Some(c) => (&c.grid, BaseMesh::Conical(c)),
+                None => (&circular, BaseMesh::Circular(&circular)),
+            };
+            let deviation = target.deviation(grid);
+            let one = PatchFit {
+                block: (0, 0),
+                theta_deg: d.theta_deg,
+                target_points: target.points.len(),
+                max: deviation.target_to_mesh_max,
+                rms: deviation.target_to_mesh_rms,
+            };
+            report(base, deviation, vec![one])
+        }
+        FitDesign::Patches(d) => {
+            let mp = build(d, &GenerateOptions::default())?;
+            let patches = per_patch(target, &mp);
+            report(
+                BaseMesh::Circular(&mp.grid),
+                target.deviation(&mp.grid),
+                patches,
+            )
+        }
+    }
+}
+
+/// The distance from each target point to the mesh `grid` (model units), as
+/// [`Deviation::target_to_mesh_max`] measures it: to the nearest face. What a picture
+/// of the target coloured by its distance to a result shows.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::approximate::{target_distances, TargetCloud};
+/// use monge_core::QuadGrid;
+/// let plane: Vec<DVec3> =
+///     (0..100).map(|k| DVec3::new((k % 10) as f64, (k / 10) as f64, 0.0)).collect();
+/// let target = TargetCloud::new(&plane).unwrap();
+/// // A square 0.5 above the points of x, y in [3, 4].
+/// let square = [DVec3::new(3.0, 3.0, 0.5), DVec3::new(3.0, 4.0, 0.5),
+///               DVec3::new(4.0, 3.0, 0.5), DVec3::new(4.0, 4.0, 0.5)];
+/// let grid = QuadGrid::new(2, 2, square.to_vec(), vec![DVec3::Z; 4]);
+/// let d = target_distances(&target, &grid);
+/// assert!((d[33] - 0.5).abs() < 1e-12);
+/// assert!((d[0] - (18f64 + 0.25).sqrt()).abs() < 1e-12);
+/// ```
+pub fn target_distances(target: &TargetCloud, grid: &QuadGrid) -> Vec<f64> {
+    let faces = MeshFaces::new(grid);
+    target
+        .points
+        .iter()
+        .map(|p| faces.distance_from(*p).0)
+        .collect()
+}
