@@ -399,7 +399,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     print(&format!("wrote {}\n", args.output.display()))?;
     if let Some(path) = &args.picture {
         print(&format!(
-            "wrote {} (the initial guess and the result, coloured by their distance to the target)\n",
+            "wrote {} (the target coloured by its distance to the result; the initial guess and the result coloured by their distance to the target)\n",
             path.display()
         ))?;
     }
