@@ -36,7 +36,7 @@
 //!    ([`QuadGrid::folds`], §5.2) are infeasible. The result is the best of the designs
 //!    refined on the full grid and the initial guess, so it is never worse than where
 //!    the search started;
-//! 3. the objective ([`TargetCloud::residuals`]) is the mean squared distance of the
+//! 3. the objective (`TargetCloud::residuals`) is the mean squared distance of the
 //!    mesh's vertices to the target (to the quadric fitted around the nearest target
 //!    point, so that a random sampling's spacing does not bias it by `κd²/2`; plus a
 //!    guard against a vertex overhanging the target's boundary by several spacings),
