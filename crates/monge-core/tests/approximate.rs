@@ -98,6 +98,20 @@ fn noised_roof(samples: usize) -> (QuadGrid, f64, Vec<DVec3>) {
     (fine, size, target)
 }
 
+/// The mesh of `design` with its B-spline guides sampled at `samples` points: the
+/// surface found, regenerated finer, so that comparisons are of surfaces, not of the
+/// faces' sag.
+fn finer(design: &Design, samples: usize) -> QuadGrid {
+    let mut design = design.clone();
+    for guide in [&mut design.guide_u, &mut design.guide_v] {
+        let GuideSpec::BSpline { bspline, .. } = guide else {
+            panic!("a B-spline guide");
+        };
+        bspline.samples = samples;
+    }
+    generate(&design, &GenerateOptions::default()).unwrap().grid
+}
+
 /// Small, quick options for the test suite (debug builds).
 fn quick(faces: usize) -> ApproxOptions {
     ApproxOptions {
@@ -118,14 +132,7 @@ fn a_noised_surface_with_planar_curvature_lines_is_recovered() {
     let truth = generate(&roof(41), &GenerateOptions::default())
         .unwrap()
         .grid;
-    let mut design = r.design.clone();
-    for guide in [&mut design.guide_u, &mut design.guide_v] {
-        let GuideSpec::BSpline { bspline, .. } = guide else {
-            panic!("a B-spline guide");
-        };
-        bspline.samples = 41;
-    }
-    let result = generate(&design, &GenerateOptions::default()).unwrap().grid;
+    let result = finer(&r.design, 41);
     let (to_max, to_rms) = max_rms(
         result
             .vertices
@@ -196,14 +203,7 @@ fn a_random_scan_is_recovered_to_its_edges() {
     // spacing (1/√1500 of the side) here and there, which the search used to copy.
     let (truth, size, scan) = scanned_roof(1500);
     let r = approximate(&scan, &quick(10), &mut |_| {}).unwrap();
-    let mut design = r.design.clone();
-    for guide in [&mut design.guide_u, &mut design.guide_v] {
-        let GuideSpec::BSpline { bspline, .. } = guide else {
-            panic!("a B-spline guide");
-        };
-        bspline.samples = 41;
-    }
-    let result = generate(&design, &GenerateOptions::default()).unwrap().grid;
+    let result = finer(&r.design, 41);
     // Both ways against the exact roof, by brute force, every third vertex of it.
     let (to_max, _) = max_rms(
         result
