@@ -7,12 +7,11 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 use monge_io::{read_points, surface_parameters};
-use numpy::{PyArrayDyn, PyReadonlyArray2};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
 
 use crate::errors::{io_error, OptimiseError};
-use crate::tools::points_array;
 
 /// What `approximate` accepts, for its error messages.
 const ACCEPTED: &str = "give the target as an array of shape (..., 3) or a list of points, a \
@@ -179,4 +178,17 @@ pub fn target_points<'py>(
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let points = points_of(target)?;
     points_array(py, &points, &[points.len()])
+}
+
+/// `points` copied into a numpy array of `shape` (whose product times 3 is the
+/// number of coordinates; the last axis, 3, is appended).
+pub(crate) fn points_array<'py>(
+    py: Python<'py>,
+    points: &[DVec3],
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let flat: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+    let mut dims = shape.to_vec();
+    dims.push(3);
+    PyArray1::from_vec(py, flat).reshape(dims)
 }

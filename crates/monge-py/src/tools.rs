@@ -35,20 +35,7 @@ use crate::errors::{
     MeshError, OptimiseError, ScanError, SmoothError,
 };
 use crate::mesh::{measurements, Geometry, Mesh};
-use crate::target::points_of;
-
-/// `points` copied into a numpy array of `shape` (whose product times 3 is the
-/// number of coordinates; the last axis, 3, is appended).
-pub(crate) fn points_array<'py>(
-    py: Python<'py>,
-    points: &[DVec3],
-    shape: &[usize],
-) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    let flat: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
-    let mut dims = shape.to_vec();
-    dims.push(3);
-    PyArray1::from_vec(py, flat).reshape(dims)
-}
+use crate::target::{points_array, points_of};
 
 /// `"characteristic"` (§3.1) or `"arbitrary"` (§3.2).
 fn mode_name(mode: Mode) -> &'static str {

@@ -143,14 +143,19 @@ impl TargetCloud {
     }
 
     /// The signed distance from `v` to the surface near target point `i` (its quadric,
-    /// along its normal turned to the side of [`TargetCloud::up`], so that the sign does
+    /// moved to pass through the point, along its normal turned to the side of
+    /// [`TargetCloud::up`], so that the sign does
     /// not flip from one point to the next), and, where `i` is on the target's boundary, how far `v` lies
     /// beyond it by more than `allowance` (a boundary point's outward direction is only
     /// known to its neighbours' spacing).
     fn offsets(&self, v: DVec3, i: usize, allowance: f64) -> (f64, f64) {
         let d = v - self.points[i];
         let along = d - d.dot(self.normals[i]) * self.normals[i];
-        let across = self.patches[i].height_above(v) * self.normals[i].dot(self.up).signum();
+        // The quadric through the point itself (a least-squares quadric misses it by its
+        // constant term): a target's own vertices are at distance 0 from it.
+        let patch = &self.patches[i];
+        let across = (patch.height_above(v) - patch.height_above(self.points[i]))
+            * self.normals[i].dot(self.up).signum();
         (across, (along.dot(self.outward[i]) - allowance).max(0.0))
     }
 
