@@ -141,7 +141,7 @@ def test_hops_approximates_a_surface(hops_client):
             "pointer": "/monge_approximate",
             "values": [
                 item("Target", "Rhino.Geometry.Brep", json.dumps(target.Encode())),
-                item("Faces", "System.Int32", json.dumps(5)),
+                item("Faces", "System.Int32", json.dumps(8)),
                 item("Starts", "System.Int32", json.dumps(1)),
             ],
         }
@@ -150,11 +150,11 @@ def test_hops_approximates_a_surface(hops_client):
     assert [i["Name"] for i in desc["Inputs"]] == ["Target", "Faces", "Starts"]
     out = outputs(hops_client.post("/solve", data=json.dumps(request(brep))))
     mesh = rhino3dm.CommonObject.Decode(json.loads(out["Mesh"][0]))
-    assert mesh.Faces.QuadCount == 25 and len(mesh.Vertices) == 36
+    assert mesh.Faces.QuadCount == 64 and len(mesh.Vertices) == 81
     # The same mesh as monge.approximate's from the same surface.
-    r = monge.approximate(brep, grid=(5, 5), starts=1)
+    r = monge.approximate(brep, grid=(8, 8), starts=1)
     v = np.array([[p.X, p.Y, p.Z] for p in mesh.Vertices.ToPoint3dArray()])
     assert np.array_equal(v, r["vertices"].reshape(-1, 3))
     metrics = [json.loads(m) for m in out["Metrics"]]
-    assert metrics[0] == f"panels: 25, θ = {r['theta_deg']:g}°"
+    assert metrics[0] == f"panels: 64, θ = {r['theta_deg']:g}°"
     assert metrics[1].startswith(f"largest deviation: {r['max_deviation']:.3g} model units")
