@@ -1,0 +1,242 @@
+//! The searches of [`approximate`](super::approximate) (monge's extension; BOBYQA as in
+//! §4.7): Levenberg–Marquardt on the residuals, with a finite-difference Jacobian,
+//! and BOBYQA where the least squares stall.
+
+use super::{sum_of_squares, Matches, Progress, Search, Start, RECOVERED};
+
+impl Search<'_> {
+    /// The Jacobian of the residuals at `x` (real units), measured against the
+    /// `matches` of `x`'s own mesh (no spatial search: the residuals are smooth there),
+    /// by forward differences of [`FD_STEP`] of each parameter's scale, the columns in
+    /// parallel (in their order, whatever the threads); a column whose step is
+    /// infeasible is taken backwards, and nil if that is infeasible too. `None` once
+    /// stopped.
+    fn jacobian(
+        &mut self,
+        start: &Start,
+        x: &[f64],
+        (r, matches): (&[f64], &Matches),
+        scale: &[f64],
+        faces: (usize, usize),
+    ) -> Option<nalgebra::DMatrix<f64>> {
+        // A column, the meshes it generated, and whether the stop came first.
+        let column = |k: usize| -> (Vec<f64>, usize, bool) {
+            let mut evaluations = 0;
+            for sign in [1.0, -1.0] {
+                if (self.stop)() {
+                    return (Vec::new(), evaluations, true);
+                }
+                let mut xk = x.to_vec();
+                xk[k] += sign * FD_STEP * scale[k];
+                evaluations += 1;
+                if let Some(grid) = self.mesh(start, &xk, faces) {
+                    let rk = self.target.residuals(&grid, matches);
+                    let column = rk.iter().zip(r).map(|(a, b)| sign * (a - b) / FD_STEP);
+                    return (column.collect(), evaluations, false);
+                }
+            }
+            (vec![0.0; r.len()], evaluations, false)
+        };
+        #[cfg(feature = "parallel")]
+        let columns: Vec<(Vec<f64>, usize, bool)> = {
+            use rayon::prelude::*;
+            (0..x.len()).into_par_iter().map(column).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let columns: Vec<(Vec<f64>, usize, bool)> = (0..x.len()).map(column).collect();
+        self.evaluations += columns.iter().map(|c| c.1).sum::<usize>();
+        if columns.iter().any(|c| c.2) {
+            self.timed_out = true;
+            return None;
+        }
+        Some(nalgebra::DMatrix::from_fn(r.len(), x.len(), |i, k| {
+            columns[k].0[i]
+        }))
+    }
+
+    /// One Levenberg–Marquardt run from `x0` on `faces` (parameters in units of their
+    /// scale, [`scales`]; Marquardt's diagonal damping; a step is kept only when it
+    /// lowers the objective, so the result is never worse than `x0`), until a step
+    /// gains less than [`LM_GAIN`] of the objective (or [`LM_FLOOR`] squared), the damping grows past any use,
+    /// the run's budget is spent or the search is stopped; the best point and its
+    /// objective (NaN, `x0` when `x0` is infeasible).
+    pub(super) fn run(
+        &mut self,
+        start: &Start,
+        x0: &[f64],
+        faces: (usize, usize),
+        progress: &mut dyn FnMut(&Progress),
+    ) -> (f64, Vec<f64>) {
+        let n = x0.len();
+        let first = self.evaluations;
+        let scale = scales(n, self.target.size);
+        let mut x = x0.to_vec();
+        let Some((mut r, mut matches)) = self.evaluate(start, &x, faces) else {
+            return (f64::NAN, x);
+        };
+        let mut f = sum_of_squares(&r);
+        let mut damping = 1e-3;
+        while self.evaluations - first + n < self.budget {
+            let Some(jacobian) = self.jacobian(start, &x, (&r, &matches), &scale, faces) else {
+                break;
+            };
+            progress(&self.progress());
+            let jtj = jacobian.transpose() * &jacobian;
+            let gradient = jacobian.transpose() * nalgebra::DVector::from_column_slice(&r);
+            let floor = 1e-12 * jtj.diagonal().max().max(f64::MIN_POSITIVE);
+            let mut gain = 0.0;
+            while damping < 1e12 && self.evaluations - first < self.budget {
+                let mut system = jtj.clone();
+                for k in 0..n {
+                    system[(k, k)] += damping * jtj[(k, k)].max(floor);
+                }
+                let Some(step) = system.cholesky().map(|c| c.solve(&gradient)) else {
+                    damping *= 4.0;
+                    continue;
+                };
+                let trial: Vec<f64> = x
+                    .iter()
+                    .zip(step.iter().zip(&scale))
+                    .map(|(x, (s, scale))| x - s * scale)
+                    .collect();
+                let trial_r = self.evaluate(start, &trial, faces);
+                if self.timed_out {
+                    break;
+                }
+                let Some((trial_r, trial_matches)) = trial_r else {
+                    damping *= 4.0;
+                    continue;
+                };
+                let value = sum_of_squares(&trial_r);
+                if value < f {
+                    gain = (f - value) / f.max(LM_FLOOR * LM_FLOOR / LM_GAIN);
+                    (x, r, matches, f) = (trial, trial_r, trial_matches, value);
+                    damping = (damping / 3.0).max(1e-9);
+                    break;
+                }
+                damping *= 4.0;
+            }
+            progress(&self.progress());
+            if gain < LM_GAIN || self.timed_out {
+                break;
+            }
+        }
+        (f, x)
+    }
+
+    /// One BOBYQA run (with one restart, Powell 2009, set up as in [`crate::optimise`])
+    /// from `x0` on `faces`, trust region from `rho` of the unit box: where the least
+    /// squares stall away from the target (a target that one patch cannot follow, whose
+    /// objective is rugged), a derivative-free search that moves farther; the best point
+    /// and its objective.
+    pub(super) fn polish(
+        &mut self,
+        start: &Start,
+        x0: &[f64],
+        faces: (usize, usize),
+        rho: f64,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> (f64, Vec<f64>) {
+        let n = x0.len();
+        let (lower, upper) = bounds(x0, self.target.size);
+        let to_real = |t: &[f64]| -> Vec<f64> {
+            t.iter()
+                .zip(lower.iter().zip(&upper))
+                .map(|(t, (l, u))| l + t * (u - l))
+                .collect::<Vec<f64>>()
+        };
+        let mut t: Vec<f64> = x0
+            .iter()
+            .zip(lower.iter().zip(&upper))
+            .map(|(x, (l, u))| ((x - l) / (u - l)).clamp(0.0, 1.0))
+            .collect();
+        let mut config = bobyqa::Config::new(n);
+        config.rho_begin = rho;
+        config.rho_end = 1e-7;
+        config.max_fun = self.budget;
+        config.restart = Some(bobyqa::RestartConfig::new());
+        let mut solver = bobyqa::Bobyqa::new(n, config).expect("a valid BOBYQA configuration");
+        let unit = self.objective(start, x0, faces);
+        if !unit.is_finite() {
+            return (unit, x0.to_vec());
+        }
+        let outcome = solver.minimize(
+            |t: &[f64]| {
+                // In units of the start's objective, for BOBYQA's relative tests.
+                let f = self.objective(start, &to_real(t), faces) / unit;
+                progress(&self.progress());
+                f
+            },
+            &mut t,
+            &vec![0.0; n],
+            &vec![1.0; n],
+        );
+        if outcome.found_finite() && outcome.f < 1.0 {
+            (outcome.f * unit, to_real(&t))
+        } else {
+            (unit, x0.to_vec())
+        }
+    }
+
+    /// The least squares ([`Search::run`]) from `x0` on `faces`, then, unless they end
+    /// within [`RECOVERED`] of the target, [`Search::polish`] from their result with a
+    /// trust region from `rho`; the best point and its objective.
+    pub(super) fn refine(
+        &mut self,
+        start: &Start,
+        x0: &[f64],
+        faces: (usize, usize),
+        rho: f64,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> (f64, Vec<f64>) {
+        let (f, x) = self.run(start, x0, faces, progress);
+        if !f.is_finite() || f.sqrt() <= RECOVERED || self.timed_out {
+            return (f, x);
+        }
+        let (g, y) = self.polish(start, &x, faces, rho, progress);
+        if g < f {
+            (g, y)
+        } else {
+            (f, x)
+        }
+    }
+}
+
+/// Bounds of the parameters around `x0` (real units), for a target of `size`.
+fn bounds(x0: &[f64], size: f64) -> (Vec<f64>, Vec<f64>) {
+    let spans = [0.1 * size; 3]
+        .into_iter()
+        .chain([0.35; 3])
+        .chain([0.8; 2])
+        .chain([0.0])
+        .chain(std::iter::repeat(0.3 * size));
+    let (mut lower, mut upper): (Vec<f64>, Vec<f64>) =
+        x0.iter().zip(spans).map(|(x, s)| (x - s, x + s)).unzip();
+    (lower[8], upper[8]) = (-179.0, 179.0);
+    (lower, upper)
+}
+
+/// Forward-difference step of the Jacobian, in units of each parameter's scale.
+const FD_STEP: f64 = 1e-6;
+
+/// A Levenberg–Marquardt run stops when a step lowers the objective by less than
+/// this fraction of it, or by less than [`LM_FLOOR`] squared.
+const LM_GAIN: f64 = 1e-4;
+
+/// Relative RMS distance below whose square a step's gain is not worth another
+/// Jacobian: an exact target's objective keeps falling by large fractions of itself
+/// long after the distances are well under any tolerance.
+const LM_FLOOR: f64 = 3e-6;
+
+/// The scale of each parameter (real units), for a target of `size`: the unit in which
+/// the least squares moves it (corner, rotation, tilts, θ in degrees, control points).
+fn scales(n: usize, size: f64) -> Vec<f64> {
+    [0.1 * size; 3]
+        .into_iter()
+        .chain([0.35; 3])
+        .chain([0.8; 2])
+        .chain([10.0])
+        .chain(std::iter::repeat(0.3 * size))
+        .take(n)
+        .collect()
+}
