@@ -9,7 +9,7 @@
 #                                      at a time as there are cores
 #
 # New inputs go to fuzz/target/corpus/TARGET (not committed); crashes to
-# fuzz/artifacts/TARGET/. FUZZ_PROFILE=ci builds with less optimisation (CI's
+# fuzz/artifacts/TARGET/. FUZZ_PROFILE=quick builds with less optimisation (for
 # short runs; see Cargo.toml). Targets: design_json design_toml mesh_obj mesh_ply
 # mesh_json iges.
 set -euo pipefail

@@ -24,7 +24,7 @@ fi
 # dask and pandas: monge.dask on a local cluster; pefile, macholib, pyelftools,
 # auditwheel: the checks of the cross-built wheels (scripts/wheels.sh), when
 # target/wheels-all holds them.
-"$venv/bin/python" -m pip install --quiet "maturin>=1.9.4,<2" numpy pytest rhino3dm compas ghhops-server flask mypy \
+"$venv/bin/python" -m pip install --quiet "maturin>=1.9.4,<2" numpy pytest pytest-xdist rhino3dm compas ghhops-server flask mypy \
   "dask[distributed]" pandas pefile macholib pyelftools auditwheel
 [ "${1:-}" = --setup ] && exit 0
 
@@ -66,6 +66,7 @@ esac
 echo "== pytest"
 export MONGE_BIN="$target/debug/monge"
 export MONGE_TEST_WHEEL="$wheel"
-# Run from outside the source tree so that the installed wheel is imported.
+# Run from outside the source tree so that the installed wheel is imported; one
+# worker process per core (pytest-xdist).
 cd "$target"
-"$venv/bin/python" -m pytest -q "$OLDPWD/crates/monge-py/tests" "$@"
+"$venv/bin/python" -m pytest -q -n auto "$OLDPWD/crates/monge-py/tests" "$@"

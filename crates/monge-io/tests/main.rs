@@ -8,6 +8,7 @@ mod atomic;
 mod common;
 mod design;
 mod fabrication_outputs;
+mod fuzz_corpus;
 mod iges_read;
 mod iges_write;
 mod mesh_read;
