@@ -545,6 +545,7 @@ async function main() {
       metrics: document.getElementById('metrics').textContent,
       error: document.getElementById('error').hidden ? null : document.getElementById('error').textContent,
       generations: explorer.state.generations,
+      geometries: explorer.frames().geometries,
       // Once idle, a drag's answer (drawn in drag quality, without metrics) has
       // been followed by the full one.
       full: !explorer.state.fast && !document.getElementById('metrics').classList.contains('pending'),
@@ -582,6 +583,8 @@ async function main() {
     assert.notDeepEqual(dragged.vertices, turned.vertices, 'the mesh changed with the control point');
     assert.notEqual(dragged.metrics, turned.metrics, 'the metrics changed with the control point');
     assert.ok(dragged.full, 'full quality and metrics once the point rests');
+    // Each move draws the handles again: what it replaces is freed.
+    assert.equal(dragged.geometries, turned.geometries, 'a drag leaves WebGL holding the buffers of as many geometries as before');
     log(`dragged guide_u P3 ${before[3]} → ${after[3].map((x) => x.toFixed(3))}`);
 
     // The page's mesh is `monge generate`'s on the page's design, bit for bit,

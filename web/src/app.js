@@ -15,8 +15,8 @@ import { depth, record, step } from './history.js';
 import { handleOnScreen, installHandles, showHandles } from './handles.js';
 import { showArcs, showAxes, showColours, showMarkers, showPlanes } from './layers.js';
 import {
-  arcLines, axesGroup, camera, coloured, drawn, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
-  quality, redraw, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial, timeNextFrame, wire,
+  arcLines, axesGroup, camera, coloured, drawn, empty, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
+  quality, redraw, renderer, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial, timeNextFrame, wire,
 } from './view.js';
 
 let settleTimer = null;
@@ -148,7 +148,7 @@ function showError(error, fast = false, source = null, refused = false) {
   state.stale = true;
   forgetMeasure(); // an answer for the refused design's predecessor is stale
   $('warnings').replaceChildren();
-  markers.clear();
+  empty(markers);
   $('last-valid').hidden = current === null;
   labelExports(current !== null);
   showHandles(); // where the refused edit put them
@@ -236,9 +236,9 @@ window.explorer = {
   /**
    * What the last frames drew: `drag`, the primitives of the last drag frame;
    * `steps`, the indices each step of the last full-quality frame drew, each
-   * at most `stepIndices`.
+   * at most `stepIndices`; `geometries`, those whose buffers WebGL holds.
    */
-  frames: () => ({ drag: drawn.drag, steps: [...drawn.steps], stepIndices: STEP_INDICES }),
+  frames: () => ({ drag: drawn.drag, steps: [...drawn.steps], stepIndices: STEP_INDICES, geometries: renderer.info.memory.geometries }),
   idle: () => !frameOwed() && settleTimer === null && !measurePending(),
   /** The cyclidic net drawn: { lines, arcs, segments } (chord ends), or { error }, or null. */
   arcs: () => (state.net && !state.net.error ? { ...state.net, segments: arcLines.visible ? arcLines.geometry.getAttribute('position').count / 2 : 0 } : state.net),

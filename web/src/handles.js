@@ -4,7 +4,7 @@
 // its guide's plane and changes the design.
 import * as THREE from 'three';
 import { state } from './page.js';
-import { camera, handles, meshSize, orbit, renderer, setPolyline } from './view.js';
+import { camera, dotGeometry, empty, handles, meshSize, orbit, renderer, setPolyline } from './view.js';
 
 /**
  * The draggable points of a guide, as [x, y, z] arrays: a B-spline's control
@@ -51,7 +51,8 @@ const REFUSED = 0xff00ff;
 function handle(p, name, index, color, radius) {
   const refused = state.invalid?.handle;
   const bad = refused && refused.guide === name && refused.index === index;
-  const dot = new THREE.Mesh(new THREE.SphereGeometry(bad ? 1.6 * radius : radius, 16, 8), new THREE.MeshBasicMaterial({ color: bad ? REFUSED : color, depthTest: false }));
+  const dot = new THREE.Mesh(dotGeometry, new THREE.MeshBasicMaterial({ color: bad ? REFUSED : color, depthTest: false }));
+  dot.scale.setScalar(bad ? 1.6 * radius : radius);
   dot.position.copy(p);
   dot.renderOrder = 3;
   dot.userData = { guide: name, index, refused: Boolean(bad) };
@@ -59,7 +60,7 @@ function handle(p, name, index, color, radius) {
 }
 
 export function showHandles() {
-  handles.clear();
+  empty(handles);
   const radius = 0.018 * meshSize();
   for (const [name, color] of [['u', 0xd02020], ['v', 0x2040d0]]) {
     const end = arcEnd(name);

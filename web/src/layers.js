@@ -4,7 +4,7 @@
 // mesh folds or nearly pinches with their warnings, and the cyclidic net's arcs.
 import * as THREE from 'three';
 import { $, current, fmt, state } from './page.js';
-import { arcLines, axesGroup, coloured, markers, meshSize, planesGroup, surface } from './view.js';
+import { arcLines, axesGroup, coloured, dotGeometry, empty, markers, meshSize, planesGroup, surface } from './view.js';
 
 /** Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2). */
 const LOW_CROSSING_SINE = 1e-3;
@@ -70,7 +70,7 @@ const AXIS_CLIP = 3;
 
 /** The pencil axes L1 (of the v-lines) and L2 (of the u-lines) of the header's Gauss map (§2.1.2). */
 export function showAxes(header) {
-  axesGroup.clear();
+  empty(axesGroup);
   const notes = [];
   for (const [name, color] of [['l1', 0x109010], ['l2', 0x9020b0]]) {
     const axis = header.axes[name];
@@ -107,7 +107,7 @@ const PLANES_PER_FAMILY = 12;
  * vertex), which lies in the line's plane as the line is planar.
  */
 export function showPlanes(header) {
-  planesGroup.clear();
+  empty(planesGroup);
   if (!planesGroup.visible) return;
   const drawn = surface.geometry.getAttribute('position').array;
   const { rows, cols } = header;
@@ -136,7 +136,7 @@ export function showPlanes(header) {
 
 /** Red and orange marks where the mesh folds or nearly pinches (§5.2), and the warnings. */
 export function showMarkers(header) {
-  markers.clear();
+  empty(markers);
   const size = meshSize();
   const r = header.report;
   const warnings = [];
@@ -154,7 +154,8 @@ export function showMarkers(header) {
   }
   for (const m of marks) {
     const color = m.kind === 'fold' ? 0xff0000 : 0xff8800;
-    const dot = new THREE.Mesh(new THREE.SphereGeometry(0.02 * size, 16, 8), new THREE.MeshBasicMaterial({ color, depthTest: false }));
+    const dot = new THREE.Mesh(dotGeometry, new THREE.MeshBasicMaterial({ color, depthTest: false }));
+    dot.scale.setScalar(0.02 * size);
     dot.position.fromArray(current.faceCentre(...m.face));
     dot.renderOrder = 2;
     markers.add(dot);

@@ -39,6 +39,19 @@ const sphereWire = new THREE.Mesh(new THREE.SphereGeometry(0.995, 48, 24), new T
 gauss.add(sphereWire, gaussSurface, gaussWire);
 for (const line of Object.values(guideLines)) line.renderOrder = 1;
 for (const grid of [surface, wire, gaussSurface, gaussWire]) grid.frustumCulled = false; // see setGrid
+/** The sphere of a dot (radius 1, scaled to each), shared by the handles and the marks. */
+export const dotGeometry = new THREE.SphereGeometry(1, 16, 8);
+
+/**
+ * Removes a group's objects and frees the buffers they hold in WebGL (three.js
+ * keeps a geometry's until it is disposed), except the shared dot's sphere.
+ */
+export function empty(group) {
+  group.traverse((o) => {
+    if (o !== group && o.geometry && o.geometry !== dotGeometry) o.geometry.dispose();
+  });
+  group.clear();
+}
 /** The surface with one colour per face (by panel area or by fold), shown instead of `surface`. */
 export const coloured = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({
   vertexColors: true, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
@@ -59,16 +72,27 @@ scene.add(arcLines, surface, coloured, wire, guideLines.u, guideLines.v, handles
 /**
  * Drag quality: while θ, a control point or the view is being dragged the
  * page draws at half the pixel ratio, without the wireframes (the mesh's, the
- * Gauss map's and its sphere's), each grid by at most DRAG_LINES of its
+ * Gauss map's and its sphere's), each grid by at most `dragLines` of its
  * curvature lines a family (every k-th and the last: the mesh's own
  * vertices), and asks for the mesh without its metrics; once the drag has
  * rested for SETTLE_MS it asks again, with the metrics, and draws at full
  * quality. WebGL drawn in software (no GPU) costs about the vertices, pixels
- * and lines it draws.
+ * and lines it draws; of a drag frame, the triangles most (a 100 × 100 frame
+ * drawn by 20 lines a family instead of 50 takes about half the time).
  */
 export const SETTLE_MS = 150;
 const DRAG_PIXEL_RATIO = 0.5;
+/** The mesh's curvature lines a family in drag quality. */
 const DRAG_LINES = 51;
+/** The Gauss map's size beside the mesh: its unit sphere is drawn at this share of the mesh's bounding radius. */
+const GAUSS_SCALE = 0.4;
+
+/**
+ * The curvature lines a family that `grid` is drawn by in drag quality: the
+ * Gauss map, at most GAUSS_SCALE of the mesh's size on the screen, by as
+ * many fewer, so that its lines are no further apart there than the mesh's.
+ */
+const dragLines = (grid) => (grid === gaussSurface ? Math.round(GAUSS_SCALE * (DRAG_LINES - 1)) + 1 : DRAG_LINES);
 
 /**
  * The full-quality frame is drawn offscreen, in steps of at most STEP_INDICES
@@ -218,7 +242,7 @@ function pixelRatio(factor) {
   if (renderer.getPixelRatio() !== ratio) renderer.setPixelRatio(ratio); // clears the canvas
 }
 
-/** The grids drawn by at most DRAG_LINES curvature lines a family. */
+/** The grids drawn by at most `dragLines` of their curvature lines a family. */
 function drawDrag() {
   pixelRatio(DRAG_PIXEL_RATIO);
   const grids = [surface, gaussSurface].filter((m) => m.geometry.userData.drag);
@@ -353,7 +377,7 @@ function gridEdges(rows, cols) {
 /**
  * Puts a grid into a surface and its wireframe, reusing buffers of the same
  * size; the surface's geometry keeps its full triangles and, when the grid
- * has more than DRAG_LINES lines a family, the drag quality's.
+ * has more lines a family than `dragLines`, the drag quality's.
  */
 export function setGrid(mesh, lines, rows, cols, positions, normals) {
   let geometry = mesh.geometry;
@@ -365,7 +389,7 @@ export function setGrid(mesh, lines, rows, cols, positions, normals) {
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setIndex(gridTriangles(cols, everyStep(rows, 1), everyStep(cols, 1)));
-    const step = Math.ceil((Math.max(rows, cols) - 1) / (DRAG_LINES - 1));
+    const step = Math.ceil((Math.max(rows, cols) - 1) / (dragLines(mesh) - 1));
     const drag = step > 1 ? new THREE.Uint32BufferAttribute(gridTriangles(cols, everyStep(rows, step), everyStep(cols, step)), 1) : null;
     geometry.userData = { rows, cols, full: geometry.index, drag };
     mesh.geometry = geometry;
@@ -405,7 +429,7 @@ export function meshSize() {
 /** Looks at the whole mesh, with the Gauss map beside it. */
 export function fitView() {
   const { center, radius } = surface.geometry.boundingSphere;
-  gauss.scale.setScalar(0.4 * radius);
+  gauss.scale.setScalar(GAUSS_SCALE * radius);
   gauss.position.copy(center).add(new THREE.Vector3(1.5 * radius, 0, 0));
   const target = center.clone().add(new THREE.Vector3(0.6 * radius, 0, 0));
   orbit.target.copy(target);
