@@ -96,7 +96,12 @@ function showMesh(mesh, t0, fast = false) {
 
 /**
  * The design changed at time `t0` (null: no input to time): generate its mesh
- * now, in the input's own task, so it is drawn in the very next frame.
+ * now, in the input's own task, so it is drawn in the very next frame. (A
+ * worker's answer comes after the input's frame has begun, a frame later: a
+ * drag's meshes generated in a worker of their own, latest input first, made
+ * a 300 × 300 drag lag, its frames' median from about 40 to 140 ms, input to
+ * frame, measured by the end-to-end test; a frame's time goes mostly to
+ * software GL drawing it, see `dragLines` in view.js.)
  * `dragging`: θ or a control point is being dragged, so the mesh is drawn in
  * drag quality without its metrics, then in full with them once the drag has
  * rested for SETTLE_MS. `name` names the design's file in messages; `source`
@@ -240,6 +245,8 @@ window.explorer = {
    */
   frames: () => ({ drag: drawn.drag, steps: [...drawn.steps], stepIndices: STEP_INDICES, geometries: renderer.info.memory.geometries }),
   idle: () => !frameOwed() && settleTimer === null && !measurePending(),
+  /** The vertices the surface is drawn with (f32), as three.js holds them. */
+  drawnVertices: () => Array.from(surface.geometry.getAttribute('position').array),
   /** The cyclidic net drawn: { lines, arcs, segments } (chord ends), or { error }, or null. */
   arcs: () => (state.net && !state.net.error ? { ...state.net, segments: arcLines.visible ? arcLines.geometry.getAttribute('position').count / 2 : 0 } : state.net),
   /** The JSON `monge smooth -o net.json --samples 9` writes for the design shown, as text. */

@@ -40,7 +40,7 @@ gauss.add(sphereWire, gaussSurface, gaussWire);
 for (const line of Object.values(guideLines)) line.renderOrder = 1;
 for (const grid of [surface, wire, gaussSurface, gaussWire]) grid.frustumCulled = false; // see setGrid
 /** The sphere of a dot (radius 1, scaled to each), shared by the handles and the marks. */
-export const dotGeometry = new THREE.SphereGeometry(1, 16, 8);
+export const dotGeometry = new THREE.SphereGeometry(1, 12, 6);
 
 /**
  * Removes a group's objects and frees the buffers they hold in WebGL (three.js
@@ -308,9 +308,13 @@ function drawStep({ objects, range }, first) {
   for (const o of hidden) o.visible = true;
 }
 
-/** The next frame drawn shows the result of the input at time `t0` (an event's timeStamp): its latency is recorded then. */
+/**
+ * The next frame drawn shows the result of the input at time `t0` (an event's
+ * timeStamp): its latency is recorded then, from the earliest such input it
+ * is the first to show.
+ */
 export function timeNextFrame(t0) {
-  pendingLatency = t0;
+  if (pendingLatency === null) pendingLatency = t0;
 }
 
 /** A frame was drawn: the latency of the input it shows is measured at the end of its task. */
