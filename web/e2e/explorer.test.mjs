@@ -693,6 +693,25 @@ async function main() {
       return { side, frames };
     };
     const at100 = await latency();
+    // Two inputs 200 ms apart in one task: the frame after is the first to
+    // show either, and the readout counts from the earlier.
+    const apart = await page.evaluate(() => {
+      explorer.state.latencies.length = 0;
+      const theta = document.getElementById('theta');
+      const step = (d) => {
+        theta.value = String(Number(theta.value) + d);
+        const input = new Event('input');
+        theta.dispatchEvent(input);
+        return input.timeStamp;
+      };
+      const first = step(1);
+      while (performance.now() - first < 200); // no frame in between
+      return step(-1) - first;
+    });
+    await idle();
+    const counted = await page.evaluate(() => explorer.state.latencies);
+    assert.equal(counted.length, 1, `one frame shows both inputs: ${counted}`);
+    assert.ok(counted[0] >= apart, `the readout counts from the earlier input: ${counted[0]} ms, the inputs ${apart} ms apart`);
     for (const g of ['u', 'v']) {
       await page.fill(`#samples-${g}`, '301');
       await page.dispatchEvent(`#samples-${g}`, 'change');
