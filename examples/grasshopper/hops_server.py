@@ -10,9 +10,12 @@ In Grasshopper, place a Hops component and set its path to
 http://127.0.0.1:5000/monge_generate: it takes two curves, θ and the number of
 samples, and returns the mesh, its Gauss map and the metrics (or the error).
 With the path http://127.0.0.1:5000/monge_approximate it takes a surface or
-polysurface (a Brep), the faces along each side and the number of starts, and
-returns the exact mesh nearest to it and the metrics: the panels and the
-deviation in model units (or the error).
+polysurface (a Brep), the faces along each side, the number of starts and
+optionally a tolerance (as `monge approximate --tolerance`: 5cm, 0.05m, 50mm, or
+5e-3 of the surface's size; then as many patches as it takes, up to 6), and
+returns the exact mesh nearest to it and the metrics: the panels, node types,
+the deviation in model units, each patch, whether the tolerance is met (or the
+error).
 """
 
 import sys
@@ -63,18 +66,28 @@ def monge_generate(guide_u, guide_v, theta, samples=21):
         hs.HopsBrep("Target", "T", "The surface or polysurface to rationalise"),
         hs.HopsInteger("Faces", "F", "Faces along each side"),
         hs.HopsInteger("Starts", "S", "Starts of the search (more: slower, safer)"),
+        # A tree: an unconnected input arrives as an empty one (an item would be refused).
+        hs.HopsString(
+            "Tolerance",
+            "Tol",
+            "Within this of the surface both ways, with as many patches as it takes: a length "
+            "with its unit (5cm, 0.05m, 50mm) or a fraction of its size (5e-3); unconnected: one patch",
+            access=hs.HopsParamAccess.TREE,
+        ),
     ],
     outputs=[
-        hs.HopsMesh("Mesh", "M", "The quad mesh, node axes as vertex normals"),
-        hs.HopsString("Metrics", "I", "Panels, deviation in model units, measured errors"),
+        hs.HopsMesh("Mesh", "M", "The quad mesh (the patches merged), node axes as vertex normals"),
+        hs.HopsString("Metrics", "I", "Panels, node types, deviation in model units, tolerance, measured errors"),
     ],
 )
-def monge_approximate(target, faces, starts):
+def monge_approximate(target, faces, starts, tolerance):
+    tolerance = next((t for branch in tolerance.values() for t in branch if t), None)
     try:
-        r = mgh.approximate(target, grid=(faces, faces), starts=starts)
+        r = mgh.approximate(target, grid=(faces, faces), starts=starts, tolerance=tolerance)
     except monge.MongeError as e:
         return None, [f"error: {e}"]
-    return monge.rhino.rhino_mesh(r["mesh"]), r["metrics"]
+    result = r["result"]
+    return monge.rhino.quad_mesh(result["vertices"], result["faces"], result["normals"]), r["metrics"]
 
 
 if __name__ == "__main__":

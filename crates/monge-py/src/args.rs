@@ -3,6 +3,7 @@
 //! unsigned`, which says neither which argument nor what to give. Each
 //! function here is a `from_py_with` extractor of one argument.
 
+use monge_core::approximate::{PatchLayout, Tolerance, ToleranceError};
 use monge_core::BasePoint;
 use pyo3::prelude::*;
 
@@ -115,5 +116,67 @@ pub fn grid(obj: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
         (Ok(u), Ok(v)) => Ok((u, v)),
         (Err(e), _) | (_, Err(e)) if e.is_instance_of::<OptimiseError>(obj.py()) => Err(refuse(e)),
         (Err(e), _) | (_, Err(e)) => Err(e),
+    }
+}
+
+/// `approximate(patches=...)`: `"UxV"` or `"K"` as the command's `--patches`, an
+/// int K (K × 1), or a pair (U, V); all parsed by [`PatchLayout`]'s own parser, so
+/// that the messages are the command's.
+pub fn patches(obj: &Bound<'_, PyAny>) -> PyResult<Option<PatchLayout>> {
+    if obj.is_none() {
+        return Ok(None);
+    }
+    let text = if let Ok(s) = obj.extract::<String>() {
+        s
+    } else if let Ok(k) = obj.extract::<i64>() {
+        k.to_string()
+    } else if let Ok((u, v)) = obj.extract::<(i64, i64)>() {
+        format!("{u}x{v}")
+    } else {
+        return Err(OptimiseError::new_err(format!(
+            "patches = {}: give \"UxV\" (e.g. \"2x3\"), K (K × 1) or (U, V), whole numbers of \
+             patches along guide_u and guide_v",
+            obj.repr()?
+        )));
+    };
+    let repr = obj.repr()?;
+    text.parse()
+        .map(Some)
+        .map_err(|e: String| OptimiseError::new_err(format!("patches = {repr}: {e}")))
+}
+
+/// `approximate(tolerance=...)`: a number relative to the target's size, or a
+/// string as the command's `--tolerance` (`"5e-3"`, `"0.05m"`, `"5cm"`, `"50mm"`);
+/// both parsed by [`Tolerance`]'s own parser (a number as its shortest decimal
+/// text), so that the checks and messages are the command's.
+pub fn tolerance(obj: &Bound<'_, PyAny>) -> PyResult<Option<Tolerance>> {
+    if obj.is_none() {
+        return Ok(None);
+    }
+    let text = if let Ok(s) = obj.extract::<String>() {
+        s
+    } else if let Ok(x) = obj.extract::<f64>() {
+        x.to_string()
+    } else {
+        return Err(OptimiseError::new_err(format!(
+            "tolerance = {}: give a number relative to the target's size (e.g. 5e-3) or a \
+             length with its unit (e.g. \"0.05m\", \"5cm\", \"50mm\")",
+            obj.repr()?
+        )));
+    };
+    text.parse()
+        .map(Some)
+        .map_err(|e: ToleranceError| OptimiseError::new_err(format!("tolerance: {e}")))
+}
+
+/// `approximate(max_patches=N)`: at least 1.
+pub fn max_patches(obj: &Bound<'_, PyAny>) -> PyResult<Option<usize>> {
+    if obj.is_none() {
+        return Ok(None);
+    }
+    let hint = "give a whole number of patches, at least 1 (default 6)";
+    match whole(obj, "max_patches", hint, OptimiseError::new_err)? {
+        0 => Err(OptimiseError::new_err(format!("max_patches = 0: {hint}"))),
+        n => Ok(Some(n)),
     }
 }

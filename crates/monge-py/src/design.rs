@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use monge_core::MeshKind;
-use monge_io::{parse_design, read_design, write_design, DesignFormat, IoError};
+use monge_io::{parse_design, read_design, write_design, write_multipatch, DesignFormat, IoError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde::Serialize;
@@ -271,6 +271,54 @@ impl Design {
     }
 
     fn __eq__(&self, other: &Design) -> bool {
+        self.inner == other.inner
+    }
+}
+
+/// A multi-patch design (§4.7): patches with piecewise planar curvature lines, each
+/// attached to an earlier one, in the format `monge patches` and `monge fit` read
+/// (`.patches.json`). `approximate(target, patches=...)` or `tolerance=...` returns
+/// one when several patches follow the target closer than one.
+#[pyclass(module = "monge", frozen)]
+#[derive(Clone)]
+pub struct PatchesDesign {
+    /// The design itself.
+    pub inner: monge_core::multipatch::MultiPatchDesign,
+}
+
+#[pymethods]
+impl PatchesDesign {
+    /// The design as a dict with the keys of a multi-patch design file (what
+    /// `fit(design)` takes).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_to_python(py, &self.inner)
+    }
+
+    /// Writes the multi-patch design file (`monge patches` reads it), pretty JSON
+    /// or TOML by the extension, atomically, as `monge approximate` writes it.
+    fn to_file(&self, path: PathBuf) -> PyResult<()> {
+        write_multipatch(&self.inner, &path).map_err(io_error)
+    }
+
+    /// θ of each patch in degrees, in design order (each in its own frame).
+    #[getter]
+    fn theta_deg(&self) -> Vec<f64> {
+        self.inner.patches.iter().map(|p| p.theta_deg).collect()
+    }
+
+    fn __len__(&self) -> usize {
+        self.inner.patches.len()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "PatchesDesign(patches={}, theta_deg={:?})",
+            self.inner.patches.len(),
+            self.theta_deg()
+        )
+    }
+
+    fn __eq__(&self, other: &PatchesDesign) -> bool {
         self.inner == other.inner
     }
 }

@@ -23,6 +23,7 @@ fn _monge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     errors::register(m)?;
     m.add_class::<design::Design>()?;
+    m.add_class::<design::PatchesDesign>()?;
     m.add_class::<mesh::Mesh>()?;
     m.add_function(wrap_pyfunction!(mesh::generate, m)?)?;
     m.add_function(wrap_pyfunction!(tools::info, m)?)?;

@@ -96,6 +96,15 @@ pub fn measurements(
     (m, max_error)
 }
 
+/// The quad faces of `grid` as rows of four 0-based indices (`Mesh.faces`).
+pub fn faces_array<'py>(py: Python<'py>, grid: &QuadGrid) -> PyResult<Bound<'py, PyArray2<u64>>> {
+    let faces: Vec<u64> = grid
+        .oriented_faces()
+        .flat_map(|f| f.map(|k| k as u64))
+        .collect();
+    PyArray1::from_vec(py, faces).reshape([grid.face_count(), 4])
+}
+
 /// The `(rows, cols, 3)` read-only numpy view of `points`, kept alive by `owner`.
 fn view<'py>(
     owner: &Bound<'py, Mesh>,
@@ -243,12 +252,7 @@ impl Mesh {
     /// turn the other way about them (an offset through the focal surface; §2.2).
     #[getter]
     fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u64>>> {
-        let g = self.geometry.grid();
-        let faces: Vec<u64> = g
-            .oriented_faces()
-            .flat_map(|f| f.map(|k| k as u64))
-            .collect();
-        PyArray1::from_vec(py, faces).reshape([g.face_count(), 4])
+        faces_array(py, self.geometry.grid())
     }
 
     /// Number of rows (samples of guide_u, or one less for a conical mesh).

@@ -133,21 +133,23 @@ def test_hops_approximates_a_surface(hops_client):
             knots[k] = t
     brep = rhino3dm.Brep.CreateFromSurface(s)
 
-    def request(target):
+    def request(target, tolerance=None):
         def item(name, type_, data):
             return {"ParamName": name, "InnerTree": {"{0}": [{"type": type_, "data": data}]}}
 
-        return {
-            "pointer": "/monge_approximate",
-            "values": [
-                item("Target", "Rhino.Geometry.Brep", json.dumps(target.Encode())),
-                item("Faces", "System.Int32", json.dumps(8)),
-                item("Starts", "System.Int32", json.dumps(1)),
-            ],
-        }
+        values = [
+            item("Target", "Rhino.Geometry.Brep", json.dumps(target.Encode())),
+            item("Faces", "System.Int32", json.dumps(8)),
+            item("Starts", "System.Int32", json.dumps(1)),
+        ]
+        if tolerance is None:  # unconnected
+            values.append({"ParamName": "Tolerance", "InnerTree": {}})
+        else:
+            values.append(item("Tolerance", "System.String", json.dumps(tolerance)))
+        return {"pointer": "/monge_approximate", "values": values}
 
     desc = json.loads(hops_client.get("/monge_approximate").data)
-    assert [i["Name"] for i in desc["Inputs"]] == ["Target", "Faces", "Starts"]
+    assert [i["Name"] for i in desc["Inputs"]] == ["Target", "Faces", "Starts", "Tolerance"]
     out = outputs(hops_client.post("/solve", data=json.dumps(request(brep))))
     mesh = rhino3dm.CommonObject.Decode(json.loads(out["Mesh"][0]))
     assert mesh.Faces.QuadCount == 64 and len(mesh.Vertices) == 81
@@ -158,3 +160,14 @@ def test_hops_approximates_a_surface(hops_client):
     metrics = [json.loads(m) for m in out["Metrics"]]
     assert metrics[0] == f"panels: 64, θ = {r['theta_deg']:g}°"
     assert metrics[1].startswith(f"largest deviation: {r['max_deviation']:.3g} model units")
+    # With a tolerance: the metrics of monge.grasshopper.approximate with it (whether
+    # it is met, and why not), and the patches' merged mesh.
+    out = outputs(hops_client.post("/solve", data=json.dumps(request(brep, "0.5"))))
+    metrics = [json.loads(m) for m in out["Metrics"]]
+    expected = mgh.approximate(brep, grid=(8, 8), starts=1, tolerance="0.5")
+    assert metrics == expected["metrics"]
+    r = expected["result"]
+    assert any(m.startswith(f"{'' if r['met'] else 'NOT '}within the tolerance of {r['tolerance']:.3g}") for m in metrics)
+    mesh = rhino3dm.CommonObject.Decode(json.loads(out["Mesh"][0]))
+    v = np.array([[p.X, p.Y, p.Z] for p in mesh.Vertices.ToPoint3dArray()])
+    assert np.array_equal(v, r["vertices"].reshape(-1, 3))

@@ -229,10 +229,15 @@ def test_the_docs_example_runs(monkeypatch, tmp_path, capsys):
 def test_the_docs_grasshopper_recipe_runs(monkeypatch):
     code = docs_block("mgh.approximate")
     surface = rhino_surface(bezier_roof(), (0.0, 1.0))
-    out = run_component(code, "docs/python.md", monkeypatch, geometry=surface, faces=8, starts=1)
+    out = run_component(code, "docs/python.md", monkeypatch, geometry=surface, faces=8, starts=1, tolerance=None)
     assert out["error"] is None, out["error"]
     assert out["mesh"].Faces.QuadCount == 64 and any("largest deviation" in line for line in out["metrics"])
-    out = run_component(code, "docs/python.md", monkeypatch, geometry=rhino3dm.Point3d(0, 0, 0), faces=5, starts=1)
+    # A tolerance: the metrics say whether it is met.
+    out = run_component(code, "docs/python.md", monkeypatch, geometry=surface, faces=8, starts=1, tolerance="0.5")
+    assert out["error"] is None, out["error"]
+    assert any("within the tolerance of" in line for line in out["metrics"])
+    out = run_component(code, "docs/python.md", monkeypatch, geometry=rhino3dm.Point3d(0, 0, 0), faces=5, starts=1,
+                        tolerance=None)
     assert out["mesh"] is None and out["error"].startswith("the target is a rhino3dm._rhino3dm.Point3d")
 
 

@@ -12,13 +12,14 @@ use monge_core::approximate::{
     Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
 };
 use monge_core::conical::conical_dual;
+use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::measure::{conical_error, measure};
 use monge_core::multipatch::{build, MultiPatch, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{check_output, read_points, write_design_into, write_multipatch_into, Outputs};
 use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 
-use crate::shared::args::{Named, KINDS};
+use crate::shared::args::{parse_non_negative, Named, KINDS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{num, print};
 use crate::shared::picture::{distance_panel, sheet, Picture};
@@ -110,6 +111,19 @@ pub struct ApproximateArgs {
         value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..)
     )]
     pub max_patches: usize,
+    /// With --tolerance: the report counts nodes whose beam angles (and angles to the node
+    /// axis) agree within DEG degrees as one node type, as `monge fabricate --angle-tol`
+    /// groups them: a designer's fabrication tolerance (its 1e-4° default tells apart
+    /// every node of a curved mesh).
+    #[arg(
+        long,
+        value_name = "DEG",
+        requires = "tolerance",
+        default_value_t = DESIGN_ANGLE_TOL_DEG,
+        value_parser = parse_non_negative,
+        allow_negative_numbers = true
+    )]
+    pub angle_tol: f64,
 }
 
 /// `--tolerance`: [`Tolerance`]'s own parser and message.
@@ -243,10 +257,7 @@ fn picture_bytes(
 /// The largest error of the patches of `design`, each measured on its own grid as by
 /// `monge check` (a multi-patch mesh's lines are planar only piecewise).
 fn patches_exactness(design: &MultiPatchDesign) -> anyhow::Result<f64> {
-    let mp = build(design, &GenerateOptions::default())?;
-    Ok((0..mp.patches.len())
-        .map(|k| measure(&mp.patch_grid(k)).max_error())
-        .fold(0.0, f64::max))
+    Ok(build(design, &GenerateOptions::default())?.max_error())
 }
 
 /// Runs `monge approximate`.
@@ -464,7 +475,8 @@ fn finish_tolerance(
 ) -> anyhow::Result<Outcome> {
     let file = args.target.display().to_string();
     let target = TargetCloud::new(points).with_context(|| file.clone())?;
-    let report = fit_report(&target, &fit.design).with_context(|| file.clone())?;
+    let report = fit_report(&target, &fit.design, args.angle_tol.to_radians())
+        .with_context(|| file.clone())?;
     let mut out = Outputs::new();
     let boundaries = match &fit.design {
         FitDesign::Single(d) => {

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use glam::DVec3;
 use monge_core::approximate::{fit_report, FitDesign, TargetCloud};
+use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
 use monge_io::{read_design, read_multipatch, read_points};
 
@@ -235,7 +236,8 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
         FitDesign::Single(read_design(&design)?)
     };
     let cloud = TargetCloud::new(&points).with_context(context)?;
-    let report = fit_report(&cloud, &fit).with_context(context)?;
+    let report =
+        fit_report(&cloud, &fit, DESIGN_ANGLE_TOL_DEG.to_radians()).with_context(context)?;
     print(&format!(
         "{{\"command\":\"approximate --tolerance {FREEFORM_TOLERANCE}\",\"target\":\"paraboloid\",\
          \"faces\":\"40x40\",\"target_points\":{},\"wall_ms\":{:.1},\"cpu_ms\":{:.1},\

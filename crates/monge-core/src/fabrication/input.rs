@@ -27,6 +27,15 @@ pub struct FabricationOptions {
     pub angle_tol: f64,
 }
 
+/// The node-type tolerance a designer groups nodes at, in degrees: nodes whose beam
+/// angles and angles to the node axis agree within 0.5° are one type, as a façade
+/// engineer counts the node connectors of a free-form roof (on the shipped paraboloid's
+/// approximation at 40 × 40 faces: 75 types for 1681 nodes, against 451 at 0.1° and
+/// 1681 at `monge fabricate`'s 1e-4°, which tells apart every node of a curved mesh).
+/// The approximation report counts node types at it (`monge approximate --angle-tol`,
+/// `monge.approximate(..., angle_tol_deg=...)`).
+pub const DESIGN_ANGLE_TOL_DEG: f64 = 0.5;
+
 impl Default for FabricationOptions {
     /// One layer at distance 0, `tol = radius_tol = 1e-9`, `angle_tol` = 1e-6 rad.
     fn default() -> Self {

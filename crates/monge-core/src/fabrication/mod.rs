@@ -39,7 +39,7 @@ use summary::summarise;
 
 pub use arcs::{BeamSegment, PlaneFrame, SegmentShape};
 pub use beams::{Beam, LineFamily};
-pub use input::{BaseMesh, FabricationError, FabricationOptions};
+pub use input::{BaseMesh, FabricationError, FabricationOptions, DESIGN_ANGLE_TOL_DEG};
 pub use layers::LayerMesh;
 pub use nodes::Node;
 pub use panels::Panel;

@@ -1,7 +1,7 @@
 """Type stubs of the native module monge._monge (re-exported by ``monge``)."""
 
 import os
-from typing import Any, Dict, Literal, Optional, Tuple, Union, final
+from typing import Any, Dict, List, Literal, Optional, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -23,6 +23,7 @@ __all__ = [
     "FarFromOriginWarning",
     "InexactWarning",
     "Design",
+    "PatchesDesign",
     "Mesh",
     "generate",
     "info",
@@ -99,6 +100,20 @@ class Design:
         """The design as a dict with the keys of a design file."""
     def to_file(self, path: _PathLike) -> None:
         """Writes the design file, pretty JSON or TOML by the extension, atomically."""
+
+@final
+class PatchesDesign:
+    """A multi-patch design (§4.7), as ``monge approximate --patches``/``--tolerance``
+    writes it and ``monge patches`` reads it (``approximate`` returns one for several patches)."""
+
+    @property
+    def theta_deg(self) -> List[float]:
+        """θ of each patch in degrees, in design order."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The design as a dict with the keys of a multi-patch design file (what ``fit`` takes)."""
+    def to_file(self, path: _PathLike) -> None:
+        """Writes the multi-patch design file, pretty JSON or TOML by the extension, atomically."""
+    def __len__(self) -> int: ...
 
 @final
 class Mesh:
@@ -214,8 +229,19 @@ def approximate(
     max_evaluations: int = 1500,
     time_limit: Optional[float] = None,
     keep_boundary: bool = False,
+    patches: Union[str, int, Tuple[int, int], None] = None,
+    tolerance: Union[float, str, None] = None,
+    max_patches: Optional[int] = None,
+    angle_tol_deg: Optional[float] = None,
 ) -> Dict[str, Any]:
-    """The design nearest to a target (points, a Rhino or COMPAS mesh, a Rhino surface or Brep, a file), as ``monge approximate``."""
+    """The design nearest to a target (points, a Rhino or COMPAS mesh, a Rhino surface or Brep, a file), as ``monge approximate``.
+
+    ``patches`` ("2x3", 3 or (2, 3)) fits that many patches (§4.7) as ``--patches``;
+    ``tolerance`` (5e-3 of the target's size, or "0.05m", "5cm", "50mm") fits up to
+    ``max_patches`` (default 6) until within it, as ``--tolerance``; its report's
+    ``node_types`` group nodes whose angles agree within ``angle_tol_deg`` degrees (default 0.5).
+    ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches.
+    """
 
 def target_points(target: Union[npt.ArrayLike, _PathLike, Any]) -> _Array:
     """The points ``approximate`` takes from a target, as an array (N, 3)."""

@@ -96,32 +96,69 @@ def _outputs(mesh, metrics):
 
 def approximation_text(result):
     """What a designer looks at in ``monge.approximate``'s ``result``, as lines of
-    text: the panels, the largest and RMS deviation both ways in model units,
-    and the search."""
+    text: the panels and node types, the largest and RMS deviation both ways in
+    model units, each patch of several, the tolerance (met, or why not) and the
+    search."""
     d, size = result["deviation"], result["deviation"]["size"]
     timed_out = ", stopped at the time limit" if result["timed_out"] else ""
-    return [
-        f"panels: {result['panels']}, θ = {result['theta_deg']:g}°",
+    if result["patches"] == 1:
+        shape = f"θ = {result['theta_deg']:g}°"
+    else:
+        thetas = ", ".join(f"{t:g}°" for t in result["design"].theta_deg)
+        shape = f"{result['patches']} patches (§4.7), θ = {thetas}"
+    lines = [
+        f"panels: {result['panels']}, {shape}",
         f"largest deviation: {result['max_deviation']:.3g} model units (the target's size is {size:.4g}): "
         f"mesh → target {d['mesh_to_target_max']:.3g}, target → mesh {d['target_to_mesh_max']:.3g}",
         f"RMS deviation: mesh → target {d['mesh_to_target_rms']:.3g}, "
         f"target → mesh {d['target_to_mesh_rms']:.3g} model units",
-        f"search: {result['evaluations']} meshes generated, {result['starts']} starts{timed_out}",
     ]
+    if "node_types" in result:
+        lines.append(f"node types: {result['node_types']} (beam angles within {result['node_angle_tol_deg']:g}°)")
+    if result["patches"] > 1:
+        fit = result.get("patch_fit", result)
+        for k, p in enumerate(fit["per_patch"]):
+            lines.append(
+                f"patch {k + 1}: θ = {p['theta_deg']:g}°, largest deviation target → mesh "
+                f"{p['max'] * size:.3g} model units ({p['target_points']} points)"
+            )
+    if "met" in result:
+        tolerance = f"{result['tolerance']:.3g} model units"
+        lines.append(
+            f"within the tolerance of {tolerance}"
+            if result["met"]
+            else f"NOT within the tolerance of {tolerance}: {result['why']}"
+        )
+    lines.append(f"search: {result['evaluations']} meshes generated, {result['starts']} starts{timed_out}")
+    return lines
 
 
 def approximate(geometry, **options):
     """Everything a component rationalising ``geometry`` outputs: ``geometry`` is
     what ``monge.approximate`` accepts (a Rhino mesh, point cloud, surface or
     Brep, points, ...), ``options`` its keywords (``grid``, ``kind``,
-    ``time_limit``, ...). Returns, as ``solve`` does, ``mesh`` (a
-    ``monge.Mesh``), ``vertices``, ``faces``, ``gauss`` and ``metrics`` (the
-    deviation, ``approximation_text``, then the mesh's metrics, ``metrics_text``),
-    with the ``design`` found (``design.to_file(path)`` saves it) and ``result``,
-    ``monge.approximate``'s whole answer."""
+    ``tolerance``, ``time_limit``, ...). Returns, as ``solve`` does, ``mesh`` (a
+    ``monge.Mesh``; None for several patches), ``vertices``, ``faces``, ``gauss``
+    and ``metrics`` (the deviation, ``approximation_text``, then for one patch the
+    mesh's metrics, ``metrics_text``), with the ``design`` found
+    (``design.to_file(path)`` saves it) and ``result``, ``monge.approximate``'s
+    whole answer."""
     result = _approximate(geometry, **options)
     mesh, design = result["mesh"], result["design"]
-    outputs = _outputs(mesh, approximation_text(result) + metrics_text(mesh, design))
+    metrics = approximation_text(result)
+    if mesh is not None:
+        outputs = _outputs(mesh, metrics + metrics_text(mesh, design))
+    else:
+        # Several patches: their merged mesh (each patch is exact on its own grid,
+        # the exactness the text gives), as lists like a Mesh's outputs.
+        normals = result["normals"]
+        outputs = {
+            "mesh": None,
+            "vertices": result["vertices"].reshape(-1, 3).tolist(),
+            "faces": result["faces"].tolist(),
+            "gauss": None if normals is None else normals.reshape(-1, 3).tolist(),
+            "metrics": metrics + [f"exactness (each patch measured on its own grid): {result['max_error']:.2e}"],
+        }
     return {**outputs, "design": design, "result": result}
 
 

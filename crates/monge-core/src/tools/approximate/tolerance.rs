@@ -472,8 +472,7 @@ pub fn approximate_to_tolerance(
 pub struct FitReport {
     /// Panels (faces of the mesh).
     pub panels: usize,
-    /// Distinct node types, as [`fabricate`] groups them with
-    /// [`FabricationOptions::default`].
+    /// Distinct node types, as [`fabricate`] groups them at `node_angle_tol`.
     pub node_types: usize,
     /// Nodes whose beam angles agree within this many radians share a type
     /// ([`FabricationOptions::angle_tol`]).
@@ -484,7 +483,9 @@ pub struct FitReport {
     pub per_patch: Vec<PatchFit>,
 }
 
-/// The report of the fit `design` (its mesh `grid`) of `target`: panels, node types,
+/// The report of the fit `design` of `target`: panels, node types (nodes whose beam
+/// and axis angles agree within `angle_tol` radians are one type, as [`fabricate`]
+/// groups them; [`crate::fabrication::DESIGN_ANGLE_TOL_DEG`] is a designer's),
 /// deviation, and per patch its θ and deviation.
 ///
 /// ```
@@ -500,13 +501,20 @@ pub struct FitReport {
 /// let options = ApproxOptions { faces: (6, 4), starts: 1, max_evaluations: 40, ..Default::default() };
 /// let fit = approximate(&target, &options, &mut |_| {}).unwrap();
 /// let cloud = TargetCloud::new(&target).unwrap();
-/// let report = fit_report(&cloud, &FitDesign::Single(fit.design.clone())).unwrap();
+/// let report = fit_report(&cloud, &FitDesign::Single(fit.design.clone()), 0.1f64.to_radians()).unwrap();
 /// assert_eq!(report.panels, 24);
 /// assert_eq!(report.per_patch.len(), 1);
 /// assert_eq!(report.deviation, fit.after);
 /// ```
-pub fn fit_report(target: &TargetCloud, design: &FitDesign) -> Result<FitReport, ToleranceError> {
-    let options = FabricationOptions::default();
+pub fn fit_report(
+    target: &TargetCloud,
+    design: &FitDesign,
+    angle_tol: f64,
+) -> Result<FitReport, ToleranceError> {
+    let options = FabricationOptions {
+        angle_tol,
+        ..FabricationOptions::default()
+    };
     let report = |base: BaseMesh<'_>, deviation: Deviation, per_patch: Vec<PatchFit>| {
         let f = fabricate(base, &options)?;
         Ok(FitReport {

@@ -6,6 +6,7 @@ use glam::DVec3;
 use crate::design::Design;
 use crate::gauss_map::ThetaRange;
 use crate::generate::Mode;
+use crate::measure::measure;
 use crate::QuadGrid;
 
 use super::side::Side;
@@ -77,6 +78,15 @@ impl MultiPatch {
             p.rows.0 + if p.flipped.0 { rows - 1 - i } else { i },
             p.cols.0 + if p.flipped.1 { cols - 1 - j } else { j },
         )
+    }
+
+    /// The largest error of its patches, each measured on its own grid
+    /// ([`MultiPatch::patch_grid`]) as `monge check` measures a mesh: a multi-patch
+    /// mesh's curvature lines are planar only piecewise (§4.7).
+    pub fn max_error(&self) -> f64 {
+        (0..self.patches.len())
+            .map(|k| measure(&self.patch_grid(k)).max_error())
+            .fold(0.0, f64::max)
     }
 
     /// Patch `k` as its own grid, cut out of the assembled one (shared lines with
