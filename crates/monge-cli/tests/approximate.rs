@@ -461,4 +461,16 @@ fn approximate_refuses_bad_tolerances_before_any_work() {
         &["--max-patches"],
         &[&design],
     );
+    // The node types are counted in the report of a tolerance fit, at a non-negative
+    // angle (as `monge fabricate --angle-tol`).
+    refuses(
+        paraboloid(&design, 6, 40).args(["--angle-tol", "0.3"]),
+        &["--tolerance"],
+        &[&design],
+    );
+    refuses(
+        paraboloid(&design, 6, 40).args(["--tolerance", "5e-3", "--angle-tol", "-1"]),
+        &["--angle-tol", "not a finite, non-negative number"],
+        &[&design],
+    );
 }
