@@ -10,6 +10,7 @@
 
 use pyo3::prelude::*;
 
+mod approximate;
 mod args;
 mod design;
 mod errors;
@@ -33,7 +34,7 @@ fn _monge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::scan, m)?)?;
     m.add_function(wrap_pyfunction!(tools::fit, m)?)?;
     m.add_function(wrap_pyfunction!(tools::optimise_panels, m)?)?;
-    m.add_function(wrap_pyfunction!(tools::approximate, m)?)?;
+    m.add_function(wrap_pyfunction!(approximate::approximate, m)?)?;
     m.add_function(wrap_pyfunction!(target::target_points, m)?)?;
     Ok(())
 }

@@ -74,3 +74,19 @@ def cli_error(cli):
         return p.stderr[len("error: ") :].rstrip("\n")
 
     return run
+
+
+def bezier_roof_brep():
+    """A curved rhino3dm surface sent as Grasshopper sends it, a Brep: a bicubic
+    Bézier roof of 10 × 8 model units rising 2."""
+    import rhino3dm
+
+    s = rhino3dm.NurbsSurface.Create(3, False, 4, 4, 4, 4)
+    for a in range(4):
+        for b in range(4):
+            z = 2.0 * np.sin(np.pi * a / 3) * np.sin(np.pi * b / 3)
+            s.Points[a, b] = rhino3dm.Point4d(10 * a / 3, 8 * b / 3, z, 1.0)
+    for knots in (s.KnotsU, s.KnotsV):
+        for k, t in enumerate([0.0, 0.0, 0.0, 1.0, 1.0, 1.0]):
+            knots[k] = t
+    return rhino3dm.Brep.CreateFromSurface(s)

@@ -15,6 +15,7 @@ import monge
 import monge.grasshopper as mgh
 import monge.rhino
 import measure_np as mnp
+from conftest import bezier_roof_brep
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[3] / "examples" / "grasshopper"
 SAMPLES = 25
@@ -121,17 +122,8 @@ def test_hops_reports_errors_as_metrics(hops_client):
 
 
 def test_hops_approximates_a_surface(hops_client):
-    # A curved rhino3dm surface (a Dupin cyclide patch's cyclidic net would do; a
-    # bicubic Bézier roof here) sent as Hops sends a Brep.
-    s = rhino3dm.NurbsSurface.Create(3, False, 4, 4, 4, 4)
-    for a in range(4):
-        for b in range(4):
-            z = 2.0 * np.sin(np.pi * a / 3) * np.sin(np.pi * b / 3)
-            s.Points[a, b] = rhino3dm.Point4d(10 * a / 3, 8 * b / 3, z, 1.0)
-    for knots in (s.KnotsU, s.KnotsV):
-        for k, t in enumerate([0.0, 0.0, 0.0, 1.0, 1.0, 1.0]):
-            knots[k] = t
-    brep = rhino3dm.Brep.CreateFromSurface(s)
+    # A curved surface (a bicubic Bézier roof) sent as Hops sends a Brep.
+    brep = bezier_roof_brep()
 
     def request(target, tolerance=None):
         def item(name, type_, data):

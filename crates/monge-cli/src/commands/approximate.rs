@@ -341,10 +341,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         None => None,
     };
     bar.finish_and_clear();
-    let objective = |d: &Deviation| d.mesh_to_target_rms.powi(2) + d.beyond_mesh_rms.powi(2);
-    let better = patched
-        .as_ref()
-        .filter(|p| objective(&p.after) < objective(&r.after));
+    let better = patched.as_ref().filter(|p| p.closer_than(&r));
     // The design and its picture change together or not at all.
     let mut out = Outputs::new();
     let (grid, after) = match better {
@@ -527,8 +524,7 @@ fn finish_tolerance(
     text.push_str(&format!(
         "result: {}\n\
          largest distance mesh → target {}, target → mesh {}; RMS {} and {} model units\n\
-         panels {}, distinct node types {} (beam angles within {}°, as `monge fabricate \
-         --angle-tol` groups them)\n",
+         panels {}, {}\n",
         match fit.chosen {
             Chosen::InitialGuess =>
                 "the initial guess of one patch (nearer than every fit)".to_owned(),
@@ -540,8 +536,14 @@ fn finish_tolerance(
         num(d.mesh_to_target_rms * size),
         num(d.target_to_mesh_rms * size),
         report.panels,
-        report.node_types,
-        num(report.node_angle_tol.to_degrees()),
+        match &report.node_types {
+            Ok(n) => format!(
+                "distinct node types {n} (beam angles within {}°, as `monge fabricate \
+                 --angle-tol` groups them)",
+                num(report.node_angle_tol.to_degrees())
+            ),
+            Err(e) => format!("node types not counted: {e}"),
+        },
     ));
     for (k, p) in report.per_patch.iter().enumerate() {
         text.push_str(&format!(

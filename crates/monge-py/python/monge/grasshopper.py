@@ -113,8 +113,10 @@ def approximation_text(result):
         f"RMS deviation: mesh → target {d['mesh_to_target_rms']:.3g}, "
         f"target → mesh {d['target_to_mesh_rms']:.3g} model units",
     ]
-    if "node_types" in result:
+    if result.get("node_types") is not None:
         lines.append(f"node types: {result['node_types']} (beam angles within {result['node_angle_tol_deg']:g}°)")
+    elif result.get("node_types_why_not"):
+        lines.append(f"node types not counted: {result['node_types_why_not']}")
     if result["patches"] > 1:
         fit = result.get("patch_fit", result)
         for k, p in enumerate(fit["per_patch"]):

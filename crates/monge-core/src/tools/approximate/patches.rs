@@ -75,6 +75,32 @@ pub struct PatchApproximation {
     pub evaluations: usize,
 }
 
+impl PatchApproximation {
+    /// Whether these patches follow the target closer than `single`, the patch they
+    /// started from (§4.7), by the search's own objective (the mesh's vertices to the
+    /// target and the target beyond the mesh, both RMS): the design to keep.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::{approximate, approximate_patches, ApproxOptions, PatchLayout};
+    /// let target: Vec<DVec3> = (0..121)
+    ///     .map(|k| {
+    ///         let (x, y) = ((k % 11) as f64, (k / 11) as f64);
+    ///         DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+    ///     })
+    ///     .collect();
+    /// let options = ApproxOptions { faces: (6, 4), starts: 1, max_evaluations: 40, ..Default::default() };
+    /// let single = approximate(&target, &options, &mut |_| {}).unwrap();
+    /// let two = PatchLayout { u: 2, v: 1 };
+    /// let patches = approximate_patches(&target, &single, two, &options, &mut |_| {}).unwrap();
+    /// // Kept only when closer: a layout of 1 × 1 is the single patch itself.
+    /// assert_eq!(patches.closer_than(&single), patches.layout != PatchLayout { u: 1, v: 1 });
+    /// ```
+    pub fn closer_than(&self, single: &Approximation) -> bool {
+        self.after.objective() < single.after.objective()
+    }
+}
+
 /// Free numbers of one guide: the plane's tilt, then the along and up coordinates of
 /// the displacement's B-spline coefficients (all but the corner's).
 const PER_GUIDE: usize = 1 + 2 * (CONTROL_POINTS - 1);

@@ -155,9 +155,6 @@ pub enum ToleranceError {
     /// The multi-patch design found cannot be built again (for its report).
     #[error("the multi-patch design found: {0}")]
     MultiPatch(#[from] MultiPatchError),
-    /// The mesh found cannot be fabricated (for its node types).
-    #[error("the mesh found: {0}")]
-    Fabrication(#[from] FabricationError),
 }
 
 /// Options of [`approximate_to_tolerance`].
@@ -468,12 +465,14 @@ pub fn approximate_to_tolerance(
 }
 
 /// What a designer looks at (§6's counts and the deviation).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct FitReport {
     /// Panels (faces of the mesh).
     pub panels: usize,
-    /// Distinct node types, as [`fabricate`] groups them at `node_angle_tol`.
-    pub node_types: usize,
+    /// Distinct node types, as [`fabricate`] groups them at `node_angle_tol`; or why
+    /// the nodes could not be grouped: fabrication's refusal of the mesh found (an
+    /// edge or a face it calls degenerate), which does not make the fit less near.
+    pub node_types: Result<usize, FabricationError>,
     /// Nodes whose beam angles agree within this many radians share a type
     /// ([`FabricationOptions::angle_tol`]).
     pub node_angle_tol: f64,
@@ -516,10 +515,13 @@ pub fn fit_report(
         ..FabricationOptions::default()
     };
     let report = |base: BaseMesh<'_>, deviation: Deviation, per_patch: Vec<PatchFit>| {
-        let f = fabricate(base, &options)?;
+        let panels = match base {
+            BaseMesh::Circular(g) => g.face_count(),
+            BaseMesh::Conical(c) => c.grid.face_count(),
+        };
         Ok(FitReport {
-            panels: f.summary.panels,
-            node_types: f.summary.node_types,
+            panels,
+            node_types: fabricate(base, &options).map(|f| f.summary.node_types),
             node_angle_tol: options.angle_tol,
             deviation,
             per_patch,
