@@ -11,7 +11,9 @@
 // task at 100 × 100 and 300 × 300 faces, and the long tasks of a drag that
 // rests (reported, not asserted; N pairs of θ steps at each size, 8 by default:
 // 40 for a steadier figure, a minute more of software GL; asserted: a drag frame
-// draws no more at 300 × 300 than at 100 × 100 but for the guides, the mesh drawn once it rests is monge generate's, a full frame is drawn in bounded steps), drags a handle of each kind with its plane
+// draws no more at 300 × 300 than at 100 × 100 but for the guides at the same
+// detail, made slower than the budget the drag frames come down to the coarsest
+// detail and the rest draws every face, the mesh drawn once it rests is monge generate's, a full frame is drawn in bounded steps), drags a handle of each kind with its plane
 // seen at a grazing angle (the point must stay near the pointer's ray and move
 // no more than the pointer's path allows), refuses an edit (the page must say
 // where, and export the last valid design), undoes and redoes every kind of
@@ -30,6 +32,7 @@ import { fileURLToPath } from 'node:url';
 import assert from 'node:assert/strict';
 import { chromium } from 'playwright-core';
 import rhino3dm from 'rhino3dm';
+import { DRAG_FACES, FRAME_BUDGET_MS } from '../src/detail.js';
 
 const repo = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const monge = resolve(process.env.MONGE_BIN ?? join(repo, 'target/release/monge'));
@@ -131,6 +134,56 @@ const pixelsPerUnit = (p, ray) => ray.height / 2 / (dot(sub(p, ray.origin), ray.
 
 /** The step bound of a drag: a direction seen more than 60° from face on moves as if seen at 60° (GRAZING_FLOOR = 0.5 in handles.js). */
 const FLOOR = 0.5;
+
+/**
+ * The drag frames' detail follows their cost, whatever the machine's speed:
+ * with every animation frame made slower than the budget (a busy wait in
+ * requestAnimationFrame), a pointer drag of θ comes down one level a frame
+ * to the coarsest, each drawing fewer primitives, and once it rests the full
+ * grid is drawn (every face of the mesh). (That fast frames keep the finest
+ * detail and cheap ones climb back is web/test/detail.test.mjs.)
+ */
+async function adaptiveDetail(page, idle) {
+  const delay = 2 * FRAME_BUDGET_MS;
+  await page.evaluate((ms) => {
+    explorer.resetDetail();
+    window.realAnimationFrame = window.requestAnimationFrame;
+    window.requestAnimationFrame = (callback) => window.realAnimationFrame((t) => {
+      const start = performance.now();
+      while (performance.now() - start < ms); // a slow frame, on any machine
+      callback(t);
+    });
+  }, delay);
+  const box = await page.locator('#theta').boundingBox();
+  let x = box.x + box.width * ((await page.evaluate(() => explorer.state.design.theta_deg)) + 180) / 360;
+  const y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  const seen = [];
+  for (let k = 0; k < 40 && seen.at(-1) !== DRAG_FACES.at(-1); k++) {
+    const measured = await page.evaluate(() => explorer.state.latencies.length);
+    x += k % 2 ? -3 : 4;
+    await page.mouse.move(x, y);
+    // This move's frame measured (so that the next is drawn at the detail it leads to).
+    await page.waitForFunction((n) => explorer.state.latencies.length > n, measured, { timeout: 10000 }).catch(() => {});
+    const detail = await page.evaluate(() => explorer.frames().detail);
+    if (seen.at(-1) !== detail) seen.push(detail);
+  }
+  await page.mouse.up();
+  await idle();
+  const after = await page.evaluate(() => {
+    window.requestAnimationFrame = window.realAnimationFrame;
+    return { frames: explorer.frames(), rows: explorer.state.mesh.rows, cols: explorer.state.mesh.cols, fast: explorer.state.fast };
+  });
+  const byDetail = Object.entries(after.frames.byDetail).map(([d, n]) => [Number(d), n]).sort((a, b) => b[0] - a[0]);
+  log(`drag frames made ${delay} ms slow: the mesh drawn by at most ${seen.join(' → ')} faces a side, ${byDetail.map(([d, n]) => `${n} primitives at ${d}`).join(', ')}`);
+  assert.deepEqual(byDetail.map(([d]) => d), DRAG_FACES, `the drag came down one level a frame to the coarsest: ${seen.join(' → ')}`);
+  byDetail.slice(1).forEach(([d, n], k) => assert.ok(n < byDetail[k][1], `a drag frame at ${d} faces a side draws fewer primitives than at ${byDetail[k][0]}: ${n} vs ${byDetail[k][1]}`));
+  // Once it rests: full quality, every face of the mesh drawn.
+  assert.equal(after.fast, false, 'full quality once the drag rests');
+  const total = after.frames.steps.reduce((a, b) => a + b, 0);
+  assert.ok(total >= 6 * (after.rows - 1) * (after.cols - 1), `the full frame draws every face: ${total} indices`);
+}
 
 /**
  * Real pointer drags (page.mouse) of each handle kind with the guide's plane
@@ -660,7 +713,11 @@ async function main() {
       const box = await page.locator('#theta').boundingBox();
       let x = box.x + box.width * ((await page.evaluate(() => explorer.state.design.theta_deg)) + 180) / 360;
       const y = box.y + box.height / 2;
-      const since = await page.evaluate(() => { explorer.state.latencies.length = 0; return performance.now(); });
+      const since = await page.evaluate(() => {
+        explorer.state.latencies.length = 0;
+        explorer.resetDetail(); // the drag's first frame at the finest detail
+        return performance.now();
+      });
       await page.mouse.move(x, y);
       await page.mouse.down();
       for (let k = 0; k < 20; k++) {
@@ -681,7 +738,7 @@ async function main() {
       log(`θ at ${side} × ${side} faces, input → end of the frame's task: ${keys.length} keyboard steps ${figures(keys)}; ` +
         `a pointer drag of ${cycle.latencies.length} frames ${figures(cycle.latencies)}; long tasks (> 50 ms) during the drag and its rest: ` +
         `${cycle.long.length}${cycle.long.length ? `, the longest ${Math.max(...cycle.long).toFixed(0)} ms` : ''}; ` +
-        `a drag frame draws ${frames.drag} primitives, the full-quality frame ${frames.steps.length} steps of at most ${Math.max(...frames.steps)} indices`);
+        `a drag frame draws ${frames.drag} primitives (the mesh by at most ${frames.detail} faces a side), the full-quality frame ${frames.steps.length} steps of at most ${Math.max(...frames.steps)} indices`);
       assert.ok(frames.steps.every((n) => n <= frames.stepIndices), `each step of the full frame draws at most ${frames.stepIndices} indices: ${frames.steps}`);
       // The mesh shown once the drag rests is monge generate's (f32, as drawn).
       const flat = sameAsCli(await snapshot());
@@ -693,6 +750,7 @@ async function main() {
       return { side, frames };
     };
     const at100 = await latency();
+    await adaptiveDetail(page, idle);
     // Two inputs 200 ms apart in one task: the frame after is the first to
     // show either, and the readout counts from the earlier.
     const apart = await page.evaluate(() => {
@@ -719,9 +777,16 @@ async function main() {
     await idle();
     assert.equal((await snapshot()).rows, 301, '300 × 300 faces');
     const at300 = await latency();
-    // The guides are drawn whole, in all their samples: 200 more segments each at 300 × 300.
+    // The guides are drawn whole, in all their samples: 200 more segments each at
+    // 300 × 300. Compared at each detail both drags drew (the first frame of
+    // each is at the finest).
     const guides = 2 * (at300.side - at100.side);
-    assert.ok(at300.frames.drag <= at100.frames.drag + guides, `a drag frame draws as much at 300 × 300 as at 100 × 100 but for the guides' ${guides} more segments: ${at300.frames.drag} vs ${at100.frames.drag} primitives`);
+    const details = Object.keys(at300.frames.byDetail).filter((d) => d in at100.frames.byDetail);
+    assert.ok(details.length > 0, `both drags drew a frame at the finest detail: ${Object.keys(at300.frames.byDetail)} and ${Object.keys(at100.frames.byDetail)}`);
+    for (const d of details) {
+      const [big, small] = [at300.frames.byDetail[d], at100.frames.byDetail[d]];
+      assert.ok(big <= small + guides, `a drag frame at ${d} faces a side draws as much at 300 × 300 as at 100 × 100 but for the guides' ${guides} more segments: ${big} vs ${small} primitives`);
+    }
     assert.ok(at300.frames.steps.length > 1, 'the full frame at 300 × 300 is drawn in several steps');
     for (const g of ['u', 'v']) {
       await page.fill(`#samples-${g}`, '101');

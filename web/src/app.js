@@ -16,7 +16,7 @@ import { handleOnScreen, installHandles, showHandles } from './handles.js';
 import { showArcs, showAxes, showColours, showMarkers, showPlanes } from './layers.js';
 import {
   arcLines, axesGroup, camera, coloured, drawn, empty, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
-  quality, redraw, renderer, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial, timeNextFrame, wire,
+  quality, redraw, renderer, resetDetail, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial, timeNextFrame, wire,
 } from './view.js';
 
 let settleTimer = null;
@@ -101,7 +101,7 @@ function showMesh(mesh, t0, fast = false) {
  * drag's meshes generated in a worker of their own, latest input first, made
  * a 300 × 300 drag lag, its frames' median from about 40 to 140 ms, input to
  * frame, measured by the end-to-end test; a frame's time goes mostly to
- * software GL drawing it, see `dragLines` in view.js.)
+ * software GL drawing it, see `dragFaces` in view.js.)
  * `dragging`: θ or a control point is being dragged, so the mesh is drawn in
  * drag quality without its metrics, then in full with them once the drag has
  * rested for SETTLE_MS. `name` names the design's file in messages; `source`
@@ -239,11 +239,18 @@ window.explorer = {
   /** The mesh file `monge generate` writes (`obj` or `json`), as text. */
   exported: (format) => new TextDecoder().decode(current.export(format)),
   /**
-   * What the last frames drew: `drag`, the primitives of the last drag frame;
-   * `steps`, the indices each step of the last full-quality frame drew, each
-   * at most `stepIndices`; `geometries`, those whose buffers WebGL holds.
+   * What the last frames drew: `drag`, the primitives of the last drag frame,
+   * whose mesh was drawn by at most `detail` faces a side; `byDetail`, the
+   * primitives of the last drag frame at each such detail since
+   * `resetDetail`; `steps`, the indices each step of the last full-quality
+   * frame drew, each at most `stepIndices`; `geometries`, those whose buffers
+   * WebGL holds.
    */
-  frames: () => ({ drag: drawn.drag, steps: [...drawn.steps], stepIndices: STEP_INDICES, geometries: renderer.info.memory.geometries }),
+  frames: () => ({
+    drag: drawn.drag, detail: drawn.detail, byDetail: Object.fromEntries(drawn.byDetail), steps: [...drawn.steps], stepIndices: STEP_INDICES, geometries: renderer.info.memory.geometries,
+  }),
+  /** Drag frames start again from the finest detail (see detail.js). */
+  resetDetail,
   idle: () => !frameOwed() && settleTimer === null && !measurePending(),
   /** The vertices the surface is drawn with (f32), as three.js holds them. */
   drawnVertices: () => Array.from(surface.geometry.getAttribute('position').array),

@@ -4,6 +4,7 @@
 // polyline, drag quality, and the frames with their input-to-frame latency.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { DRAG_FACES, nextDetail, startDetail } from './detail.js';
 import { $, state } from './page.js';
 
 const view = $('view');
@@ -72,27 +73,34 @@ scene.add(arcLines, surface, coloured, wire, guideLines.u, guideLines.v, handles
 /**
  * Drag quality: while θ, a control point or the view is being dragged the
  * page draws at half the pixel ratio, without the wireframes (the mesh's, the
- * Gauss map's and its sphere's), each grid by at most `dragLines` of its
- * curvature lines a family (every k-th and the last: the mesh's own
+ * Gauss map's and its sphere's), each grid by at most `dragFaces` of its
+ * faces a side (every k-th curvature line and the last: the mesh's own
  * vertices), and asks for the mesh without its metrics; once the drag has
  * rested for SETTLE_MS it asks again, with the metrics, and draws at full
  * quality. WebGL drawn in software (no GPU) costs about the vertices, pixels
  * and lines it draws; of a drag frame, the triangles most (a 100 × 100 frame
- * drawn by 20 lines a family instead of 50 takes about half the time).
+ * drawn by 20 lines a family instead of 50 takes about half the time), so the
+ * faces a side follow what the drag frames cost (see detail.js).
  */
 export const SETTLE_MS = 150;
 const DRAG_PIXEL_RATIO = 0.5;
-/** The mesh's curvature lines a family in drag quality. */
-const DRAG_LINES = 51;
 /** The Gauss map's size beside the mesh: its unit sphere is drawn at this share of the mesh's bounding radius. */
 const GAUSS_SCALE = 0.4;
+/** The drag frames' detail, from the latencies of those drawn so far (see detail.js). */
+let detail = startDetail();
+
+/** Drag frames start again from the finest detail, and `drawn.byDetail` afresh (for the e2e test). */
+export function resetDetail() {
+  detail = startDetail();
+  drawn.byDetail.clear();
+}
 
 /**
- * The curvature lines a family that `grid` is drawn by in drag quality: the
+ * The faces a side that `grid` is drawn by at most in drag quality: the
  * Gauss map, at most GAUSS_SCALE of the mesh's size on the screen, by as
  * many fewer, so that its lines are no further apart there than the mesh's.
  */
-const dragLines = (grid) => (grid === gaussSurface ? Math.round(GAUSS_SCALE * (DRAG_LINES - 1)) + 1 : DRAG_LINES);
+const dragFaces = (grid) => (grid === gaussSurface ? Math.floor(GAUSS_SCALE * DRAG_FACES[detail.level]) : DRAG_FACES[detail.level]);
 
 /**
  * The full-quality frame is drawn offscreen, in steps of at most STEP_INDICES
@@ -109,8 +117,12 @@ let dirty = false;      // the scene changed since the last frame was drawn or b
 let build = null;       // the full-quality frame being drawn: { steps, next, fence }
 let pendingLatency = null; // input time of the change not yet drawn
 const awaiting = [];    // input times of frames drawn whose task has not ended yet
-/** What the last frames drew (for the e2e test): the drag frame's primitives, the full frame's steps' indices. */
-export const drawn = { drag: null, steps: [] };
+/**
+ * What the last frames drew (for the e2e test): the last drag frame's
+ * primitives and the mesh's faces a side in it (`detail`), the last drag
+ * frame's primitives at each such detail, the full frame's steps' indices.
+ */
+export const drawn = { drag: null, detail: null, byDetail: new Map(), steps: [] };
 const gl = renderer.getContext();
 /**
  * The full-quality frame is drawn into `target`, then copied onto the canvas
@@ -128,7 +140,10 @@ target.isXRRenderTarget = true;
  * canvas read back), which the time from the input to it includes.
  */
 const frameEnd = new MessageChannel();
-frameEnd.port1.onmessage = () => recordLatency(performance.now() - awaiting.shift());
+frameEnd.port1.onmessage = () => {
+  const { t0, drag } = awaiting.shift();
+  recordLatency(performance.now() - t0, drag);
+};
 
 /** Switches between drag quality (`fast`) and full quality; the next frame drawn shows it. */
 export function quality(fast) {
@@ -179,7 +194,7 @@ function tick() {
     abandon();
     if (state.fast) {
       drawDrag();
-      frameDrawn();
+      frameDrawn(true);
       return;
     }
     build = { steps: fullSteps(), next: 0, fence: null };
@@ -208,7 +223,7 @@ function tick() {
   renderer.state.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
   gl.blitFramebuffer(0, 0, target.width, target.height, 0, 0, target.width, target.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
   renderer.state.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
-  frameDrawn();
+  frameDrawn(false);
 }
 
 /**
@@ -242,14 +257,29 @@ function pixelRatio(factor) {
   if (renderer.getPixelRatio() !== ratio) renderer.setPixelRatio(ratio); // clears the canvas
 }
 
-/** The grids drawn by at most `dragLines` of their curvature lines a family. */
+/**
+ * The triangles of `grid` drawn by at most `dragFaces` of its faces a side
+ * (null: all of them), made once for each stride and kept with its geometry.
+ */
+function dragIndex(grid) {
+  const { rows, cols, drag } = grid.geometry.userData;
+  if (!drag) return null;
+  const step = Math.ceil((Math.max(rows, cols) - 1) / dragFaces(grid));
+  if (step <= 1) return null;
+  if (!drag.has(step)) drag.set(step, new THREE.Uint32BufferAttribute(gridTriangles(cols, everyStep(rows, step), everyStep(cols, step)), 1));
+  return drag.get(step);
+}
+
+/** The grids drawn by at most `dragFaces` of their faces a side. */
 function drawDrag() {
   pixelRatio(DRAG_PIXEL_RATIO);
-  const grids = [surface, gaussSurface].filter((m) => m.geometry.userData.drag);
-  for (const m of grids) m.geometry.setIndex(m.geometry.userData.drag);
+  const grids = [surface, gaussSurface].map((m) => [m, dragIndex(m)]).filter(([, index]) => index);
+  for (const [m, index] of grids) m.geometry.setIndex(index);
   renderer.render(scene, camera);
   drawn.drag = renderer.info.render.triangles + renderer.info.render.lines;
-  for (const m of grids) m.geometry.setIndex(m.geometry.userData.full);
+  drawn.detail = dragFaces(surface);
+  drawn.byDetail.set(drawn.detail, drawn.drag);
+  for (const [m] of grids) m.geometry.setIndex(m.geometry.userData.full);
 }
 
 const drawable = (o) => o.isMesh || o.isLine || o.isPoints;
@@ -317,10 +347,13 @@ export function timeNextFrame(t0) {
   if (pendingLatency === null) pendingLatency = t0;
 }
 
-/** A frame was drawn: the latency of the input it shows is measured at the end of its task. */
-function frameDrawn() {
+/**
+ * A frame was drawn (a drag frame: `drag`): the latency of the input it shows
+ * is measured at the end of its task.
+ */
+function frameDrawn(drag) {
   if (pendingLatency === null) return;
-  awaiting.push(pendingLatency);
+  awaiting.push({ t0: pendingLatency, drag });
   pendingLatency = null;
   frameEnd.port2.postMessage(null);
 }
@@ -328,11 +361,14 @@ function frameDrawn() {
 /** Whether a frame is still to be drawn or shown, or its latency measured, or the view is settling. */
 export const frameOwed = () => scheduled || build !== null || pendingLatency !== null || awaiting.length > 0 || viewSettle !== null;
 
-function recordLatency(ms) {
+/** Shows a frame's latency (`drag`: of a drag frame, which the drag frames' detail follows). */
+function recordLatency(ms, drag) {
   state.latencies.push(ms);
   const recent = state.latencies.slice(-50).sort((a, b) => a - b);
   const median = recent[Math.floor(recent.length / 2)];
-  $('latency').textContent = `input → end of the frame's task: ${ms.toFixed(1)} ms (median of the last ${recent.length}: ${median.toFixed(1)} ms)`;
+  if (drag) detail = nextDetail(detail, ms);
+  $('latency').textContent = `input → end of the frame's task: ${ms.toFixed(1)} ms (median of the last ${recent.length}: ${median.toFixed(1)} ms); `
+    + `drag frames drawn by at most ${DRAG_FACES[detail.level]} faces a side`;
 }
 
 export function resize() {
@@ -380,8 +416,8 @@ function gridEdges(rows, cols) {
 
 /**
  * Puts a grid into a surface and its wireframe, reusing buffers of the same
- * size; the surface's geometry keeps its full triangles and, when the grid
- * has more lines a family than `dragLines`, the drag quality's.
+ * size; the surface's geometry keeps its full triangles and those of the drag
+ * quality's strides drawn so far (see `dragIndex`).
  */
 export function setGrid(mesh, lines, rows, cols, positions, normals) {
   let geometry = mesh.geometry;
@@ -393,9 +429,7 @@ export function setGrid(mesh, lines, rows, cols, positions, normals) {
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setIndex(gridTriangles(cols, everyStep(rows, 1), everyStep(cols, 1)));
-    const step = Math.ceil((Math.max(rows, cols) - 1) / (dragLines(mesh) - 1));
-    const drag = step > 1 ? new THREE.Uint32BufferAttribute(gridTriangles(cols, everyStep(rows, step), everyStep(cols, step)), 1) : null;
-    geometry.userData = { rows, cols, full: geometry.index, drag };
+    geometry.userData = { rows, cols, full: geometry.index, drag: new Map() };
     mesh.geometry = geometry;
     lines.geometry = new THREE.BufferGeometry();
     lines.geometry.setAttribute('position', geometry.getAttribute('position'));

@@ -1,0 +1,30 @@
+// The detail of a drag frame, adapted to what the page's own drag frames
+// cost: each grid is drawn while dragging by at most DRAG_FACES[level] of its
+// faces a side (every k-th curvature line and the last), the level going one
+// step coarser after a drag frame over FRAME_BUDGET_MS (input to the end of
+// the frame's task, as the latency readout measures it) and one step finer
+// after CHEAP_FRAMES drag frames in a row under CHEAP_SHARE of the budget. A
+// real GPU keeps the top level; software GL, which spends a drag frame mostly
+// on its triangles, comes down to the level it can draw in time, never below
+// the last one, which still shows the shape. The full-quality frame drawn once
+// a drag rests does not depend on it. Pure: no page, no three.js.
+
+/** Faces a side of each level, finest first; each divides 100 and 300 faces into whole strides alike. */
+export const DRAG_FACES = [50, 34, 25, 20, 15];
+/** A drag frame's budget, input to the end of its task: 60 frames a second. */
+export const FRAME_BUDGET_MS = 16;
+/** A drag frame under this share of the budget is cheap... */
+export const CHEAP_SHARE = 0.6;
+/** ...and this many cheap ones in a row go one level finer. */
+export const CHEAP_FRAMES = 3;
+
+/** The level a drag starts from before any frame has been measured: the finest. */
+export const startDetail = () => ({ level: 0, cheap: 0 });
+
+/** The detail after a drag frame of `ms` drawn at `detail` ({ level, cheap }); a new object. */
+export function nextDetail({ level, cheap }, ms) {
+  if (ms > FRAME_BUDGET_MS) return { level: Math.min(level + 1, DRAG_FACES.length - 1), cheap: 0 };
+  if (ms >= CHEAP_SHARE * FRAME_BUDGET_MS) return { level, cheap: 0 };
+  if (cheap + 1 < CHEAP_FRAMES || level === 0) return { level, cheap: Math.min(cheap + 1, CHEAP_FRAMES) };
+  return { level: level - 1, cheap: 0 };
+}
