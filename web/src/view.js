@@ -258,28 +258,56 @@ function pixelRatio(factor) {
 }
 
 /**
- * The triangles of `grid` drawn by at most `dragFaces` of its faces a side
- * (null: all of them), made once for each stride and kept with its geometry.
+ * `grid` drawn by at most `dragFaces` of its faces a side (null: all of
+ * them): a geometry of its own, of every k-th curvature line and the last,
+ * whose vertices and normals are gathered from the grid's. A drag frame so
+ * sends software GL these few vertices only, not the whole grid's (at 300 ×
+ * 300 faces, 4 MB a frame); the grid's are sent when a full frame draws it.
+ * One such geometry a grid, made again when the stride changes (and freed
+ * with the grid's, see `setGrid`).
  */
-function dragIndex(grid) {
-  const { rows, cols, drag } = grid.geometry.userData;
-  if (!drag) return null;
+function dragGeometry(grid) {
+  const full = grid.geometry;
+  const { rows, cols } = full.userData;
+  if (!rows) return null;
   const step = Math.ceil((Math.max(rows, cols) - 1) / dragFaces(grid));
   if (step <= 1) return null;
-  if (!drag.has(step)) drag.set(step, new THREE.Uint32BufferAttribute(gridTriangles(cols, everyStep(rows, step), everyStep(cols, step)), 1));
-  return drag.get(step);
+  let coarse = grid.userData.coarse;
+  if (!coarse || coarse.step !== step) {
+    coarse?.geometry.dispose();
+    const [rs, cs] = [everyStep(rows, step), everyStep(cols, step)];
+    const geometry = new THREE.BufferGeometry();
+    for (const name of ['position', 'normal']) geometry.setAttribute(name, new THREE.BufferAttribute(new Float32Array(3 * rs.length * cs.length), 3));
+    geometry.setIndex(gridTriangles(cs.length, everyStep(rs.length, 1), everyStep(cs.length, 1)));
+    coarse = { step, rs, cs, geometry };
+    grid.userData.coarse = coarse;
+  }
+  const { rs, cs, geometry } = coarse;
+  for (const name of ['position', 'normal']) {
+    const from = full.getAttribute(name).array;
+    const to = geometry.getAttribute(name);
+    let k = 0;
+    for (const i of rs) {
+      for (const j of cs) {
+        to.array.set(from.subarray(3 * (i * cols + j), 3 * (i * cols + j) + 3), k);
+        k += 3;
+      }
+    }
+    to.needsUpdate = true;
+  }
+  return geometry;
 }
 
 /** The grids drawn by at most `dragFaces` of their faces a side. */
 function drawDrag() {
   pixelRatio(DRAG_PIXEL_RATIO);
-  const grids = [surface, gaussSurface].map((m) => [m, dragIndex(m)]).filter(([, index]) => index);
-  for (const [m, index] of grids) m.geometry.setIndex(index);
+  const grids = [surface, gaussSurface].map((m) => [m, m.geometry, dragGeometry(m)]).filter(([, , coarse]) => coarse);
+  for (const [m, , coarse] of grids) m.geometry = coarse;
   renderer.render(scene, camera);
   drawn.drag = renderer.info.render.triangles + renderer.info.render.lines;
   drawn.detail = dragFaces(surface);
   drawn.byDetail.set(drawn.detail, drawn.drag);
-  for (const [m] of grids) m.geometry.setIndex(m.geometry.userData.full);
+  for (const [m, full] of grids) m.geometry = full;
 }
 
 const drawable = (o) => o.isMesh || o.isLine || o.isPoints;
@@ -416,8 +444,7 @@ function gridEdges(rows, cols) {
 
 /**
  * Puts a grid into a surface and its wireframe, reusing buffers of the same
- * size; the surface's geometry keeps its full triangles and those of the drag
- * quality's strides drawn so far (see `dragIndex`).
+ * size (drag quality draws a coarser copy, see `dragGeometry`).
  */
 export function setGrid(mesh, lines, rows, cols, positions, normals) {
   let geometry = mesh.geometry;
@@ -425,11 +452,13 @@ export function setGrid(mesh, lines, rows, cols, positions, normals) {
   if (!position || geometry.userData.rows !== rows || geometry.userData.cols !== cols) {
     geometry.dispose();
     lines.geometry.dispose();
+    mesh.userData.coarse?.geometry.dispose();
+    mesh.userData.coarse = null;
     geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setIndex(gridTriangles(cols, everyStep(rows, 1), everyStep(cols, 1)));
-    geometry.userData = { rows, cols, full: geometry.index, drag: new Map() };
+    geometry.userData = { rows, cols };
     mesh.geometry = geometry;
     lines.geometry = new THREE.BufferGeometry();
     lines.geometry.setAttribute('position', geometry.getAttribute('position'));
