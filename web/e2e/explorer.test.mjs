@@ -139,14 +139,29 @@ const FLOOR = 0.5;
  * The drag frames' detail follows their cost, whatever the machine's speed:
  * with every animation frame made slower than the budget (a busy wait in
  * requestAnimationFrame), a pointer drag of θ comes down one level a frame
- * to the coarsest, each drawing fewer primitives, and once it rests the full
- * grid is drawn (every face of the mesh). (That fast frames keep the finest
+ * to the coarsest, each drawing fewer primitives, sending WebGL less than
+ * the grid's vertices each frame (the drawn ones are a copy), and once it
+ * rests the full grid is drawn (every face of the mesh). (That fast frames keep the finest
  * detail and cheap ones climb back is web/test/detail.test.mjs.)
  */
 async function adaptiveDetail(page, idle) {
   const delay = 2 * FRAME_BUDGET_MS;
   await page.evaluate((ms) => {
     explorer.resetDetail();
+    // The bytes sent to WebGL's buffers in drag quality (a full frame that
+    // began while the test was slow to move again is not counted).
+    window.uploaded = 0;
+    const proto = WebGL2RenderingContext.prototype;
+    window.realBuffer = { data: proto.bufferData, subData: proto.bufferSubData };
+    const bytes = (data, count) => (!explorer.state.fast ? 0 : typeof data === 'number' ? data : count ? count * data.BYTES_PER_ELEMENT : data.byteLength);
+    proto.bufferData = function (target, data, ...rest) {
+      window.uploaded += bytes(data, rest[2]);
+      return window.realBuffer.data.call(this, target, data, ...rest);
+    };
+    proto.bufferSubData = function (target, offset, data, srcOffset, count) {
+      window.uploaded += bytes(data, count);
+      return window.realBuffer.subData.call(this, target, offset, data, ...[srcOffset, count].filter((x) => x !== undefined));
+    };
     window.realAnimationFrame = window.requestAnimationFrame;
     window.requestAnimationFrame = (callback) => window.realAnimationFrame((t) => {
       const start = performance.now();
@@ -160,25 +175,37 @@ async function adaptiveDetail(page, idle) {
   await page.mouse.move(x, y);
   await page.mouse.down();
   const seen = [];
+  const uploads = [];
   for (let k = 0; k < 40 && seen.at(-1) !== DRAG_FACES.at(-1); k++) {
-    const measured = await page.evaluate(() => explorer.state.latencies.length);
+    const measured = await page.evaluate(() => {
+      window.uploaded = 0;
+      return explorer.state.latencies.length;
+    });
     x += k % 2 ? -3 : 4;
     await page.mouse.move(x, y);
     // This move's frame measured (so that the next is drawn at the detail it leads to).
     await page.waitForFunction((n) => explorer.state.latencies.length > n, measured, { timeout: 10000 }).catch(() => {});
-    const detail = await page.evaluate(() => explorer.frames().detail);
+    const [detail, uploaded] = await page.evaluate(() => [explorer.frames().detail, window.uploaded]);
+    uploads.push(uploaded);
     if (seen.at(-1) !== detail) seen.push(detail);
   }
   await page.mouse.up();
   await idle();
   const after = await page.evaluate(() => {
     window.requestAnimationFrame = window.realAnimationFrame;
+    Object.assign(WebGL2RenderingContext.prototype, { bufferData: window.realBuffer.data, bufferSubData: window.realBuffer.subData });
     return { frames: explorer.frames(), rows: explorer.state.mesh.rows, cols: explorer.state.mesh.cols, fast: explorer.state.fast };
   });
   const byDetail = Object.entries(after.frames.byDetail).map(([d, n]) => [Number(d), n]).sort((a, b) => b[0] - a[0]);
   log(`drag frames made ${delay} ms slow: the mesh drawn by at most ${seen.join(' → ')} faces a side, ${byDetail.map(([d, n]) => `${n} primitives at ${d}`).join(', ')}`);
   assert.deepEqual(byDetail.map(([d]) => d), DRAG_FACES, `the drag came down one level a frame to the coarsest: ${seen.join(' → ')}`);
   byDetail.slice(1).forEach(([d, n], k) => assert.ok(n < byDetail[k][1], `a drag frame at ${d} faces a side draws fewer primitives than at ${byDetail[k][0]}: ${n} vs ${byDetail[k][1]}`));
+  // The mesh's vertices alone, as f32: a drag frame at the coarsest level
+  // sends a quarter of that at most (it sent the mesh's and the Gauss map's
+  // vertices and normals, four times that, when it drew the whole grids' buffers).
+  const grid = 12 * after.rows * after.cols;
+  log(`bytes sent to WebGL's buffers by each drag move: ${uploads.join(', ')} (the mesh's vertices: ${grid})`);
+  assert.ok(uploads.at(-1) < grid / 4, `a drag frame at the coarsest level sends WebGL less than a quarter of the mesh's ${grid} bytes of vertices: ${uploads}`);
   // Once it rests: full quality, every face of the mesh drawn.
   assert.equal(after.fast, false, 'full quality once the drag rests');
   const total = after.frames.steps.reduce((a, b) => a + b, 0);
