@@ -547,3 +547,32 @@ fn a_time_limit_keeps_the_best_design_found_so_far() {
     }
     assert!(objective(&full) <= previous);
 }
+
+#[test]
+fn a_scans_noise_is_averaged_out_of_the_distance_and_a_meshs_own_vertices_are_on_it() {
+    use crate::heldout::targets;
+    let torus = targets()
+        .into_iter()
+        .find(|t| t.name == "torus patch")
+        .unwrap();
+    // Vertices exactly on the torus (at distance 0 from it), away from its edges,
+    // measured against a scan of it noised by 1e-4 of its size: the quadric around each
+    // nearest point averages its neighbours' noise; measured through the point itself,
+    // it would carry that point's noise whole (RMS about 1e-4 of the size).
+    let exact = torus.grid(41);
+    let inner: Vec<DVec3> = (0..41 * 41)
+        .filter(|k| (5..36).contains(&(k / 41)) && (5..36).contains(&(k % 41)))
+        .map(|k| exact[k])
+        .collect();
+    let grid = QuadGrid::new(31, 31, inner, vec![DVec3::Z; 31 * 31]);
+    let scan = TargetCloud::new(&torus.scan(2000, 1e-4, 7)).unwrap();
+    let (max, rms) = max_rms(scan.distances(&grid).iter().map(|d| d / scan.size()));
+    eprintln!("exact vertices → noised scan: max {max:.2e} RMS {rms:.2e}");
+    assert!(rms <= 5e-5, "RMS {rms:e}");
+    // The torus's own vertices as the target: they are on it.
+    let mesh = TargetCloud::new(&exact).unwrap();
+    let grid = QuadGrid::new(41, 41, exact.clone(), vec![DVec3::Z; exact.len()]);
+    let (max, _) = max_rms(mesh.distances(&grid).iter().map(|d| d / mesh.size()));
+    eprintln!("exact vertices → themselves: max {max:.2e}");
+    assert!(max <= 1e-5, "max {max:e}");
+}

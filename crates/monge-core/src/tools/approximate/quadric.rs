@@ -59,20 +59,7 @@ impl Quadric {
     pub(super) fn fit(points: &[DVec3], origin: DVec3, z: DVec3) -> Quadric {
         let x = z.any_orthonormal_vector();
         let y = z.cross(x);
-        let scale = bbox_diagonal(points).max(f64::MIN_POSITIVE);
-        let mut ata = nalgebra::Matrix6::<f64>::zeros();
-        let mut atb = nalgebra::Vector6::<f64>::zeros();
-        for p in points {
-            let d = (*p - origin) / scale;
-            let (u, v, w) = (d.dot(x), d.dot(y), d.dot(z));
-            let row = nalgebra::Vector6::new(u * u, u * v, v * v, u, v, 1.0);
-            ata += row * row.transpose();
-            atb += row * w;
-        }
-        let c = ata
-            .svd(true, true)
-            .solve(&atb, 1e-14)
-            .unwrap_or_else(|_| nalgebra::Vector6::zeros());
+        let (c, scale, _) = height_fit(points, origin, [x, y, z], 2);
         // Back to model units: z = s·w(u/s, v/s).
         let k = [
             c[0] / scale,
@@ -141,6 +128,72 @@ impl Quadric {
             d2,
         }
     }
+}
+
+/// The least-squares height `w(u, v)` of `degree` (2 or 3) over the frame `[x, y, z]`
+/// at `origin`, in units of the points' extent: its coefficients (`u², uv, v², u, v, 1`,
+/// then `u³, u²v, uv², v³`), that extent, and the sum of the squared residuals (model
+/// units).
+fn height_fit(
+    points: &[DVec3],
+    origin: DVec3,
+    [x, y, z]: [DVec3; 3],
+    degree: usize,
+) -> (Vec<f64>, f64, f64) {
+    let scale = bbox_diagonal(points).max(f64::MIN_POSITIVE);
+    let terms = if degree >= 3 { 10 } else { 6 };
+    let row = |p: &DVec3| {
+        let d = (*p - origin) / scale;
+        let (u, v) = (d.dot(x), d.dot(y));
+        let all = [
+            u * u,
+            u * v,
+            v * v,
+            u,
+            v,
+            1.0,
+            u * u * u,
+            u * u * v,
+            u * v * v,
+            v * v * v,
+        ];
+        (
+            nalgebra::DVector::from_column_slice(&all[..terms]),
+            d.dot(z),
+        )
+    };
+    let mut ata = nalgebra::DMatrix::<f64>::zeros(terms, terms);
+    let mut atb = nalgebra::DVector::<f64>::zeros(terms);
+    for p in points {
+        let (r, w) = row(p);
+        ata += &r * r.transpose();
+        atb += r * w;
+    }
+    let c = ata
+        .svd(true, true)
+        .solve(&atb, 1e-14)
+        .unwrap_or_else(|_| nalgebra::DVector::zeros(terms));
+    let residual = points
+        .iter()
+        .map(|p| {
+            let (r, w) = row(p);
+            (scale * (w - r.dot(&c))).powi(2)
+        })
+        .sum();
+    (c.as_slice().to_vec(), scale, residual)
+}
+
+/// The sums of the squared residuals of the least-squares quadratic and cubic heights
+/// of `points` over the plane through `origin` with normal `z` (model units): a
+/// sampling's noise leaves both alike, a smooth surface's third-order terms only the
+/// first.
+pub(super) fn misfits(points: &[DVec3], origin: DVec3, z: DVec3) -> (f64, f64) {
+    let x = z.any_orthonormal_vector();
+    let frame = [x, z.cross(x), z];
+    (
+        height_fit(points, origin, frame, 2).2,
+        height_fit(points, origin, frame, 3).2,
+    )
 }
 
 /// Refuses a flat or umbilic point of the target.
