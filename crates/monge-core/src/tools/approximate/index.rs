@@ -348,11 +348,8 @@ pub(super) struct Matches {
 /// sampling's outermost points lie inside the true edge by up to about two.
 const OVERHANG_SPACINGS: f64 = 3.0;
 
-/// Windows along each side of the mesh in which the edge residuals are measured: with
-/// two, each far corner of the mesh, which θ moves, was held by one window's outermost
-/// point, whose randomness on a scan pulled θ (0.9° off on a noised torus patch, 0.1°
-/// with three); more windows are shorter, so their outermost points are more random.
-pub(super) const EDGE_WINDOWS: usize = 3;
+/// Windows along each side of the mesh in which the edge residuals are measured.
+pub(super) const EDGE_WINDOWS: usize = 2;
 
 /// Weight of the edges' residuals against the surface's: each window's outermost point is
 /// random (for `n` points, by about `1/n` of the size), and the sides' positions, which
@@ -527,11 +524,10 @@ mod tests {
         for r in edges(&grid) {
             assert!(r.abs() < 1e-12, "{r:e}");
         }
-        // 2 000 uniform random points: the outermost point of a window of length L (0.3
-        // or 0.4 of a side) lies inside it by 1/(2000·L), 1.25e-3 to 1.7e-3, on average;
-        // with the gap estimated from the spacing of the outermost points, the residual
-        // (the side's offset from the estimated edge) is nil on average. 40 samplings,
-        // 12 windows each.
+        // 2 000 uniform random points: the outermost point of a window of length L (half
+        // a side) lies inside it by 1/(2000·L) = 1e-3 on average; with the gap estimated
+        // from the spacing of the outermost points, the residual (the side's offset from
+        // the estimated edge) is nil on average. 40 samplings, 8 windows each.
         let mut state = 7u64;
         let mut uniform = || {
             state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -559,7 +555,7 @@ mod tests {
             }
         }
         let (with_gap, outermost) = (with_gap / count, outermost / count);
-        // Standard error of the mean: 1.5e-3 / √480 ≈ 7e-5.
+        // Standard error of the mean: 1e-3 / √320 ≈ 6e-5.
         assert!(with_gap.abs() < 2e-4, "{with_gap:e}");
         assert!(outermost.abs() < 2e-4, "{outermost:e}");
     }
