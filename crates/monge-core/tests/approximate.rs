@@ -574,5 +574,5 @@ fn a_scans_noise_is_averaged_out_of_the_distance_and_a_meshs_own_vertices_are_on
     let grid = QuadGrid::new(41, 41, exact.clone(), vec![DVec3::Z; exact.len()]);
     let (max, _) = max_rms(mesh.distances(&grid).iter().map(|d| d / mesh.size()));
     eprintln!("exact vertices → themselves: max {max:.2e}");
-    assert!(max <= 1e-5, "max {max:e}");
+    assert!(max <= 1e-12, "max {max:e}");
 }
