@@ -154,9 +154,9 @@ def test_hops_approximates_a_surface(hops_client):
     assert metrics[1].startswith(f"largest deviation: {r['max_deviation']:.3g} model units")
     # With a tolerance: the metrics of monge.grasshopper.approximate with it (whether
     # it is met, and why not), and the patches' merged mesh.
-    out = outputs(hops_client.post("/solve", data=json.dumps(request(brep, "0.5"))))
+    out = outputs(hops_client.post("/solve", data=json.dumps(request(brep, "50m"))))
     metrics = [json.loads(m) for m in out["Metrics"]]
-    expected = mgh.approximate(brep, grid=(8, 8), starts=1, tolerance="0.5")
+    expected = mgh.approximate(brep, grid=(8, 8), starts=1, tolerance="50m")
     assert metrics == expected["metrics"]
     r = expected["result"]
     assert any(m.startswith(f"{'' if r['met'] else 'NOT '}within the tolerance of {r['tolerance']:.3g}") for m in metrics)

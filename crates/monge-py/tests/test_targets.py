@@ -232,8 +232,8 @@ def test_the_docs_grasshopper_recipe_runs(monkeypatch):
     out = run_component(code, "docs/python.md", monkeypatch, geometry=surface, faces=8, starts=1, tolerance=None)
     assert out["error"] is None, out["error"]
     assert out["mesh"].Faces.QuadCount == 64 and any("largest deviation" in line for line in out["metrics"])
-    # A tolerance: the metrics say whether it is met.
-    out = run_component(code, "docs/python.md", monkeypatch, geometry=surface, faces=8, starts=1, tolerance="0.5")
+    # A tolerance of about four times the size (one patch meets it, quickly): the metrics say whether it is met.
+    out = run_component(code, "docs/python.md", monkeypatch, geometry=surface, faces=8, starts=1, tolerance="50m")
     assert out["error"] is None, out["error"]
     assert any("within the tolerance of" in line for line in out["metrics"])
     out = run_component(code, "docs/python.md", monkeypatch, geometry=rhino3dm.Point3d(0, 0, 0), faces=5, starts=1,
