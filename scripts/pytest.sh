@@ -16,16 +16,24 @@ venv="$target/venv"
 if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
-# Blender as a Python module (about 370 MB) for the Blender tests, first: it
-# pins numpy < 2, which then also satisfies the rest. The package index has it
-# for one CPython version at a time (3.11 for bpy 4.1–5.0).
-"$venv/bin/python" -m pip install --quiet bpy ||
-  echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
 # dask and pandas: monge.dask on a local cluster; pefile, macholib, pyelftools,
 # auditwheel: the checks of the cross-built wheels (scripts/wheels.sh), when
 # target/wheels-all holds them.
-"$venv/bin/python" -m pip install --quiet "maturin>=1.9.4,<2" numpy pytest pytest-xdist rhino3dm compas ghhops-server flask mypy \
-  "dask[distributed]" pandas pefile macholib pyelftools auditwheel
+packages=("maturin>=1.9.4,<2" numpy pytest pytest-xdist rhino3dm compas ghhops-server flask mypy
+  "dask[distributed]" pandas pefile macholib pyelftools auditwheel)
+# What the venv holds is installed once: a stamp names it, and a change of the
+# list installs again.
+requirements="bpy then ${packages[*]}"
+stamp="$venv/monge-requirements.txt"
+if [ "$(cat "$stamp" 2>/dev/null)" != "$requirements" ]; then
+  # Blender as a Python module (about 370 MB) for the Blender tests, first: it
+  # pins numpy < 2, which then also satisfies the rest. The package index has it
+  # for one CPython version at a time (3.11 for bpy 4.1–5.0).
+  "$venv/bin/python" -m pip install --quiet bpy ||
+    echo "warning: no bpy for $("$venv/bin/python" --version); the Blender tests will be skipped" >&2
+  "$venv/bin/python" -m pip install --quiet "${packages[@]}"
+  echo "$requirements" >"$stamp"
+fi
 [ "${1:-}" = --setup ] && exit 0
 
 # The workspace's test build (nothing to do after `cargo test --workspace`): the
