@@ -440,7 +440,7 @@ fn a_mesh_written_relative_to_its_start_is_exact_a_million_sizes_away() {
 /// several distances from the origin, the worst face error with and without
 /// the base point, the largest error that the rounding of the coordinates adds
 /// per rounding ((error − error relative to the start) / (ε · origin ratio)),
-/// and the refusals with the default tolerances. Run with `cargo test -p monge-core --release
+/// and the refusals with the default tolerances. Run with `cargo test -p monge-core-tests --release
 /// --test integration far_from_origin:: -- --ignored --nocapture`.
 #[test]
 #[ignore = "a sweep of a few minutes: prints the table behind FAR_FROM_ORIGIN"]

@@ -3,7 +3,7 @@
 //! construction: against the torus' equation, the patches' own samples and
 //! frames carried along two paths.
 //!
-//! `cargo test -p monge-core --test integration cyclidic_net:: -- --nocapture` prints the worst values.
+//! `cargo test -p monge-core-tests --test integration cyclidic_net:: -- --nocapture` prints the worst values.
 
 use glam::DVec3;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions, Family};

@@ -11,7 +11,7 @@
 //! sample `i` and guide_v's sample `j` (§2.2.1), so it approximates `X(s_i, t_j)`
 //! whatever the spacing; arc-length sampling would only move the samples.
 //!
-//! `cargo test -p monge-core --test integration darboux:: -- --nocapture` prints the θ scan,
+//! `cargo test -p monge-core-tests --test integration darboux:: -- --nocapture` prints the θ scan,
 //! the errors per refinement and the rates.
 
 use glam::DVec3;

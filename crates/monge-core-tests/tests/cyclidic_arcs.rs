@@ -4,7 +4,7 @@
 //! and planes are fitted to sampled points here (three-point circles, nalgebra
 //! SVD planes), never taken from the patch formulas.
 //!
-//! `cargo test -p monge-core --test integration cyclidic_arcs:: -- --nocapture` prints the worst values.
+//! `cargo test -p monge-core-tests --test integration cyclidic_arcs:: -- --nocapture` prints the worst values.
 
 use glam::DVec3;
 use monge_core::cyclidic::{Arc, CyclidicNet, CyclidicOptions, Family, Frame};

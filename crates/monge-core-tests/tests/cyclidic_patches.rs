@@ -4,7 +4,7 @@
 //! fitted to sampled points here (three-point circles), never taken from the
 //! patch formulas.
 //!
-//! `cargo test -p monge-core --test integration cyclidic_patches:: -- --nocapture` prints the worst values.
+//! `cargo test -p monge-core-tests --test integration cyclidic_patches:: -- --nocapture` prints the worst values.
 
 use glam::DVec3;
 use monge_core::cyclidic::{FoldReason, Frame, Patch};

@@ -3,7 +3,7 @@
 //! direct geometric computations: circles through three vertices, least-squares
 //! planes (nalgebra SVD), pairwise distances, mirror images.
 //!
-//! `cargo test -p monge-core --test integration analytic:: -- --nocapture` prints the worst
+//! `cargo test -p monge-core-tests --test integration analytic:: -- --nocapture` prints the worst
 //! values seen and the refinement rates.
 
 use glam::DVec3;

@@ -187,7 +187,7 @@ fn shipped_paraboloid() -> QuadGrid {
 /// The measurement on the held-out free-form targets and the shipped paraboloid:
 /// largest distance both ways / size (brute force on fine samplings, or on the shipped
 /// mesh's own triangles) for 1 × 1, 2 × 1, 2 × 2 and 3 × 3 patches, default settings:
-/// `cargo test --release -p monge-core --test integration approximate_patches:: -- --ignored --nocapture`
+/// `cargo test --release -p monge-core-tests --test integration approximate_patches:: -- --ignored --nocapture`
 /// (`HELDOUT=hyper` measures only the targets whose name contains it;
 /// `LAYOUTS=2x2,3x3` only those layouts).
 #[test]

@@ -39,7 +39,7 @@ fn the_held_out_targets_have_the_theta_of_their_family() {
 }
 
 /// The measurement on every held-out target, meshes and scans (default settings):
-/// `cargo test -p monge-core --test integration approximate_heldout:: -- --ignored --nocapture`
+/// `cargo test -p monge-core-tests --test integration approximate_heldout:: -- --ignored --nocapture`
 /// (`HELDOUT=torus` measures only the targets whose name contains it).
 #[test]
 #[ignore = "a measurement (a few minutes); prints the table"]

@@ -1,6 +1,6 @@
 //! monge-core's integration tests, one binary: each module is one topic.
 //! One binary links and compiles the shared helpers once and runs every test in
-//! one pool of threads: `cargo test -p monge-core --test integration MODULE::`
+//! one pool of threads: `cargo test -p monge-core-tests --test integration MODULE::`
 //! runs one module.
 
 mod analytic;

@@ -6,7 +6,7 @@
 //! by SVD and by the covariance eigen-decomposition, circumcircles by solving
 //! the circle equation with LU, and a geometric least-squares circle fit by
 //! Gauss–Newton. `crosscheck_report` prints the largest disagreements seen
-//! (`cargo test -p monge-core --test integration measure_crosscheck:: -- --nocapture`).
+//! (`cargo test -p monge-core-tests --test integration measure_crosscheck:: -- --nocapture`).
 
 use glam::DVec3;
 use monge_core::measure::measure;

@@ -8,7 +8,7 @@
 //! samplers (Cox–de Boor basis functions for B-splines, closed-form arcs and
 //! parabolas), in a random rigid position.
 //!
-//! Run `cargo test -p monge-core --test integration properties:: -- --nocapture` to see the
+//! Run `cargo test -p monge-core-tests --test integration properties:: -- --nocapture` to see the
 //! worst values measured.
 
 use std::cell::RefCell;
