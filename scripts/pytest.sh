@@ -51,11 +51,15 @@ echo "== wheel (maturin build ${profile:-(debug)}, into $wheels)"
 rm -rf "$wheels"
 log="$(mktemp)"
 (cd crates/monge-py && "$venv/bin/maturin" build $profile --locked --out "$wheels") 2>&1 | tee "$log"
-# The debug wheel compiles only what differs from the test build: pyo3 built as
-# an extension module, and what links it. Anything else means a dependency's
-# features differ between the two builds (see crates/monge-py/Cargo.toml).
+# The debug wheel compiles only what the test build has not built: pyo3 as an
+# extension module, and the crates only this crate uses (`cargo test` does not
+# build it). Compiling again a crate the rest of the workspace uses means a
+# dependency's features differ between the two builds (see
+# crates/monge-py/Cargo.toml).
 if [ -z "$profile" ] && [ "${1:-}" != --install ]; then
-  extra="$(sed -n 's/^ *Compiling \([^ ]*\) .*/\1/p' "$log" | grep -vxE 'pyo3(-ffi|-macros|-macros-backend|-build-config)?|numpy|pythonize|monge-py' || true)"
+  shared="$(cargo tree --locked --workspace --exclude monge-py -e normal,build,dev --prefix none --format '{p}' |
+    sed 's/ .*//' | sort -u)"
+  extra="$(sed -n 's/^ *Compiling \([^ ]*\) .*/\1/p' "$log" | sort -u | comm -12 - <(echo "$shared"))"
   if [ -n "$extra" ]; then
     echo "error: the debug wheel's build compiled again what \`cargo test --workspace\` had built:" $extra >&2
     echo "  their features differ from the workspace's: align them in crates/monge-py/Cargo.toml" >&2

@@ -240,26 +240,3 @@ pub fn generate_error(context: Option<&str>, e: &GenerateError) -> PyErr {
 pub fn py_short(x: f64) -> String {
     py_float(format!("{x:.5e}").parse().unwrap_or(x))
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn floats_are_written_as_python_writes_them() {
-        for (x, repr) in [
-            (f64::NAN, "nan"),
-            (f64::NEG_INFINITY, "-inf"),
-            (0.0, "0.0"),
-            (-1.0, "-1.0"),
-            (0.1, "0.1"),
-            (1.5e308, "1.5e+308"),
-            (1e-5, "1e-05"),
-            (1e16, "1e+16"),
-            (123456.0, "123456.0"),
-        ] {
-            assert_eq!(py_float(x), repr);
-        }
-        assert_eq!(py_short(19.106757330164218), "19.1068");
-    }
-}

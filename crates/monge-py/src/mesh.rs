@@ -432,14 +432,3 @@ pub fn generate(
     mesh.warn_inexact(py, tolerance)?;
     Ok(mesh)
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The default `generate`'s text signature, its stub and its docstring write.
-    #[test]
-    fn the_written_default_of_max_vertices_is_the_cores() {
-        assert_eq!(GenerateOptions::default().max_vertices, 25_000_000);
-    }
-}

@@ -202,7 +202,10 @@ def test_offsets_whose_size_overflows_are_refused_before_measuring(name, capfd):
         with pytest.raises(monge.MeshError) as e:
             mesh.offset(d)
         assert str(e.value).startswith(f"offset(d={d!r}): ")
-        assert "give a smaller |d| (this mesh's own size is " in str(e.value)
+        # The size to 6 significant digits, as Python writes that number.
+        v = np.asarray(mesh.vertices).reshape(-1, 3)
+        size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+        assert f"give a smaller |d| (this mesh's own size is {float(f'{size:.5e}')!r};" in str(e.value)
     assert "is not finite in f64, its coordinates reaching 5.0e307" in str(
         pytest.raises(monge.MeshError, mesh.offset, 5e307).value
     )
@@ -493,3 +496,14 @@ def test_smooth_refuses_the_folded_mesh_that_check_finds_folded():
         with pytest.raises(monge.SmoothError, match=r"face \(0, 0\) is folded"):
             monge.smooth(source, samples=2)
         assert monge.smooth(source, samples=2, allow_folded=True)["patches"].shape[:2] == (24, 20)
+
+
+@pytest.mark.parametrize(
+    "x", [0.0, -0.0, -1.0, -0.1, -1e-05, -123456.0, -1e16, -1.5e308, float("nan"), float("-inf")]
+)
+def test_numbers_in_messages_are_written_as_python_writes_them(x):
+    # The refused value in the message is the value's own repr.
+    design = monge.Design.from_file(FREEFORM)
+    with pytest.raises(monge.SmoothError) as e:
+        monge.smooth(design, samples=4, max_bytes=x)
+    assert str(e.value).startswith(f"max_bytes = {x!r}: give a positive number of bytes"), str(e.value)

@@ -55,7 +55,7 @@ def test_the_package_doctest_runs(monkeypatch):
     assert result.attempted >= 3 and result.failed == 0, result
 
 
-def test_signatures_show_the_real_defaults():
+def test_signatures_show_the_real_defaults(cli):
     # help() once showed grid=Ellipsis, layers=Ellipsis.
     for f in (monge.approximate, monge.fabricate, monge.smooth, monge.scan, monge.check, monge.generate,
               monge.optimise_panels):
@@ -64,6 +64,8 @@ def test_signatures_show_the_real_defaults():
     assert inspect.signature(monge.fabricate).parameters["layers"].default == [0.0]
     assert inspect.signature(monge.smooth).parameters["max_bytes"].default == 8e9
     assert inspect.signature(monge.generate).parameters["max_vertices"].default == 25_000_000
+    # The core's own default, as the command writes it in its help.
+    assert "[default: 25000000]" in cli("generate", "--help").stdout
 
 
 def test_numpy_arrays_are_accepted_where_the_stubs_say_array_like():
