@@ -675,6 +675,30 @@ async function main() {
     assert.equal(await page.evaluate(() => explorer.exported('obj')), readFileSync(join(work, 'out.obj'), 'utf8'), 'OBJ export');
     assert.ok(dragged.metrics.includes(`${dragged.rows} × ${dragged.cols} vertices`), 'the page shows the grid size');
     log(`monge generate = page: ${flat.length} coordinates bit for bit, OBJ and JSON exports byte for byte`);
+    // Export OBJ clicked while a drag's preview is drawn (θ moved in the same
+    // task, whatever the machine's speed): the file is the design's own mesh.
+    const [during] = await Promise.all([page.waitForEvent('download'), page.evaluate(() => {
+      const theta = document.getElementById('theta');
+      theta.value = String(Number(theta.value) + 1);
+      theta.dispatchEvent(new Event('input'));
+      window.previewed = { preview: explorer.state.preview, rows: explorer.state.mesh.rows };
+      document.getElementById('export-obj').click();
+    })]);
+    await during.saveAs(join(work, 'during.obj'));
+    await idle();
+    const previewed = await page.evaluate(() => window.previewed);
+    assert.ok(previewed.preview && previewed.rows < dragged.rows, `a preview was drawn: ${JSON.stringify(previewed)}`);
+    sameAsCli(await snapshot());
+    spawnSync(monge, ['generate', 'current.json', '-o', 'out.obj'], { cwd: work });
+    assert.equal(readFileSync(join(work, 'during.obj'), 'utf8'), readFileSync(join(work, 'out.obj'), 'utf8'), 'Export OBJ during a drag writes the design\'s own mesh');
+    log(`Export OBJ during a drag (a preview of ${previewed.rows} × ${previewed.rows} vertices drawn) = monge generate of the design, byte for byte`);
+    await page.evaluate((deg) => {
+      const theta = document.getElementById('theta');
+      theta.value = String(deg);
+      theta.dispatchEvent(new Event('input'));
+    }, dragged.design.theta_deg);
+    await idle();
+    assert.deepEqual((await snapshot()).design, dragged.design, 'θ back where it was');
 
     // Save the design, change θ, load it back.
     const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save')]);
@@ -742,6 +766,7 @@ async function main() {
       const y = box.y + box.height / 2;
       const since = await page.evaluate(() => {
         explorer.state.latencies.length = 0;
+        explorer.state.generated.length = 0;
         explorer.resetDetail(); // the drag's first frame at the finest detail
         return performance.now();
       });
@@ -758,6 +783,8 @@ async function main() {
         long: window.longTasks.filter((e) => e.startTime >= t).map((e) => e.duration),
         frames: explorer.frames(),
         faces: (explorer.state.mesh.rows - 1) * (explorer.state.mesh.cols - 1),
+        generated: explorer.state.generated,
+        vertices: explorer.state.mesh.rows * explorer.state.mesh.cols,
       }), since);
       const { frames } = cycle;
       const figures = (values) => `median ${quantile(values, 0.5).toFixed(1)} ms, p95 ${quantile(values, 0.95).toFixed(1)} ms`;
@@ -767,6 +794,17 @@ async function main() {
         `${cycle.long.length}${cycle.long.length ? `, the longest ${Math.max(...cycle.long).toFixed(0)} ms` : ''}; ` +
         `a drag frame draws ${frames.drag} primitives (the mesh by at most ${frames.detail} faces a side), the full-quality frame ${frames.steps.length} steps of at most ${Math.max(...frames.steps)} indices`);
       assert.ok(frames.steps.every((n) => n <= frames.stepIndices), `each step of the full frame draws at most ${frames.stepIndices} indices: ${frames.steps}`);
+      // Each move's mesh was generated at the drag frames' detail (its guides
+      // sampled as coarsely), at most the finest level's vertices, whatever the
+      // grid: never the design's own mesh, which is generated once the drag
+      // rests (or, on a machine slow enough, each time it rests on the way).
+      const { generated, vertices } = cycle;
+      const coarse = (DRAG_FACES[0] + 1) ** 2;
+      const previews = generated.filter((n) => n <= coarse);
+      log(`the module generated, during the drag and its rest: ${previews.length} meshes of at most ${Math.max(...previews)} vertices, ${generated.length - previews.length} of ${vertices} (the design's)`);
+      assert.ok(generated.every((n) => n <= coarse || n === vertices), `each mesh generated is a drag's preview (at most ${coarse} vertices) or the design's: ${generated}`);
+      assert.ok(previews.length >= cycle.latencies.length, `each drag frame shows a preview's mesh: ${previews.length} generated for ${cycle.latencies.length} frames`);
+      assert.equal(generated.at(-1), vertices, 'once it rests, the design\'s own mesh is generated');
       // The mesh shown once the drag rests is monge generate's (f32, as drawn).
       const flat = sameAsCli(await snapshot());
       const shown = await page.evaluate(() => explorer.drawnVertices());

@@ -7,19 +7,27 @@
 // it (layers.js), the handles (handles.js), the controls (controls.js), the
 // files (files.js), the design's history (history.js) and the bridge to the
 // module and its worker (bridge.js), around one cycle: a change generates the mesh and shows it.
-import { $, current, replaceCurrent, state } from './page.js';
-import { designInfo, forgetMeasure, generateMesh, loadModule, measure, measurePending, onMeasured } from './bridge.js';
+import { $, current, fullMesh, settler, state } from './page.js';
+import {
+  adopt, designInfo, forgetMeasure, generateMesh, loadModule, measure, measurePending, onMeasured, previewMesh,
+} from './bridge.js';
 import { installControls, showMetrics, showThetaRange, syncControls } from './controls.js';
 import { installFiles, labelExports, netFile } from './files.js';
 import { depth, record, step } from './history.js';
 import { handleOnScreen, installHandles, showHandles } from './handles.js';
 import { showArcs, showAxes, showColours, showMarkers, showPlanes } from './layers.js';
 import {
-  arcLines, axesGroup, camera, coloured, drawn, empty, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit, planesGroup,
-  quality, redraw, renderer, resetDetail, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial, timeNextFrame, wire,
+  arcLines, axesGroup, camera, coloured, dragLevelFaces, drawn, empty, fitView, frameOwed, gaussSurface, gaussWire, guideLines, markers, orbit,
+  planesGroup, quality, redraw, renderer, resetDetail, resize, setGrid, setPolyline, SETTLE_MS, STEP_INDICES, surface, surfaceMaterial,
+  timeNextFrame, wire,
 } from './view.js';
 
+/** The drag being previewed: { name, source (see `mark`), valid (the last design, JSON text, whose preview monge took, or null) }. */
+let dragging = null;
+/** Its end, SETTLE_MS after its last move. */
 let settleTimer = null;
+/** The end of a drag under way, one step a task (a generator, see `settleSteps`), or null. */
+let settling = null;
 
 /** The fields that edit the design, by the words the panel labels them with. */
 const FIELDS = { theta: 'θ', 'samples-u': 'samples u', 'samples-v': 'samples v', kind: 'mesh', 'kind-u': 'guide u', 'kind-v': 'guide v', offset: 'offset', 'load-button': 'Load design…' };
@@ -53,45 +61,61 @@ function mark(source) {
 }
 
 /**
- * Draws a wasm `mesh` (which becomes `current`); `t0` is the time of the input
- * that caused it (null: none to time), `fast` the drag quality (no metrics yet).
+ * The steps that draw a wasm `mesh`, each a task of its own when a drag rests
+ * (see `settleSteps`): the surface's buffers, then the Gauss map's, the guides
+ * and the layers. `t0` is the time of the input that caused it (null: none to
+ * time). `preview`: a drag's preview (see `previewDesign` in detail.js), drawn
+ * in drag quality without its metrics, then freed, `current` staying the mesh
+ * of the design before the drag; otherwise the mesh, from `generateMesh`,
+ * becomes `current`, drawn in full quality with its metrics.
  */
-function showMesh(mesh, t0, fast = false) {
-  const first = state.mesh === null;
-  replaceCurrent(mesh);
-  const header = JSON.parse(mesh.header());
-  state.mesh = header;
-  state.stale = false;
-  unmark();
-  quality(fast);
-  const circular = header.kind === 'circular';
-  // A circular mesh's normals are its node axes (the Gauss map); a conical
-  // mesh's vertex normals are left to three.js. The arrays are views into the
-  // module's memory, copied into three.js's buffers at once.
-  setGrid(surface, wire, header.rows, header.cols, mesh.positions(), circular ? mesh.normals() : null);
-  surfaceMaterial.color.set(0xb0c4de);
-  setGrid(gaussSurface, gaussWire, header.gauss.rows, header.gauss.cols, mesh.normals(), mesh.normals());
-  setPolyline(guideLines.u, mesh.guidePoints(true));
-  setPolyline(guideLines.v, mesh.guidePoints(false));
-  showMarkers(header);
-  showColours(mesh);
-  showAxes(header);
-  showPlanes(header);
-  if (first) fitView();
-  if (fast) {
-    arcLines.visible = false; // until the drag rests and the worker draws them again
-    $('metrics').classList.add('pending');
-  } else {
-    showHandles(); // a drag moves the handles itself
-    measure();
-  }
-  showThetaRange(header);
-  $('error').hidden = true;
-  $('last-valid').hidden = true;
-  labelExports(false);
-  state.generations += 1;
-  if (t0 !== null) timeNextFrame(t0);
-  redraw();
+function meshSteps(mesh, t0, preview = false) {
+  let header = null;
+  return [() => {
+    const first = state.mesh === null;
+    if (!preview && mesh !== current) adopt(mesh);
+    header = JSON.parse(mesh.header());
+    state.mesh = header;
+    state.preview = preview;
+    state.stale = false;
+    unmark();
+    // A circular mesh's normals are its node axes (the Gauss map); a conical
+    // mesh's vertex normals are left to three.js. The arrays are views into the
+    // module's memory, copied into three.js's buffers at once.
+    setGrid(surface, wire, header.rows, header.cols, mesh.positions(), header.kind === 'circular' ? mesh.normals() : null, preview);
+    if (first) fitView();
+  }, () => {
+    quality(preview);
+    surfaceMaterial.color.set(0xb0c4de);
+    setGrid(gaussSurface, gaussWire, header.gauss.rows, header.gauss.cols, mesh.normals(), mesh.normals(), preview);
+    setPolyline(guideLines.u, mesh.guidePoints(true));
+    setPolyline(guideLines.v, mesh.guidePoints(false));
+    showMarkers(header, mesh);
+    showColours(mesh);
+    showAxes(header);
+    showPlanes(header);
+    if (preview) {
+      arcLines.visible = false; // until the drag rests and the worker draws them again
+      $('metrics').classList.add('pending');
+      mesh.free();
+    } else {
+      showHandles(); // a drag moves the handles itself
+      measure();
+    }
+    showThetaRange(header);
+    $('error').hidden = true;
+    $('last-valid').hidden = true;
+    labelExports(false);
+    state.generations += 1;
+    if (t0 !== null) timeNextFrame(t0);
+    redraw();
+  }];
+}
+
+/** Draws a wasm `mesh` at once (see `meshSteps`); a design's mesh ends any drag's preview. */
+function showMesh(mesh, t0, preview = false) {
+  if (!preview) endDrag();
+  for (const step of meshSteps(mesh, t0, preview)) step();
 }
 
 /**
@@ -102,35 +126,118 @@ function showMesh(mesh, t0, fast = false) {
  * a 300 × 300 drag lag, its frames' median from about 40 to 140 ms, input to
  * frame, measured by the end-to-end test; a frame's time goes mostly to
  * software GL drawing it, see `dragFaces` in view.js.)
- * `dragging`: θ or a control point is being dragged, so the mesh is drawn in
- * drag quality without its metrics, then in full with them once the drag has
- * rested for SETTLE_MS. `name` names the design's file in messages; `source`
- * is where the edit came from ({ field } or { handle }, see `mark`), shown
- * if monge refuses it.
+ * `drag`: θ or a control point is being dragged, so what is generated and
+ * drawn is the design's preview at the drag frames' detail (its guides
+ * sampled as coarsely, see `previewDesign`: a move costs the coarse grid, not
+ * the design's), in drag quality without its metrics; once the drag has
+ * rested for SETTLE_MS, the design's own mesh, in full, with them (see
+ * `settleSteps`). `name` names the design's file in messages; `source` is
+ * where the edit came from ({ field } or { handle }, see `mark`), shown if
+ * monge refuses it.
  */
-function change(t0, dragging = false, name = '<input>', source = null) {
+function change(t0, drag = false, name = '<input>', source = null) {
+  if (!drag) {
+    try {
+      showMesh(generateMesh(JSON.stringify(state.design), name), t0);
+    } catch (error) {
+      endDrag();
+      showError(error, false, source, true);
+    }
+    return;
+  }
+  endDrag(false);
+  forgetMeasure(); // the metrics of the design before the drag are not shown over its preview
+  dragging ??= { valid: null };
+  Object.assign(dragging, { name, source });
+  try {
+    showMesh(previewMesh(dragLevelFaces(), name), t0, true);
+    dragging.valid = JSON.stringify(state.design);
+  } catch (error) {
+    showError(error, true, source, true);
+  }
+  state.preview = true; // the design's own mesh is still to come
+  settleTimer = setTimeout(settle, SETTLE_MS);
+}
+
+/**
+ * Stops the end of a drag, pending or under way (a mesh it generated and did
+ * not show yet is freed); `forget`: and the drag itself (a design's mesh, or
+ * its refusal, is shown instead).
+ */
+function endDrag(forget = true) {
   clearTimeout(settleTimer);
   settleTimer = null;
+  settling?.return();
+  settling = null;
+  if (!forget) return;
+  dragging = null;
+  state.preview = false;
+}
+
+/**
+ * The end of a drag: the design's own mesh generated, then drawn in full
+ * quality with its metrics (`meshSteps`), one step a task, so that no task
+ * takes both the generation and the copy of a 300 × 300 grid. When monge
+ * refuses the design, its message, over the mesh of the last design whose
+ * preview it took (the last valid design, exported; or, when monge refuses
+ * that one's mesh too, the last valid one's before the drag).
+ */
+function* settleSteps({ name, source, valid }) {
+  let mesh = null;
   try {
-    showMesh(generateMesh(JSON.stringify(state.design), name), t0, dragging);
-  } catch (error) {
-    showError(error, dragging, source, true);
-  }
-  if (dragging) {
-    settleTimer = setTimeout(() => {
-      settleTimer = null;
-      settle();
-    }, SETTLE_MS);
+    let refusal = null;
+    try {
+      mesh = generateMesh(JSON.stringify(state.design), name);
+    } catch (error) {
+      refusal = error;
+    }
+    if (refusal && valid !== null && valid !== state.valid) {
+      yield;
+      try {
+        mesh = generateMesh(valid, name);
+      } catch {
+        // the mesh of the last valid design before the drag stays
+      }
+    }
+    if (mesh ?? current) {
+      for (const step of meshSteps(mesh ?? current, null)) {
+        yield;
+        step();
+      }
+    }
+    if (refusal) showError(refusal, false, source, true);
+    state.preview = false;
+  } finally {
+    if (mesh && mesh !== current) mesh.free(); // abandoned before it was shown
   }
 }
 
-/** After a drag: the metrics (of a design monge took), and the view in full quality. */
-function settle() {
-  quality(false); // the mesh's bounds measured again, for the handles' size
-  showHandles();
-  if (!state.stale) measure();
-  redraw();
+/**
+ * Ends the drag being previewed: `settleSteps` one a task, or all at once
+ * (`now`: an export asks for the design's mesh, see `fullMesh`).
+ */
+function settle(now = false) {
+  clearTimeout(settleTimer);
+  settleTimer = null;
+  if (!settling) {
+    if (!dragging) return;
+    settling = settleSteps(dragging);
+    dragging = null;
+  }
+  const run = settling;
+  const next = () => {
+    if (settling !== run) return; // abandoned, or done at once
+    if (run.next().done) settling = null;
+    else setTimeout(next);
+  };
+  if (!now) {
+    next();
+    return;
+  }
+  while (!run.next().done);
+  settling = null;
 }
+settler.now = () => settle(true);
 
 /**
  * Shows a refusal: monge's message and where the edit came from (`source`,
@@ -233,11 +340,11 @@ window.explorer = {
     return { world: camera.matrixWorld.toArray(), fov: camera.fov, rect: { left: rect.left, top: rect.top, width: rect.width, height: rect.height } };
   },
   /** The shown mesh's vertices, f64, as `monge generate` writes them. */
-  vertices: () => Array.from(current.vertices()),
+  vertices: () => Array.from(fullMesh().vertices()),
   /** The shown mesh's metrics (JSON text), measured in the module. */
-  metrics: () => current.metrics(),
+  metrics: () => fullMesh().metrics(),
   /** The mesh file `monge generate` writes (`obj` or `json`), as text. */
-  exported: (format) => new TextDecoder().decode(current.export(format)),
+  exported: (format) => new TextDecoder().decode(fullMesh().export(format)),
   /**
    * What the last frames drew: `drag`, the primitives of the last drag frame,
    * whose mesh was drawn by at most `detail` faces a side; `byDetail`, the
@@ -251,7 +358,7 @@ window.explorer = {
   }),
   /** Drag frames start again from the finest detail (see detail.js). */
   resetDetail,
-  idle: () => !frameOwed() && settleTimer === null && !measurePending(),
+  idle: () => !frameOwed() && settleTimer === null && settling === null && !measurePending(),
   /** The vertices the surface is drawn with (f32), as three.js holds them. */
   drawnVertices: () => Array.from(surface.geometry.getAttribute('position').array),
   /** The cyclidic net drawn: { lines, arcs, segments } (chord ends), or { error }, or null. */

@@ -3,7 +3,8 @@
 // own copy of the module) that measures the metrics and the cyclidic net's
 // arcs of the design shown.
 import init, { generate, info, parseDesign } from '../wasm/monge_wasm.js';
-import { $, MAX_VERTICES, state } from './page.js';
+import { $, MAX_VERTICES, replaceCurrent, state } from './page.js';
+import { previewDesign } from './detail.js';
 import { redraw } from './view.js';
 
 /** Reads a design file's text (JSON or TOML) into design JSON text; throws the CLI's message. */
@@ -12,18 +13,42 @@ export { parseDesign };
 /** Loads the module on the main thread. */
 export const loadModule = () => init({ module_or_path: new URL('monge_wasm_bg.wasm', import.meta.url) });
 
-/** How long the last generation took (ms). */
+/** How long the last generation of a design's mesh took (ms). */
 export let generateMs = 0;
 
-/** The wasm mesh of a design (JSON text) at the page's offset; throws the CLI's message. */
-export function generateMesh(text, name) {
-  const start = performance.now();
+/** The wasm mesh of a design (JSON text) at the page's offset; its vertices are noted in `state.generated`. */
+function generateAt(text, name) {
   const mesh = generate(text, name, state.offset, MAX_VERTICES);
-  generateMs = performance.now() - start;
-  state.name = name;
-  state.valid = text;
+  state.generated.push(mesh.vertices().length / 3);
   return mesh;
 }
+
+/** The design (JSON text) and file name of each mesh `generateMesh` made. */
+const designs = new WeakMap();
+
+/** The wasm mesh of a design (JSON text, named `name` in messages) at the page's offset; throws the CLI's message. */
+export function generateMesh(text, name) {
+  const start = performance.now();
+  const mesh = generateAt(text, name);
+  generateMs = performance.now() - start;
+  designs.set(mesh, { text, name });
+  return mesh;
+}
+
+/** Makes a mesh from `generateMesh` the one shown and exported (`current`): its design becomes the last valid one. */
+export function adopt(mesh) {
+  replaceCurrent(mesh);
+  const { text, name } = designs.get(mesh);
+  state.valid = text;
+  state.name = name;
+}
+
+/**
+ * A drag's preview (see `previewDesign` in detail.js): the wasm mesh of the
+ * design (JSON text) with its guides sampled at most `faces` + 1 times;
+ * throws the CLI's message, which is of that design.
+ */
+export const previewMesh = (faces, name) => generateAt(JSON.stringify(previewDesign(state.design, faces)), name);
 
 /** The design's guides and admissible θ (the header `monge info` reports); throws when the guides are invalid. */
 export const designInfo = () => JSON.parse(info(JSON.stringify(state.design), '<input>', MAX_VERTICES));

@@ -1,7 +1,7 @@
 // The side panel's controls: θ's slider and its admissible range, the grid
 // and mesh fields, the views shown (Gauss map, pencil axes, planes, arcs, face
 // colours), and the metrics table.
-import { $, current, fmt, state } from './page.js';
+import { $, fmt, fullMesh, state } from './page.js';
 import { generateMs, measure } from './bridge.js';
 import { showAxes, showColours, showPlanes } from './layers.js';
 import { arcLines, axesGroup, gauss, planesGroup, redraw } from './view.js';
@@ -136,7 +136,8 @@ export function installControls(change, done, refuse) {
     redraw();
   });
   $('colour').addEventListener('change', () => {
-    if (current) showColours(current);
+    const mesh = fullMesh();
+    if (mesh) showColours(mesh);
     redraw();
   });
 }

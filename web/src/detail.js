@@ -6,8 +6,11 @@
 // after CHEAP_FRAMES drag frames in a row under CHEAP_SHARE of the budget. A
 // real GPU keeps the top level; software GL, which spends a drag frame mostly
 // on its triangles, comes down to the level it can draw in time, never below
-// the last one, which still shows the shape. The full-quality frame drawn once
-// a drag rests does not depend on it. Pure: no page, no three.js.
+// the last one, which still shows the shape. A drag's mesh is generated at
+// that detail too (`previewDesign`: its guides sampled as coarsely), so that
+// a drag move costs the coarse grid, not the design's. The full-quality
+// frame drawn once a drag rests, of the design's own mesh, does not depend
+// on it. Pure: no page, no three.js.
 
 /** Faces a side of each level, finest first; each divides 100 and 300 faces into whole strides alike. */
 export const DRAG_FACES = [50, 34, 25, 20, 15];
@@ -27,4 +30,23 @@ export function nextDetail({ level, cheap }, ms) {
   if (ms >= CHEAP_SHARE * FRAME_BUDGET_MS) return { level, cheap: 0 };
   if (cheap + 1 < CHEAP_FRAMES || level === 0) return { level, cheap: Math.min(cheap + 1, CHEAP_FRAMES) };
   return { level: level - 1, cheap: 0 };
+}
+
+/** The guide kinds sampled at `samples` parameter values (a `points` guide is used as given). */
+const SAMPLED = ['bspline', 'arc', 'parabola'];
+
+/**
+ * A drag's preview of `design`: the same design with each sampled guide
+ * (B-spline, arc, parabola) sampled at most `faces` + 1 times, so that its
+ * mesh has at most `faces` faces a side along it: the exact mesh of the
+ * same curves, sampled more coarsely (a `points` guide stays as given). A
+ * new object; `design` is left as it is.
+ */
+export function previewDesign(design, faces) {
+  const lower = (spec) => {
+    const kind = SAMPLED.find((k) => spec?.[k]);
+    if (!kind || !(spec[kind].samples > faces + 1)) return spec;
+    return { ...spec, [kind]: { ...spec[kind], samples: faces + 1 } };
+  };
+  return { ...design, guide_u: lower(design.guide_u), guide_v: lower(design.guide_v) };
 }

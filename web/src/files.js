@@ -3,7 +3,7 @@
 // `monge smooth` write, written by the same code in the module), the mesh,
 // guides and panels as a Rhino file (.3dm, written by rhino3dm in a worker,
 // src/rhino-worker.js), and a design file (JSON or TOML) loaded.
-import { $, current, state } from './page.js';
+import { $, fullMesh, state } from './page.js';
 import { generateMesh, parseDesign } from './bridge.js';
 import { syncControls } from './controls.js';
 
@@ -16,7 +16,7 @@ function download(blob, name) {
 
 /** The bytes `monge smooth -o net.json --samples 9` writes for the design shown; throws monge's message when it has no net. */
 export function netFile() {
-  const net = current.smooth(1);
+  const net = fullMesh().smooth(1);
   try { return net.export(9); } finally { net.free(); }
 }
 
@@ -42,11 +42,12 @@ const rhinoWaiting = [];
  */
 function rhinoExport() {
   // A copy of what is shown now: the mesh may change while the worker writes.
+  const mesh = fullMesh();
   const data = {
-    vertices: Float64Array.from(current.vertices()),
-    faces: current.faces(),
+    vertices: Float64Array.from(mesh.vertices()),
+    faces: mesh.faces(),
     cols: state.mesh.cols,
-    guides: { u: Float64Array.from(current.guidePoints(true)), v: Float64Array.from(current.guidePoints(false)) },
+    guides: { u: Float64Array.from(mesh.guidePoints(true)), v: Float64Array.from(mesh.guidePoints(false)) },
   };
   if (!rhinoWorker) {
     rhinoWorker = new Worker(new URL('rhino-worker.js', import.meta.url), { type: 'module' });
@@ -72,7 +73,8 @@ const exportFailed = (error) => Object.assign($('error'), { textContent: error.m
  * Lets the buttons save and load; a loaded design's wasm mesh is shown with
  * `showMesh(mesh, t0)`, a refused one's message with `showError(error,
  * dragging, source)`; `done()` records a loaded design as a step of the history.
- * The exports are of the mesh shown: the last valid design's when an edit was refused.
+ * The exports are of the design shown (a drag's preview settled first, see
+ * `fullMesh`): the last valid design's when an edit was refused.
  */
 export function installFiles({ showMesh, showError, done }) {
   $('save').addEventListener('click', () => {
@@ -80,7 +82,7 @@ export function installFiles({ showMesh, showError, done }) {
   });
   $('export-net').addEventListener('click', () => {
     // The cyclidic net's JSON, as `monge smooth -o net.json` writes it (a click, not a drag: on the main thread).
-    if (!current) return;
+    if (!fullMesh()) return;
     try {
       download(new Blob([netFile()]), 'net.json');
     } catch (error) {
@@ -90,11 +92,12 @@ export function installFiles({ showMesh, showError, done }) {
   for (const format of ['obj', 'json', 'glb']) {
     // The file `monge generate` writes, written by the same code in the module.
     $(`export-${format}`).addEventListener('click', () => {
-      if (current) download(new Blob([current.export(format)]), `mesh.${format}`);
+      const mesh = fullMesh();
+      if (mesh) download(new Blob([mesh.export(format)]), `mesh.${format}`);
     });
   }
   $('export-3dm').addEventListener('click', async () => {
-    if (!current) return;
+    if (!fullMesh()) return;
     const button = $('export-3dm');
     // Until this one is written (rhino3dm loads on the first): disabled, and marked as busy.
     Object.assign(button, { disabled: true, ariaBusy: 'true' });

@@ -3,7 +3,7 @@
 // in the Gauss map, the planes of the curvature lines, the marks where the
 // mesh folds or nearly pinches with their warnings, and the cyclidic net's arcs.
 import * as THREE from 'three';
-import { $, current, fmt, state } from './page.js';
+import { $, fmt, state } from './page.js';
 import { arcLines, axesGroup, coloured, dotGeometry, empty, markers, meshSize, planesGroup, surface } from './view.js';
 
 /** Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2). */
@@ -134,8 +134,8 @@ export function showPlanes(header) {
   family(cols, rows, (j, i) => i * cols + j, 0xc03030, 'column'); // column 0 is guide_u (red)
 }
 
-/** Red and orange marks where the mesh folds or nearly pinches (§5.2), and the warnings. */
-export function showMarkers(header) {
+/** Red and orange marks where the wasm `mesh` (of `header`) folds or nearly pinches (§5.2), and the warnings. */
+export function showMarkers(header, mesh) {
   empty(markers);
   const size = meshSize();
   const r = header.report;
@@ -156,7 +156,7 @@ export function showMarkers(header) {
     const color = m.kind === 'fold' ? 0xff0000 : 0xff8800;
     const dot = new THREE.Mesh(dotGeometry, new THREE.MeshBasicMaterial({ color, depthTest: false }));
     dot.scale.setScalar(0.02 * size);
-    dot.position.fromArray(current.faceCentre(...m.face));
+    dot.position.fromArray(mesh.faceCentre(...m.face));
     dot.renderOrder = 2;
     markers.add(dot);
     if (m.kind === 'fold' && header.kind === 'circular') markers.add(faceHighlight(header, m.face, color));

@@ -22,13 +22,28 @@ export const state = {
   legend: null,      // the colour legend's numbers: { mode: 'area', min, max } or { mode: 'fold', folded, faces }
   name: '<input>',   // the design's file name, in messages
   net: null,         // the cyclidic net drawn: { lines, arcs } or { error }
+  preview: false,    // what is drawn is a drag's preview of the design (coarser, see previewDesign in detail.js), not yet its mesh
+  generated: [],     // the vertices of each mesh the module generated on the main thread (for the e2e test)
 };
 
 /** Largest grid generated (rows × cols vertices), as `monge explore`'s default. */
 export const MAX_VERTICES = 250000;
 
-/** The wasm mesh shown (for metrics and exports); freed when replaced. */
+/**
+ * The wasm mesh of the design shown (for metrics and exports), never a drag's
+ * preview: while one is drawn, this is the mesh of the design before it, and
+ * `fullMesh` settles the drag first. Freed when replaced.
+ */
 export let current = null;
+
+/** Ends a drag's preview at once: generates the design's mesh and shows it (set by app.js). */
+export const settler = { now: () => {} };
+
+/** The wasm mesh of the design shown, as exported: a drag's preview drawn is settled first (null: none yet). */
+export function fullMesh() {
+  if (state.preview) settler.now();
+  return current;
+}
 
 /** Makes the wasm `mesh` the one shown, freeing the one it replaces. */
 export function replaceCurrent(mesh) {

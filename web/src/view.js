@@ -89,6 +89,9 @@ const GAUSS_SCALE = 0.4;
 /** The drag frames' detail, from the latencies of those drawn so far (see detail.js). */
 let detail = startDetail();
 
+/** The faces a side the mesh is drawn by at most in the next drag frame, at which a drag's preview is generated. */
+export const dragLevelFaces = () => DRAG_FACES[detail.level];
+
 /** Drag frames start again from the finest detail, and `drawn.byDetail` afresh (for the e2e test). */
 export function resetDetail() {
   detail = startDetail();
@@ -263,8 +266,8 @@ function pixelRatio(factor) {
  * whose vertices and normals are gathered from the grid's. A drag frame so
  * sends software GL these few vertices only, not the whole grid's (at 300 ×
  * 300 faces, 4 MB a frame); the grid's are sent when a full frame draws it.
- * One such geometry a grid, made again when the stride changes (and freed
- * with the grid's, see `setGrid`).
+ * One such geometry a grid's buffers, made again when the stride changes
+ * (and freed with them, see `setGrid`).
  */
 function dragGeometry(grid) {
   const full = grid.geometry;
@@ -272,7 +275,7 @@ function dragGeometry(grid) {
   if (!rows) return null;
   const step = Math.ceil((Math.max(rows, cols) - 1) / dragFaces(grid));
   if (step <= 1) return null;
-  let coarse = grid.userData.coarse;
+  let coarse = full.userData.coarse;
   if (!coarse || coarse.step !== step) {
     coarse?.geometry.dispose();
     const [rs, cs] = [everyStep(rows, step), everyStep(cols, step)];
@@ -280,7 +283,7 @@ function dragGeometry(grid) {
     for (const name of ['position', 'normal']) geometry.setAttribute(name, new THREE.BufferAttribute(new Float32Array(3 * rs.length * cs.length), 3));
     geometry.setIndex(gridTriangles(cs.length, everyStep(rs.length, 1), everyStep(cs.length, 1)));
     coarse = { step, rs, cs, geometry };
-    grid.userData.coarse = coarse;
+    full.userData.coarse = coarse;
   }
   const { rs, cs, geometry } = coarse;
   for (const name of ['position', 'normal']) {
@@ -443,27 +446,36 @@ function gridEdges(rows, cols) {
 }
 
 /**
- * Puts a grid into a surface and its wireframe, reusing buffers of the same
- * size (drag quality draws a coarser copy, see `dragGeometry`).
+ * Puts a grid into a surface and its wireframe. Each keeps two sets of
+ * buffers, reused while the grid's size stays: the design's mesh's and a
+ * drag's preview's (`preview`, see `previewDesign` in detail.js), so that a
+ * drag that rests does not build the whole grid's triangles and edges again
+ * (drag quality may also draw a coarser copy, see `dragGeometry`).
  */
-export function setGrid(mesh, lines, rows, cols, positions, normals) {
-  let geometry = mesh.geometry;
-  const position = geometry.getAttribute('position');
-  if (!position || geometry.userData.rows !== rows || geometry.userData.cols !== cols) {
-    geometry.dispose();
-    lines.geometry.dispose();
-    mesh.userData.coarse?.geometry.dispose();
-    mesh.userData.coarse = null;
-    geometry = new THREE.BufferGeometry();
+export function setGrid(mesh, lines, rows, cols, positions, normals, preview = false) {
+  const slots = mesh.userData.slots ??= {};
+  const slot = preview ? 'preview' : 'full';
+  let held = slots[slot];
+  if (!held || held.rows !== rows || held.cols !== cols) {
+    if (held) {
+      held.geometry.userData.coarse?.geometry.dispose();
+      held.geometry.dispose();
+      held.lines.dispose();
+    }
+    const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(rows * cols * 3), 3));
     geometry.setIndex(gridTriangles(cols, everyStep(rows, 1), everyStep(cols, 1)));
-    geometry.userData = { rows, cols };
-    mesh.geometry = geometry;
-    lines.geometry = new THREE.BufferGeometry();
-    lines.geometry.setAttribute('position', geometry.getAttribute('position'));
-    lines.geometry.setIndex(gridEdges(rows, cols));
+    geometry.userData = { rows, cols, coarse: null };
+    const edges = new THREE.BufferGeometry();
+    edges.setAttribute('position', geometry.getAttribute('position'));
+    edges.setIndex(gridEdges(rows, cols));
+    held = { rows, cols, geometry, lines: edges };
+    slots[slot] = held;
   }
+  const { geometry } = held;
+  mesh.geometry = geometry;
+  lines.geometry = held.lines;
   geometry.getAttribute('position').array.set(positions);
   geometry.getAttribute('position').needsUpdate = true;
   if (normals) {
