@@ -103,7 +103,7 @@ export function resetDetail() {
  * Gauss map, at most GAUSS_SCALE of the mesh's size on the screen, by as
  * many fewer, so that its lines are no further apart there than the mesh's.
  */
-const dragFaces = (grid) => (grid === gaussSurface ? Math.floor(GAUSS_SCALE * DRAG_FACES[detail.level]) : DRAG_FACES[detail.level]);
+const dragFaces = (grid) => (grid === gaussSurface ? Math.floor(GAUSS_SCALE * dragLevelFaces()) : dragLevelFaces());
 
 /**
  * The full-quality frame is drawn offscreen, in steps of at most STEP_INDICES
@@ -399,7 +399,7 @@ function recordLatency(ms, drag) {
   const median = recent[Math.floor(recent.length / 2)];
   if (drag) detail = nextDetail(detail, ms);
   $('latency').textContent = `input → end of the frame's task: ${ms.toFixed(1)} ms (median of the last ${recent.length}: ${median.toFixed(1)} ms); `
-    + `drag frames drawn by at most ${DRAG_FACES[detail.level]} faces a side`;
+    + `drag frames drawn by at most ${dragLevelFaces()} faces a side`;
 }
 
 export function resize() {
