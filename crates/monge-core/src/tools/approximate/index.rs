@@ -181,6 +181,13 @@ impl TargetCloud {
     pub(super) fn matches(&self, grid: &QuadGrid, stride: usize) -> Matches {
         let faces = MeshFaces::new(grid);
         Matches {
+            windows: sides(grid).map(|(side, _, _)| {
+                let length: f64 = side
+                    .windows(2)
+                    .map(|k| grid.vertices[k[0]].distance(grid.vertices[k[1]]))
+                    .sum();
+                windows_along(length, self.spacing)
+            }),
             vertices: grid
                 .vertices
                 .iter()
@@ -210,7 +217,7 @@ impl TargetCloud {
     ///   than [`OVERHANG_SPACINGS`] spacings ([`TargetCloud::offsets`]: a guard against
     ///   a side swinging out, not the edge's measure, which a random sampling's gaps
     ///   would bias inwards), weighted by one over the square root of their number;
-    /// - the edges: each side of the mesh is cut into [`EDGE_WINDOWS`] windows, and in
+    /// - the edges: each side of the mesh is cut into windows ([`windows_along`]), and in
     ///   each the target points matched to the faces within [`EDGE_DEPTH`] rows of
     ///   that side give their offsets beyond it (in the surface, across the side). The
     ///   target's true edge lies beyond its outermost points by a gap that a sampling
@@ -225,12 +232,12 @@ impl TargetCloud {
     pub(super) fn residuals(&self, grid: &QuadGrid, matches: &Matches) -> Vec<f64> {
         let weight = |n: usize| 1.0 / (self.size * (n as f64).sqrt());
         let w_vertices = weight(grid.vertices.len());
-        let mut out = Vec::with_capacity(2 * grid.vertices.len() + 4 * EDGE_WINDOWS);
+        let windows = edge_windows(grid, &self.points, matches);
+        let mut out = Vec::with_capacity(2 * grid.vertices.len() + windows.len());
         for (v, i) in grid.vertices.iter().zip(&matches.vertices) {
             let (across, beyond) = self.offsets(*v, *i, OVERHANG_SPACINGS * self.spacing);
             out.extend([w_vertices * across, w_vertices * beyond]);
         }
-        let windows = edge_windows(grid, &self.points, matches);
         let w_edges = EDGE_WEIGHT * weight(windows.len());
         out.extend(edge_residuals(&windows).into_iter().map(|r| w_edges * r));
         out
@@ -359,6 +366,9 @@ pub(super) struct Matches {
     vertices: Vec<usize>,
     /// The nearest triangle of every `stride`-th target point.
     points: Vec<Triangle>,
+    /// How many windows each side of the mesh is cut into ([`windows_along`]): fixed
+    /// with the matches, so that designs near the mesh have as many residuals.
+    windows: [usize; 4],
     stride: usize,
 }
 
@@ -367,8 +377,30 @@ pub(super) struct Matches {
 /// sampling's outermost points lie inside the true edge by up to about two.
 const OVERHANG_SPACINGS: f64 = 3.0;
 
-/// Windows along each side of the mesh in which the edge residuals are measured.
-pub(super) const EDGE_WINDOWS: usize = 2;
+/// Windows along each side of the mesh in which the edge residuals are measured, at
+/// least.
+const EDGE_WINDOWS: usize = 2;
+
+/// Length of an edge window, at least, in mean spacings of the target's points (about
+/// as many outermost points as lie along it): a window's outermost offset is the
+/// largest of a random sampling's, off by the gap `A / (n·L)` that grows as the window
+/// shortens, so a sparse scan keeps long windows; a dense one, whose gaps are small, is
+/// held in more, which follow its edges' shape closer (θ of held-out scans of 2 000
+/// points within 0.3° with three windows on their long sides, 0.9° with two; a scan of
+/// 1 500 points of a square roof keeps two, with three its edges are missed by 2.2e-3
+/// of its size).
+const WINDOW_SPACINGS: f64 = 35.0;
+
+/// How many windows a side of length `length` is cut into, the target's points being
+/// `spacing` apart: one per [`WINDOW_SPACINGS`] spacings, at least [`EDGE_WINDOWS`].
+fn windows_along(length: f64, spacing: f64) -> usize {
+    let count = length / (WINDOW_SPACINGS * spacing);
+    if count.is_finite() {
+        (count as usize).max(EDGE_WINDOWS)
+    } else {
+        EDGE_WINDOWS
+    }
+}
 
 /// Weight of the edges' residuals against the surface's: each window's outermost point is
 /// random (for `n` points, by about `1/n` of the size), and the sides' positions, which
@@ -390,14 +422,15 @@ struct EdgeWindow {
     depth: f64,
 }
 
-/// The [`EDGE_WINDOWS`] windows of each side of `grid`, with the offsets of the target
-/// points (every `stride`-th of `points`) matched to faces of their strip.
-fn edge_windows(grid: &QuadGrid, points: &[DVec3], matches: &Matches) -> Vec<EdgeWindow> {
+/// For a triangle (face `i`, `j`) of a grid of `rows` × `cols` vertices, its place along
+/// a side and its depth in rows from it.
+type Place = fn(usize, usize, usize, usize) -> (usize, usize);
+
+/// The four sides of `grid`: each its vertices from one end, their neighbours one row
+/// inside, and its [`Place`].
+fn sides(grid: &QuadGrid) -> [(Vec<usize>, Vec<usize>, Place); 4] {
     let (rows, cols) = (grid.rows, grid.cols);
-    // Each side: its vertices from one end, their neighbours one row inside, and for a
-    // triangle (face i, j), its place along the side and its depth in rows from it.
-    type Place = fn(usize, usize, usize, usize) -> (usize, usize);
-    let sides: [(Vec<usize>, Vec<usize>, Place); 4] = [
+    [
         (
             (0..cols).collect(),
             (0..cols).map(|j| cols + j).collect(),
@@ -418,9 +451,15 @@ fn edge_windows(grid: &QuadGrid, points: &[DVec3], matches: &Matches) -> Vec<Edg
             (0..rows).map(|i| i * cols + cols - 2).collect(),
             |i, j, _, cols| (i, cols - 2 - j),
         ),
-    ];
-    let mut windows = Vec::with_capacity(4 * EDGE_WINDOWS);
-    for (side, inner, place) in &sides {
+    ]
+}
+
+/// The windows of each side of `grid` ([`Matches::windows`]), with the offsets of the
+/// target points (every `stride`-th of `points`) matched to faces of their strip.
+fn edge_windows(grid: &QuadGrid, points: &[DVec3], matches: &Matches) -> Vec<EdgeWindow> {
+    let (rows, cols) = (grid.rows, grid.cols);
+    let mut windows = Vec::new();
+    for ((side, inner, place), count) in sides(grid).iter().zip(matches.windows) {
         let v = |k: usize| grid.vertices[side[k]];
         let m = side.len() - 1;
         // The outward direction at each vertex of the side: from its inner neighbour,
@@ -436,8 +475,10 @@ fn edge_windows(grid: &QuadGrid, points: &[DVec3], matches: &Matches) -> Vec<Edg
             .map(|k| v(k).distance(grid.vertices[inner[k]]))
             .sum::<f64>()
             / (m + 1) as f64;
-        let window_of = |k: usize| (k * EDGE_WINDOWS / m).min(EDGE_WINDOWS - 1);
-        let mut these: Vec<EdgeWindow> = (0..EDGE_WINDOWS)
+        // No shorter than one edge of the mesh.
+        let count = count.min(m);
+        let window_of = |k: usize| (k * count / m).min(count - 1);
+        let mut these: Vec<EdgeWindow> = (0..count)
             .map(|_| EdgeWindow {
                 length: 0.0,
                 offsets: Vec::new(),
@@ -526,6 +567,26 @@ mod tests {
         QuadGrid::new(11, 11, vertices, vec![DVec3::Z; 121])
     }
 
+    /// Uniform random numbers in [0, 1) (splitmix64 from `state`).
+    struct Uniform(u64);
+
+    impl Uniform {
+        fn next(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        /// `n` uniform random points of the unit square (z = 0).
+        fn square(&mut self, n: usize) -> Vec<DVec3> {
+            (0..n)
+                .map(|_| DVec3::new(self.next(), self.next(), 0.0))
+                .collect()
+        }
+    }
+
     /// The edge residuals of the unit square against `points` (model units).
     fn edges(points: &[DVec3]) -> Vec<f64> {
         let grid = unit_square();
@@ -547,19 +608,10 @@ mod tests {
         // a side) lies inside it by 1/(2000·L) = 1e-3 on average; with the gap estimated
         // from the spacing of the outermost points, the residual (the side's offset from
         // the estimated edge) is nil on average. 40 samplings, 8 windows each.
-        let mut state = 7u64;
-        let mut uniform = || {
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = Uniform(7);
         let (mut with_gap, mut outermost, mut count) = (0.0, 0.0, 0.0);
         for _ in 0..40 {
-            let points: Vec<DVec3> = (0..2000)
-                .map(|_| DVec3::new(uniform(), uniform(), 0.0))
-                .collect();
+            let points = uniform.square(2000);
             for r in edges(&points) {
                 with_gap += r;
                 count += 1.0;
@@ -577,5 +629,27 @@ mod tests {
         // Standard error of the mean: 1e-3 / √320 ≈ 6e-5.
         assert!(with_gap.abs() < 2e-4, "{with_gap:e}");
         assert!(outermost.abs() < 2e-4, "{outermost:e}");
+    }
+
+    #[test]
+    fn a_dense_scan_holds_each_side_in_more_windows_than_a_sparse_one() {
+        // Points of a planar Poisson sampling of density n are 1/(2√n) from their nearest
+        // on average: a unit side is about 2√n spacings long, 89 for 2 000 points of the
+        // unit square and 200 for 10 000 (fewer near the edges, where the nearest lie
+        // on one side only). A window is at least 35 spacings long.
+        let grid = unit_square();
+        let count = |points: &[DVec3]| {
+            let target = TargetCloud::new(points).unwrap();
+            edge_windows(&grid, &target.points, &target.matches(&grid, 1)).len()
+        };
+        let mut uniform = Uniform(11);
+        assert_eq!(count(&uniform.square(2000)), 4 * 2);
+        let dense = count(&uniform.square(10_000));
+        assert!((4 * 4..=4 * 5).contains(&dense), "{dense}");
+        // A mesh's 21 × 21 vertices: 20 spacings a side, two windows.
+        let vertices: Vec<DVec3> = (0..441)
+            .map(|k| DVec3::new((k / 21) as f64 / 20.0, (k % 21) as f64 / 20.0, 0.0))
+            .collect();
+        assert_eq!(count(&vertices), 4 * 2);
     }
 }

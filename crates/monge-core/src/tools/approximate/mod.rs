@@ -42,7 +42,8 @@
 //!    through that point by the share of its height that is not noise; plus a
 //!    guard against a vertex overhanging the target's boundary by several spacings),
 //!    plus that of the mesh's edges: each side of the mesh is fitted to the envelope of
-//!    the target points along it as a whole (its outermost point in each half), plus
+//!    the target points along it as a whole (its outermost point in each window: two a
+//!    side, more where the target's points are dense along it), plus
 //!    the gap that a sampling leaves between its outermost points and the true edge,
 //!    estimated from the spacing of those outermost points (nil for a mesh's vertices,
 //!    about `A / (n·L)` for `n` random points over an area `A` along a length `L`), so
