@@ -131,6 +131,16 @@ fn bezier(u: f64, v: f64) -> DVec3 {
     DVec3::new(u, 1.3 * v + 0.1 * u * v, z)
 }
 
+/// A designer's dome over a 1 × 0.8 plan whose four edges lie flat at z = 0: a bicubic
+/// Bézier patch, its boundary control points at height 0 and its four inner ones at 0.15
+/// (rise 0.084). Its edges are straight asymptotic lines, its corners saddles (the
+/// twist), its centre elliptic.
+fn flat_edge_dome(u: f64, v: f64) -> DVec3 {
+    let (bu, bv) = (bernstein(u), bernstein(v));
+    let inner = (bu[1] + bu[2]) * (bv[1] + bv[2]);
+    DVec3::new(u, 0.8 * v, 0.15 * inner)
+}
+
 /// A random rotation (uniform quaternion).
 fn random_rotation(rng: &mut Rng) -> DQuat {
     DQuat::from_xyzw(rng.gauss(), rng.gauss(), rng.gauss(), rng.gauss()).normalize()
@@ -288,6 +298,8 @@ pub fn targets() -> Vec<Target> {
         Target::placed("paraboloid", paraboloid, false, 20.0, 1e4, 4),
         Target::placed("hyperbolic paraboloid", hypar, false, 10.0, 1e3, 5),
         Target::placed("Bézier roof", bezier, false, 50.0, 1e5, 6),
+        Target::placed("flat-edge dome", flat_edge_dome, false, 100.0, 1e4, 7),
+        Target::placed("flat-edge dome 1 m", flat_edge_dome, false, 1.0, 1e3, 8),
     ]
 }
 

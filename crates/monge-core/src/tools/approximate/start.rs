@@ -1,7 +1,7 @@
 //! The initial guesses of an approximation (§4.7, monge's extension, step 1): corner,
 //! principal frame and guides fitted to the target's sections at each corner, and
 //! the start along the target's own boundary, its curves leaving a corner traced
-//! through the target's points.
+//! through the target's points, and the start on the whole target's quadric.
 
 use glam::DVec3;
 
@@ -27,7 +27,9 @@ pub(super) struct Start {
 }
 
 /// Corner, principal frame and guides fitted to the target's sections (step 1), at
-/// each of the target's four corners along the principal directions at its centre.
+/// each of the target's four corners along the principal directions at its centre;
+/// there too the start along its boundary ([`boundary_start`]) and on its quadric
+/// ([`quadric_start`]).
 pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, ApproxError> {
     let points = &target.points;
     let size = target.size;
@@ -48,6 +50,10 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
                 .fold(f64::INFINITY, f64::min)
         };
         let guess = centre.point + low(d1) * d1 + low(d2) * d2;
+        // The whole target's quadric there, along the centre's directions.
+        if let Some(start) = quadric_start(target, &global, guess, d1, d2) {
+            starts.push(start);
+        }
         // The corner's own quadric, from its nearest tenth of the target.
         let count = (points.len() / 10).max(MIN_POINTS);
         let near: Vec<DVec3> = target
@@ -92,6 +98,68 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
         Some(e) if starts.is_empty() => Err(e),
         _ => Ok(starts),
     }
+}
+
+/// The start on the quadric fitted to the whole target, at its point nearest to `guess`
+/// (a corner of the target): the frame along the principal directions at the target's
+/// centre (`d1`, `d2`, turned towards that corner) made tangent there, and each guide
+/// the quadric's section by the plane of its tangent and the normal. Where the corners
+/// themselves mislead (a dome whose edges lie flat: its corners are saddles, their
+/// principal directions along the diagonals, its edges straight), the whole target's
+/// shape still gives the arches of a dome along its edges. `None` when the quadric has
+/// no section there.
+fn quadric_start(
+    target: &TargetCloud,
+    global: &Quadric,
+    guess: DVec3,
+    d1: DVec3,
+    d2: DVec3,
+) -> Option<Start> {
+    let (u, v) = global.uv(guess);
+    let corner = global.principal(u, v);
+    let normal = corner.normal;
+    let t_u = (d1 - d1.dot(normal) * normal).normalize_or_zero();
+    let t_v = normal.cross(t_u) * normal.cross(t_u).dot(d2).signum();
+    let n = t_u.cross(t_v);
+    if !n.is_normalized() {
+        return None;
+    }
+    let guide = |t: DVec3| -> Option<Vec<f64>> {
+        let length = target
+            .points
+            .iter()
+            .map(|p| (*p - corner.point).dot(t))
+            .fold(0.0, f64::max);
+        // The section: for each step along t, the height along n where the quadric is
+        // (Newton's method on the height above it, from the previous step's).
+        let (steps, h) = (24, 1e-6 * target.size);
+        let mut w = 0.0;
+        let mut section = Vec::with_capacity(steps + 1);
+        for k in 0..=steps {
+            let s = length * k as f64 / steps as f64;
+            let at = |w: f64| global.height_above(corner.point + s * t + w * n);
+            for _ in 0..8 {
+                let (g, slope) = (at(w), (at(w + h) - at(w)) / h);
+                w -= g / slope;
+            }
+            if !w.is_finite() || at(w).abs() > 1e-6 * target.size {
+                return None;
+            }
+            section.push((s, w));
+        }
+        let p = fit_guide(&section, false)?;
+        let mut guide = vec![p[1].0];
+        guide.extend(p[2..].iter().flat_map(|(s, w)| [*s, *w]));
+        Some(guide)
+    };
+    Some(Start {
+        corner: corner.point,
+        frame: [t_u, t_v, n],
+        guides: [guide(t_u)?, guide(t_v)?],
+        tilts: [0.0; 2],
+        on_boundary: false,
+        curvatures: (corner.k1, corner.k2),
+    })
 }
 
 /// Longest inward turn of the boundary between two steps of [`trace_boundary`]
