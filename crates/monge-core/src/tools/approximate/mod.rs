@@ -19,12 +19,12 @@
 //!    wrapping), a plane is fitted to each, a B-spline to each in its plane
 //!    (Levenberg–Marquardt over the control points and the points' parameters), and
 //!    their start tangents, made orthogonal, give the frame: a target cut along its
-//!    curvature lines is started from its own guides. A third lies on the quadric
-//!    fitted to the whole target, at its point nearest to the corner, its frame along
-//!    the principal directions at the centre and its guides the quadric's sections
-//!    along them: a dome whose edges lie flat (its corners saddles, their principal
-//!    directions along the diagonals) is started along its edges. θ comes from a scan
-//!    every 10°;
+//!    curvature lines is started from its own guides. Where the target's centre is
+//!    elliptic, a third lies on the quadric fitted to the whole target, at its point
+//!    nearest to the corner, its frame along the principal directions at the centre
+//!    and its guides the quadric's sections along them: a dome whose edges lie flat
+//!    (its corners saddles, their principal directions along the diagonals) is
+//!    started along its edges. θ comes from a scan every 10°;
 //! 2. **optimisation** by least squares (Levenberg–Marquardt with Marquardt's diagonal
 //!    damping) of the corner, the frame's rotation, the tilt of each guide plane about
 //!    its start tangent, θ and the control points' coordinates in their planes (the

@@ -50,9 +50,10 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
                 .fold(f64::INFINITY, f64::min)
         };
         let guess = centre.point + low(d1) * d1 + low(d2) * d2;
-        // The whole target's quadric there, along the centre's directions.
-        if let Some(start) = quadric_start(target, &global, guess, d1, d2) {
-            starts.push(start);
+        // The whole target's quadric there, along the centre's directions, where the
+        // target is a dome or a bowl at its centre (a saddle's corners are its own).
+        if centre.k1 * centre.k2 > 0.0 {
+            starts.extend(quadric_start(target, &global, guess, d1, d2));
         }
         // The corner's own quadric, from its nearest tenth of the target.
         let count = (points.len() / 10).max(MIN_POINTS);
@@ -106,8 +107,9 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
 /// the quadric's section by the plane of its tangent and the normal. Where the corners
 /// themselves mislead (a dome whose edges lie flat: its corners are saddles, their
 /// principal directions along the diagonals, its edges straight), the whole target's
-/// shape still gives the arches of a dome along its edges. `None` when the quadric has
-/// no section there.
+/// shape still gives the arches of a dome along its edges. Only where the centre is
+/// elliptic: on a saddle (a hyperbolic paraboloid) these starts lead the search away
+/// from better ones. `None` when the quadric has no section there.
 fn quadric_start(
     target: &TargetCloud,
     global: &Quadric,
