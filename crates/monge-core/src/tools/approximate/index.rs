@@ -330,8 +330,9 @@ impl TargetCloud {
 /// quadric's misfit of a smooth surface's higher-order terms) rather than noise, from the
 /// sums of the squared residuals of the quadratic and cubic fits to the neighbours of
 /// at most [`SHARE_POINTS`] points spread over the target ([`misfits`]) and their
-/// degrees of freedom: noise leaves the same variance to both, so the share is what the cubic removes of the quadric's; from one half up,
-/// the heights are mostly misfit and the share is 1. 1 for a mesh's vertices (measured
+/// degrees of freedom: noise leaves the same variance to both, so the share is what the
+/// cubic removes of the quadric's; from one half up, the heights are mostly misfit and
+/// the share is 1. 1 for a mesh's vertices (measured
 /// 0.7 to 1 on meshes of 11 × 11 to 41 × 41: a target's own vertices are at distance 0
 /// from it), under 0.1 for a scan noised by 1e-4 of its size, whose points' own heights
 /// are noise that the quadric averages out.
