@@ -513,3 +513,37 @@ fn a_beam_that_is_not_there_is_refused() {
     let f = fabricate(BaseMesh::Circular(&g), &options(&[0.0])).unwrap();
     f.beam(0, LineFamily::Column, 2);
 }
+
+/// A fit whose mesh pinches is still reported (its panels and deviation), with
+/// fabrication's refusal as the reason its node types are not counted: a surface of
+/// revolution (θ = 0°, §4.1.1) whose meridian ends on the axis, so that its last
+/// parallel is a single point.
+#[test]
+fn a_fit_report_says_why_a_pinched_mesh_has_no_node_types() {
+    use monge_core::approximate::{fit_report, FitDesign, TargetCloud};
+    let pinched = design(
+        0.0,
+        arc([0.0, 0.0, -6.0], [0.0, 1.0, 0.0], 90.0, 7),
+        common::bspline(
+            vec![
+                [0.0, 0.0, 0.0],
+                [0.0, 3.0, 0.0],
+                [0.0, 6.0, -3.0],
+                [0.0, 6.0, -6.0],
+            ],
+            7,
+        ),
+    );
+    let g = mesh(&pinched);
+    // The last parallel, on the axis (the line through (0, 0, −6) along y), is one point.
+    let last: Vec<DVec3> = (0..7).map(|i| g.vertex(i, 6)).collect();
+    assert!(last.iter().all(|p| (*p - DVec3::new(0.0, 6.0, -6.0)).length() < 1e-12));
+    let target = TargetCloud::new(&g.vertices).unwrap();
+    let report = fit_report(&target, &FitDesign::Single(pinched), 0.5f64.to_radians()).unwrap();
+    assert_eq!(report.panels, 36);
+    assert!(report.deviation.mesh_to_target_max < 1e-12);
+    match report.node_types {
+        Err(FabricationError::DegenerateEdge { layer: 0, .. }) => {}
+        other => panic!("expected the pinch as the reason, got {other:?}"),
+    }
+}
