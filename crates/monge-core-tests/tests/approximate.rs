@@ -15,15 +15,13 @@ use monge_core::measure::measure;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec, QuadGrid};
 
 use crate::common;
+use crate::heldout::Rng;
 use common::{design, triangle_distance};
 
-/// A deterministic noise in [−1, 1] (splitmix64).
+/// A deterministic noise in [−1, 1): the first draw of the held-out targets' stream
+/// seeded with `k`.
 fn noise(k: u64) -> f64 {
-    let mut z = k.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^= z >> 31;
-    (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    2.0 * Rng::new(k).uniform() - 1.0
 }
 
 /// The 10 m roof of `examples/targets/roof.design.json` (arbitrary mode, §3.2).

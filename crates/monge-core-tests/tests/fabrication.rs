@@ -537,7 +537,9 @@ fn a_fit_report_says_why_a_pinched_mesh_has_no_node_types() {
     let g = mesh(&pinched);
     // The last parallel, on the axis (the line through (0, 0, −6) along y), is one point.
     let last: Vec<DVec3> = (0..7).map(|i| g.vertex(i, 6)).collect();
-    assert!(last.iter().all(|p| (*p - DVec3::new(0.0, 6.0, -6.0)).length() < 1e-12));
+    assert!(last
+        .iter()
+        .all(|p| (*p - DVec3::new(0.0, 6.0, -6.0)).length() < 1e-12));
     let target = TargetCloud::new(&g.vertices).unwrap();
     let report = fit_report(&target, &FitDesign::Single(pinched), 0.5f64.to_radians()).unwrap();
     assert_eq!(report.panels, 36);

@@ -191,13 +191,8 @@ fn corner_signs(q: &[DVec3; 4], axis: DVec3) -> [f64; 4] {
 /// zero are left out, where either answer is right).
 #[test]
 fn quad_turn_is_the_sign_of_the_four_corner_turns() {
-    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    let mut rng = fastrand::Rng::with_seed(7);
+    let mut uniform = move || rng.f64() * 2.0 - 1.0;
     let mut point = || DVec3::new(uniform(), uniform(), uniform());
     let mut seen = [0; 3];
     for k in 0..20_000 {
