@@ -32,18 +32,38 @@ export function nextDetail({ level, cheap }, ms) {
   return { level: level - 1, cheap: 0 };
 }
 
-/** The guide kinds sampled at `samples` parameter values (a `points` guide is used as given). */
+/** The guide kinds sampled at `samples` parameter values. */
 const SAMPLED = ['bspline', 'arc', 'parabola'];
 
 /**
+ * At most `faces` + 1 of a `points` guide's `points` (`faces` ≥ 3): the first
+ * three (the start tangent, when not given, is the circle's through them),
+ * then every k-th, and the last; the points themselves when there are no more.
+ */
+function thinPoints(points, faces) {
+  if (points.length - 1 <= faces) return points;
+  const stride = Math.ceil((points.length - 3) / Math.max(faces - 2, 1));
+  const kept = points.slice(0, 2);
+  for (let i = 2; i < points.length - 1; i += stride) kept.push(points[i]);
+  kept.push(points.at(-1));
+  return kept;
+}
+
+/**
  * A drag's preview of `design`: the same design with each sampled guide
- * (B-spline, arc, parabola) sampled at most `faces` + 1 times, so that its
- * mesh has at most `faces` faces a side along it: the exact mesh of the
- * same curves, sampled more coarsely (a `points` guide stays as given). A
- * new object; `design` is left as it is.
+ * (B-spline, arc, parabola) sampled at most `faces` + 1 times, and each
+ * `points` guide thinned to at most `faces` + 1 of its points (see
+ * `thinPoints`), so that its mesh has at most `faces` faces a side: the
+ * exact mesh of the same curves sampled more coarsely, and of a polyline
+ * through some of the points with the same start and start tangent. A new
+ * object; `design` is left as it is.
  */
 export function previewDesign(design, faces) {
   const lower = (spec) => {
+    if (Array.isArray(spec?.points)) {
+      const points = thinPoints(spec.points, faces);
+      return points === spec.points ? spec : { ...spec, points };
+    }
     const kind = SAMPLED.find((k) => spec?.[k]);
     if (!kind || !(spec[kind].samples > faces + 1)) return spec;
     return { ...spec, [kind]: { ...spec[kind], samples: faces + 1 } };

@@ -102,10 +102,46 @@ test('a drag\'s preview samples the same guides at every k-th of their samples: 
   }
 });
 
-test('a preview keeps a points guide as given, and a guide already as coarse as the level', () => {
+test('a preview keeps a points guide with no more points than the level\'s faces, and a guide already as coarse', () => {
   const design = example('contract.json');
   assert.ok(design.guide_u.points, 'contract.json has a points guide');
   const coarse = sampled(design, 11);
   assert.deepEqual(previewDesign(coarse, 15), coarse);
-  assert.deepEqual(previewDesign(design, 1).guide_u, design.guide_u);
+  assert.deepEqual(previewDesign(design, 3).guide_u, design.guide_u);
+});
+
+test('a preview thins a long points guide to some of its points: the ends and the start tangent kept, at most the level\'s faces a side', () => {
+  // guide_u as 301 points: the samples of the default design's B-spline.
+  const original = sampled(JSON.parse(readFileSync(join(repo, 'web/src/default-design.json'), 'utf8')), 301);
+  const spline = generate(JSON.stringify(original), 'bspline', 0, 250000);
+  const given = Array.from(spline.guidePoints(true));
+  spline.free();
+  const points = Array.from({ length: given.length / 3 }, (_, i) => given.slice(3 * i, 3 * i + 3));
+  const design = { ...original, guide_u: { points } };
+  const text = JSON.stringify(design);
+  const full = generate(text, 'points', 0, 250000);
+  assert.equal(JSON.parse(full.header()).rows, 301);
+  const size = Math.max(...given.map(Math.abs));
+  const near = (p, q) => p.every((x, k) => Math.abs(x - q[k]) <= 1e-9 * size);
+  for (const faces of [50, 20, 15]) {
+    // Refused if the start tangent (the circle's through the first three points) had changed: the guides would not meet at 90°.
+    const preview = generate(JSON.stringify(previewDesign(design, faces)), 'points', 0, 250000);
+    const header = JSON.parse(preview.header());
+    assert.ok(header.rows <= faces + 1 && header.rows > faces / 2, `${header.rows} rows at ${faces} faces a side`);
+    assert.equal(header.cols, faces + 1);
+    const drawn = Array.from(preview.guidePoints(true));
+    const kept = Array.from({ length: drawn.length / 3 }, (_, i) => drawn.slice(3 * i, 3 * i + 3));
+    // Each of the preview's guide points is one of the design's, in order, from the first three to the last.
+    let at = 0;
+    const indices = kept.map((p) => {
+      while (at < points.length && !near(p, points[at])) at += 1;
+      assert.ok(at < points.length, `preview point ${p} at ${faces} is one of the design's, in order`);
+      return at;
+    });
+    assert.deepEqual(indices.slice(0, 3), [0, 1, 2], `the first three points at ${faces}`);
+    assert.equal(indices.at(-1), points.length - 1, `the last point at ${faces}`);
+    preview.free();
+  }
+  full.free();
+  assert.equal(JSON.stringify(design), text, 'the design itself is left as it was');
 });
