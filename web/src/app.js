@@ -364,7 +364,7 @@ window.explorer = {
   /** The cyclidic net drawn: { lines, arcs, segments } (chord ends), or { error }, or null. */
   arcs: () => (state.net && !state.net.error ? { ...state.net, segments: arcLines.visible ? arcLines.geometry.getAttribute('position').count / 2 : 0 } : state.net),
   /** The JSON `monge smooth -o net.json --samples 9` writes for the design shown, as text. */
-  netExport: () => new TextDecoder().decode(netFile()),
+  netExport: () => new TextDecoder().decode(netFile(fullMesh())),
   /** What the pencil axes and planes views draw: [{ axis }] and [{ family, line }]. */
   drawn: () => ({
     axes: axesGroup.visible ? axesGroup.children.map((c) => c.userData) : [],

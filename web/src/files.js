@@ -14,9 +14,9 @@ function download(blob, name) {
   setTimeout(() => URL.revokeObjectURL(a.href), 1000);
 }
 
-/** The bytes `monge smooth -o net.json --samples 9` writes for the design shown; throws monge's message when it has no net. */
-export function netFile() {
-  const net = fullMesh().smooth(1);
+/** The bytes `monge smooth -o net.json --samples 9` writes for the wasm `mesh` (from `fullMesh`); throws monge's message when it has no net. */
+export function netFile(mesh) {
+  const net = mesh.smooth(1);
   try { return net.export(9); } finally { net.free(); }
 }
 
@@ -35,14 +35,13 @@ let rhinoWorker = null;
 const rhinoWaiting = [];
 
 /**
- * The .3dm of the mesh shown: its vertices (f64, as `monge generate` writes
- * them), its quads (wound as the exported files), its guides' samples and its
- * panels, on the layers of src/rhino.js. Resolves to the bytes; rejects with
- * the reason when rhino3dm cannot be loaded or write it.
+ * The .3dm of the wasm `mesh` shown (from `fullMesh`): its vertices (f64, as
+ * `monge generate` writes them), its quads (wound as the exported files), its
+ * guides' samples and its panels, on the layers of src/rhino.js. Resolves to
+ * the bytes; rejects with the reason when rhino3dm cannot be loaded or write it.
  */
-function rhinoExport() {
+function rhinoExport(mesh) {
   // A copy of what is shown now: the mesh may change while the worker writes.
-  const mesh = fullMesh();
   const data = {
     vertices: Float64Array.from(mesh.vertices()),
     faces: mesh.faces(),
@@ -82,9 +81,10 @@ export function installFiles({ showMesh, showError, done }) {
   });
   $('export-net').addEventListener('click', () => {
     // The cyclidic net's JSON, as `monge smooth -o net.json` writes it (a click, not a drag: on the main thread).
-    if (!fullMesh()) return;
+    const mesh = fullMesh();
+    if (!mesh) return;
     try {
-      download(new Blob([netFile()]), 'net.json');
+      download(new Blob([netFile(mesh)]), 'net.json');
     } catch (error) {
       exportFailed(error); // no net (a conical design, a folded face): monge's message
     }
@@ -97,12 +97,13 @@ export function installFiles({ showMesh, showError, done }) {
     });
   }
   $('export-3dm').addEventListener('click', async () => {
-    if (!fullMesh()) return;
+    const mesh = fullMesh();
+    if (!mesh) return;
     const button = $('export-3dm');
     // Until this one is written (rhino3dm loads on the first): disabled, and marked as busy.
     Object.assign(button, { disabled: true, ariaBusy: 'true' });
     try {
-      download(new Blob([await rhinoExport()]), 'mesh.3dm');
+      download(new Blob([await rhinoExport(mesh)]), 'mesh.3dm');
     } catch (error) {
       exportFailed(error);
     } finally {
