@@ -853,6 +853,19 @@ async function main() {
     const counted = await page.evaluate(() => explorer.state.latencies);
     assert.equal(counted.length, 1, `one frame shows both inputs: ${counted}`);
     assert.ok(counted[0] >= apart, `the readout counts from the earlier input: ${counted[0]} ms, the inputs ${apart} ms apart`);
+    // A long drag (twice as many moves as the record keeps, in one task)
+    // leaves the record of the meshes generated at its bound: the latest.
+    const record = await page.evaluate(() => {
+      explorer.state.generated.length = 0;
+      const theta = document.getElementById('theta');
+      for (let k = 0; k < 2 * explorer.generatedKept; k++) {
+        theta.value = String(Number(theta.value) + (k % 2 ? -1 : 1));
+        theta.dispatchEvent(new Event('input'));
+      }
+      return { kept: explorer.generatedKept, length: explorer.state.generated.length };
+    });
+    await idle();
+    assert.equal(record.length, record.kept, `${2 * record.kept} drag moves leave the latest ${record.kept} meshes generated on record: ${record.length}`);
     for (const g of ['u', 'v']) {
       await page.fill(`#samples-${g}`, '301');
       await page.dispatchEvent(`#samples-${g}`, 'change');

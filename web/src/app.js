@@ -7,7 +7,7 @@
 // it (layers.js), the handles (handles.js), the controls (controls.js), the
 // files (files.js), the design's history (history.js) and the bridge to the
 // module and its worker (bridge.js), around one cycle: a change generates the mesh and shows it.
-import { $, current, fullMesh, settler, state } from './page.js';
+import { $, current, fullMesh, GENERATED_KEPT, settler, state } from './page.js';
 import {
   adopt, designInfo, forgetMeasure, generateMesh, loadModule, measure, measurePending, onMeasured, previewMesh,
 } from './bridge.js';
@@ -324,6 +324,8 @@ async function start() {
 /** For the e2e test: state, and where a control point is on the screen. */
 window.explorer = {
   state,
+  /** How many of the meshes generated `state.generated` keeps. */
+  generatedKept: GENERATED_KEPT,
   handleOnScreen,
   /** Undo and redo steps available. */
   history: depth,

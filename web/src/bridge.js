@@ -3,7 +3,7 @@
 // own copy of the module) that measures the metrics and the cyclidic net's
 // arcs of the design shown.
 import init, { generate, info, parseDesign } from '../wasm/monge_wasm.js';
-import { $, MAX_VERTICES, replaceCurrent, state } from './page.js';
+import { $, GENERATED_KEPT, MAX_VERTICES, replaceCurrent, state } from './page.js';
 import { previewDesign } from './detail.js';
 import { redraw } from './view.js';
 
@@ -16,10 +16,11 @@ export const loadModule = () => init({ module_or_path: new URL('monge_wasm_bg.wa
 /** How long the last generation of a design's mesh took (ms). */
 export let generateMs = 0;
 
-/** The wasm mesh of a design (JSON text) at the page's offset; its vertices are noted in `state.generated`. */
+/** The wasm mesh of a design (JSON text) at the page's offset; its vertices are noted in `state.generated` (the latest GENERATED_KEPT). */
 function generateAt(text, name) {
   const mesh = generate(text, name, state.offset, MAX_VERTICES);
   state.generated.push(mesh.vertices().length / 3);
+  if (state.generated.length > GENERATED_KEPT) state.generated.splice(0, state.generated.length - GENERATED_KEPT);
   return mesh;
 }
 

@@ -23,8 +23,11 @@ export const state = {
   name: '<input>',   // the design's file name, in messages
   net: null,         // the cyclidic net drawn: { lines, arcs } or { error }
   preview: false,    // what is drawn is a drag's preview of the design (coarser, see previewDesign in detail.js), not yet its mesh
-  generated: [],     // the vertices of each mesh the module generated on the main thread (for the e2e test)
+  generated: [],     // the vertices of the last GENERATED_KEPT meshes the module generated on the main thread (for the e2e test)
 };
+
+/** How many of the meshes generated `state.generated` keeps: the latest, so that a long session does not grow it. */
+export const GENERATED_KEPT = 64;
 
 /** Largest grid generated (rows × cols vertices), as `monge explore`'s default. */
 export const MAX_VERTICES = 250000;
