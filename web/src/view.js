@@ -11,6 +11,20 @@ const view = $('view');
 export const renderer = new THREE.WebGLRenderer({ antialias: false });
 renderer.setPixelRatio(window.devicePixelRatio);
 view.appendChild(renderer.domElement);
+/**
+ * The drag frames are drawn by a renderer of their own, on a canvas of
+ * DRAG_PIXEL_RATIO of the view's pixels laid over the full-quality one
+ * (stretched to the same size, shown only while it holds the last frame).
+ * No canvas changes size between a drag and its rest: the first drag frame
+ * after a rest resized the one canvas, and software GL waited for its new
+ * drawing buffer (round trips to the GPU process, a layout) before it drew.
+ * The drag frames draw a drag's few vertices (see `dragGeometry`), so the
+ * second renderer holds no more than those. (Stretching a smaller target
+ * onto the one canvas, blitFramebuffer, costs software GL more than the frame.)
+ */
+const dragRenderer = new THREE.WebGLRenderer({ antialias: false });
+dragRenderer.domElement.classList.add('drag-frame');
+view.appendChild(dragRenderer.domElement);
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xffffff);
 export const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1e5);
@@ -84,6 +98,7 @@ scene.add(arcLines, surface, coloured, wire, guideLines.u, guideLines.v, handles
  */
 export const SETTLE_MS = 150;
 const DRAG_PIXEL_RATIO = 0.5;
+dragRenderer.setPixelRatio(window.devicePixelRatio * DRAG_PIXEL_RATIO);
 /** The Gauss map's size beside the mesh: its unit sphere is drawn at this share of the mesh's bounding radius. */
 const GAUSS_SCALE = 0.4;
 /** The drag frames' detail, from the latencies of those drawn so far (see detail.js). */
@@ -221,7 +236,7 @@ function tick() {
   }
   build = null;
   if (!warm) warmUp();
-  pixelRatio(1);
+  dragRenderer.domElement.hidden = true;
   renderer.state.bindFramebuffer(gl.READ_FRAMEBUFFER, renderer.properties.get(target).__webglFramebuffer);
   renderer.state.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
   gl.blitFramebuffer(0, 0, target.width, target.height, 0, 0, target.width, target.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
@@ -230,10 +245,9 @@ function tick() {
 }
 
 /**
- * The drag frames draw on the canvas, whose software GL pipelines differ from
- * the target's, each compiled when first drawn (about half a second): the
- * first full frame shown draws a drag frame under it, so that the first drag
- * does not wait.
+ * The drag frames draw in their own context, whose software GL pipelines are
+ * compiled when first drawn (about half a second): the first full frame
+ * shown draws a drag frame (hidden), so that the first drag does not wait.
  */
 let warm = false;
 function warmUp() {
@@ -242,9 +256,10 @@ function warmUp() {
   quality(true);
   drawDrag();
   quality(fast);
+  dragRenderer.domElement.hidden = true;
 }
 
-/** The target sized as the canvas at the device's pixel ratio. */
+/** The target sized as the canvas. */
 function fitTarget() {
   const size = renderer.getSize(new THREE.Vector2()).multiplyScalar(window.devicePixelRatio).floor();
   if (target.width !== size.x || target.height !== size.y) target.setSize(size.x, size.y);
@@ -253,11 +268,6 @@ function fitTarget() {
 function abandon() {
   if (build?.fence) gl.deleteSync(build.fence);
   build = null;
-}
-
-function pixelRatio(factor) {
-  const ratio = window.devicePixelRatio * factor;
-  if (renderer.getPixelRatio() !== ratio) renderer.setPixelRatio(ratio); // clears the canvas
 }
 
 /**
@@ -303,11 +313,11 @@ function dragGeometry(grid) {
 
 /** The grids drawn by at most `dragFaces` of their faces a side. */
 function drawDrag() {
-  pixelRatio(DRAG_PIXEL_RATIO);
   const grids = [surface, gaussSurface].map((m) => [m, m.geometry, dragGeometry(m)]).filter(([, , coarse]) => coarse);
   for (const [m, , coarse] of grids) m.geometry = coarse;
-  renderer.render(scene, camera);
-  drawn.drag = renderer.info.render.triangles + renderer.info.render.lines;
+  dragRenderer.render(scene, camera);
+  dragRenderer.domElement.hidden = false;
+  drawn.drag = dragRenderer.info.render.triangles + dragRenderer.info.render.lines;
   drawn.detail = dragFaces(surface);
   drawn.byDetail.set(drawn.detail, drawn.drag);
   for (const [m, full] of grids) m.geometry = full;
@@ -405,6 +415,7 @@ function recordLatency(ms, drag) {
 export function resize() {
   const { clientWidth: w, clientHeight: h } = view;
   renderer.setSize(w, h);
+  dragRenderer.setSize(w, h);
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
   redraw();
