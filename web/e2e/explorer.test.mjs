@@ -665,6 +665,26 @@ async function main() {
     assert.notEqual(turned.metrics, first.metrics, 'the metrics changed with θ');
     assert.ok(turned.full, 'full quality and metrics once θ rests');
     log(`θ ${first.design.theta_deg}° → ${turned.design.theta_deg}°`);
+    // A θ step rewrites only the page's labels that change: the others (the
+    // admissible range, the export buttons, the warnings, …) cost no layout.
+    const rewritten = await page.evaluate(() => {
+      const watch = new MutationObserver(() => {});
+      watch.observe(document.getElementById('panel'), { subtree: true, childList: true, characterData: true, attributes: true });
+      const theta = document.getElementById('theta');
+      theta.value = String(Number(theta.value) + 1);
+      theta.dispatchEvent(new Event('input'));
+      const records = watch.takeRecords();
+      watch.disconnect();
+      const named = (node) => (node.nodeType === Node.ELEMENT_NODE && node.id ? node.id : named(node.parentNode));
+      return [...new Set(records.map((r) => (r.type === 'attributes' ? `${named(r.target)}[${r.attributeName}]` : named(r.target))))];
+    });
+    await page.evaluate(() => {
+      const theta = document.getElementById('theta');
+      theta.value = String(Number(theta.value) - 1);
+      theta.dispatchEvent(new Event('input'));
+    });
+    await idle();
+    assert.deepEqual(rewritten.filter((what) => what !== 'theta-value' && what !== 'metrics[class]'), [], `a θ step rewrites only θ's value (and marks the metrics pending): ${rewritten}`);
 
     // Drag guide_u's third control point.
     const from = await page.evaluate(() => explorer.handleOnScreen('u', 3));

@@ -7,7 +7,7 @@
 // it (layers.js), the handles (handles.js), the controls (controls.js), the
 // files (files.js), the design's history (history.js) and the bridge to the
 // module and its worker (bridge.js), around one cycle: a change generates the mesh and shows it.
-import { $, current, fullMesh, GENERATED_KEPT, settler, state } from './page.js';
+import { $, current, fullMesh, GENERATED_KEPT, setText, settler, state } from './page.js';
 import {
   adopt, designInfo, forgetMeasure, generateMesh, loadModule, measure, measurePending, onMeasured, previewMesh,
 } from './bridge.js';
@@ -34,7 +34,7 @@ const FIELDS = { theta: 'θ', 'samples-u': 'samples u', 'samples-v': 'samples v'
 
 /** The field or handle of the last refused edit, unmarked. */
 function unmark() {
-  $('error-source').textContent = '';
+  setText($('error-source'), '');
   for (const element of document.querySelectorAll('.invalid')) {
     element.classList.remove('invalid');
     element.removeAttribute('aria-invalid');
@@ -57,7 +57,7 @@ function mark(source) {
   const where = !source ? ''
     : source.handle ? `the dragged ${source.handle.index === 'end' ? 'end' : `point ${source.handle.index}`} of guide_${source.handle.guide} (magenta in the view)`
       : `“${FIELDS[source.field]}” (outlined)`;
-  $('error-source').textContent = where ? `Refused edit: ${where}.` : '';
+  setText($('error-source'), where ? `Refused edit: ${where}.` : '');
 }
 
 /**
@@ -103,8 +103,7 @@ function meshSteps(mesh, t0, preview = false) {
       measure();
     }
     showThetaRange(header);
-    $('error').hidden = true;
-    $('last-valid').hidden = true;
+    for (const id of ['error', 'last-valid']) if (!$(id).hidden) $(id).hidden = true;
     labelExports(false);
     state.generations += 1;
     if (t0 !== null) timeNextFrame(t0);

@@ -1,7 +1,7 @@
 // The side panel's controls: θ's slider and its admissible range, the grid
 // and mesh fields, the views shown (Gauss map, pencil axes, planes, arcs, face
 // colours), and the metrics table.
-import { $, fmt, fullMesh, state } from './page.js';
+import { $, fmt, fullMesh, setText, state } from './page.js';
 import { generateMs, measure } from './bridge.js';
 import { showAxes, showColours, showPlanes } from './layers.js';
 import { arcLines, axesGroup, gauss, planesGroup, redraw } from './view.js';
@@ -39,15 +39,16 @@ export function showMetrics(answer, measured) {
 export function showThetaRange({ theta_range: r, mode }) {
   const slider = $('theta');
   if (mode === 'characteristic') {
-    $('theta-range').textContent = 'admissible: every θ in (−180°, 180°] (singular at +90°)';
+    setText($('theta-range'), 'admissible: every θ in (−180°, 180°] (singular at +90°)');
     slider.style.removeProperty('--band');
     return;
   }
-  $('theta-range').textContent = `admissible: |θ| in [${r.min_deg.toFixed(2)}°, ${r.max_deg.toFixed(2)}°]`;
+  setText($('theta-range'), `admissible: |θ| in [${r.min_deg.toFixed(2)}°, ${r.max_deg.toFixed(2)}°]`);
   const pct = (deg) => `${((deg + 180) / 360) * 100}%`;
   const ok = '#b5e3b5';
   const no = '#f3c0c0';
-  slider.style.setProperty('--band', `linear-gradient(to right, ${no} ${pct(-r.max_deg)}, ${ok} ${pct(-r.max_deg)} ${pct(-r.min_deg)}, ${no} ${pct(-r.min_deg)} ${pct(r.min_deg)}, ${ok} ${pct(r.min_deg)} ${pct(r.max_deg)}, ${no} ${pct(r.max_deg)})`);
+  const band = `linear-gradient(to right, ${no} ${pct(-r.max_deg)}, ${ok} ${pct(-r.max_deg)} ${pct(-r.min_deg)}, ${no} ${pct(-r.min_deg)} ${pct(r.min_deg)}, ${ok} ${pct(r.min_deg)} ${pct(r.max_deg)}, ${no} ${pct(r.max_deg)})`;
+  if (slider.style.getPropertyValue('--band') !== band) slider.style.setProperty('--band', band);
 }
 
 /** Puts the design's values into the controls. */

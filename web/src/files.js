@@ -3,7 +3,7 @@
 // `monge smooth` write, written by the same code in the module), the mesh,
 // guides and panels as a Rhino file (.3dm, written by rhino3dm in a worker,
 // src/rhino-worker.js), and a design file (JSON or TOML) loaded.
-import { $, fullMesh, state } from './page.js';
+import { $, fullMesh, setText, state } from './page.js';
 import { generateMesh, parseDesign } from './bridge.js';
 import { syncControls } from './controls.js';
 
@@ -27,7 +27,7 @@ const EXPORTS = {
 
 /** Labels the export buttons as exporting the last valid design (`stale`) or the design shown. */
 export function labelExports(stale) {
-  for (const [id, label] of Object.entries(EXPORTS)) $(id).textContent = stale ? `${label} (last valid design)` : label;
+  for (const [id, label] of Object.entries(EXPORTS)) setText($(id), stale ? `${label} (last valid design)` : label);
 }
 
 /** The .3dm writer's worker, started on the first .3dm export; its answers' resolvers, in order. */

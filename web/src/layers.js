@@ -3,7 +3,7 @@
 // in the Gauss map, the planes of the curvature lines, the marks where the
 // mesh folds or nearly pinches with their warnings, and the cyclidic net's arcs.
 import * as THREE from 'three';
-import { $, fmt, state } from './page.js';
+import { $, fmt, setText, state } from './page.js';
 import { arcLines, axesGroup, coloured, dotGeometry, empty, markers, meshSize, planesGroup, surface } from './view.js';
 
 /** Below this smallest crossing sine the page warns that the mesh nearly pinches (§5.2). */
@@ -95,7 +95,7 @@ export function showAxes(header) {
     line.userData = { axis: name };
     axesGroup.add(line);
   }
-  $('axes-note').textContent = axesGroup.visible ? `pencil axes: ${notes.join('; ')}` : '';
+  setText($('axes-note'), axesGroup.visible ? `pencil axes: ${notes.join('; ')}` : '');
 }
 
 /** At most this many planes of each family are drawn (evenly spaced, the last line included). */
@@ -161,7 +161,9 @@ export function showMarkers(header, mesh) {
     markers.add(dot);
     if (m.kind === 'fold' && header.kind === 'circular') markers.add(faceHighlight(header, m.face, color));
   }
-  $('warnings').replaceChildren(...warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
+  const list = $('warnings');
+  if (Array.from(list.children, (li) => li.textContent).join('\n') === warnings.join('\n')) return;
+  list.replaceChildren(...warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
 }
 
 /** Face (i, j) of the drawn grid, filled with `color` on top of the surface. */

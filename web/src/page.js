@@ -5,6 +5,14 @@
 /** The element with id `id`. */
 export const $ = (id) => document.getElementById(id);
 
+/**
+ * Sets `element`'s text to `text` when it differs: a key step or drag move
+ * that leaves a label as it was costs the page no layout.
+ */
+export function setText(element, text) {
+  if (element.textContent !== text) element.textContent = text;
+}
+
 /** A number as the page writes it: `digits` decimals, exponent form when very large or small, '—' when absent. */
 export const fmt = (x, digits = 3) => (x === null || x === undefined ? '—' : Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
 
