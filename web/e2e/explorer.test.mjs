@@ -16,8 +16,9 @@
 // detail and the rest draws every face, each drag move has the module generate
 // a preview of at most the finest level's vertices and the rest the design's own
 // mesh, which is drawn and is monge generate's, a full frame is drawn in bounded
-// steps), exports OBJ while a drag's preview is drawn (the design's own mesh
-// must be written), drags a handle of each kind with its plane
+// steps; a θ step rewrites no label of the panel but θ's value; the record of
+// the meshes generated stays bounded), exports OBJ while a drag's preview is
+// drawn (the design's own mesh must be written), drags a handle of each kind with its plane
 // seen at a grazing angle (the point must stay near the pointer's ray and move
 // no more than the pointer's path allows), refuses an edit (the page must say
 // where, and export the last valid design), undoes and redoes every kind of
