@@ -19,8 +19,9 @@ view.appendChild(renderer.domElement);
  * after a rest resized the one canvas, and software GL waited for its new
  * drawing buffer (round trips to the GPU process, a layout) before it drew.
  * The drag frames draw a drag's few vertices (see `dragGeometry`), so the
- * second renderer holds no more than those. (Stretching a smaller target
- * onto the one canvas, blitFramebuffer, costs software GL more than the frame.)
+ * second renderer holds little more than those (the mesh coloured by face,
+ * drawn whole, is the exception). (Stretching a smaller target onto the one
+ * canvas, blitFramebuffer, cost software GL more than the frame itself.)
  */
 const dragRenderer = new THREE.WebGLRenderer({ antialias: false });
 dragRenderer.domElement.classList.add('drag-frame');
