@@ -142,6 +142,24 @@ impl Deviation {
         self.mesh_to_target_max.max(self.target_to_mesh_max)
     }
 
+    /// Whether a mesh of this deviation is closer to the target than one of `other`:
+    /// the one criterion of every choice between fits (patches, layouts, the initial
+    /// guess), the largest distance both ways ([`Deviation::max`]).
+    ///
+    /// ```
+    /// use monge_core::approximate::Deviation;
+    /// let d = |max: f64, rms: f64| Deviation {
+    ///     mesh_to_target_max: max, mesh_to_target_rms: rms, target_to_mesh_max: 0.0,
+    ///     target_to_mesh_rms: rms, beyond_mesh_rms: 0.0, size: 1.0,
+    /// };
+    /// // A smaller largest distance wins, whatever the RMS.
+    /// assert!(d(0.01, 0.009).closer_than(&d(0.02, 0.001)));
+    /// assert!(!d(0.02, 0.001).closer_than(&d(0.02, 0.009)));
+    /// ```
+    pub fn closer_than(&self, other: &Deviation) -> bool {
+        self.max() < other.max()
+    }
+
     /// The objective: the mean of the mean squared distances from the mesh's vertices
     /// to the target and of the target's points beyond the mesh (relative). Not the
     /// target's distances to the faces: flat faces sag below a curved target by

@@ -97,7 +97,7 @@ impl PatchApproximation {
     /// assert_eq!(patches.closer_than(&single), patches.layout != PatchLayout { u: 1, v: 1 });
     /// ```
     pub fn closer_than(&self, single: &Approximation) -> bool {
-        self.after.objective() < single.after.objective()
+        self.after.closer_than(&single.after)
     }
 }
 
@@ -161,15 +161,163 @@ impl Section {
     }
 }
 
-/// The layout's patches and pieces, and the design of given parameters: every θ, then
-/// [`PER_GUIDE`] numbers per free guide (`u` pieces of guide_u, then `v` of guide_v).
+/// A block of the layout in the single patch's grid: its rows and columns (inclusive)
+/// and whether the patch's own `i` (then `j`) runs against the grid's, so that its own
+/// corner `(0, 0)` is the one nearest to the layout's origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Block {
+    rows: (usize, usize),
+    cols: (usize, usize),
+    flip: (bool, bool),
+}
+
+impl Block {
+    /// Its own vertex `(i, j)` in the single patch's grid.
+    fn at(&self, grid: &QuadGrid, i: usize, j: usize) -> usize {
+        let r = if self.flip.0 {
+            self.rows.1 - i
+        } else {
+            self.rows.0 + i
+        };
+        let c = if self.flip.1 {
+            self.cols.1 - j
+        } else {
+            self.cols.0 + j
+        };
+        grid.index(r, c)
+    }
+
+    fn size(&self) -> (usize, usize) {
+        (self.rows.1 - self.rows.0 + 1, self.cols.1 - self.cols.0 + 1)
+    }
+
+    /// Its own column 0 (its guide_u) and row 0 (its guide_v) in `grid`.
+    fn lines(&self, grid: &QuadGrid) -> [Vec<DVec3>; 2] {
+        let (rows, cols) = self.size();
+        [
+            (0..rows)
+                .map(|i| grid.vertices[self.at(grid, i, 0)])
+                .collect(),
+            (0..cols)
+                .map(|j| grid.vertices[self.at(grid, 0, j)])
+                .collect(),
+        ]
+    }
+
+    /// The start frame that makes a patch from [`Block::lines`] continue `grid`: the
+    /// node axis at its corner (turned with the patch's orientation), and per line the
+    /// start tangent in the line's plane orthogonal to that axis (oriented along the
+    /// line) and the plane's normal. `None` where a line has no plane.
+    fn frame(&self, grid: &QuadGrid, tol: &Tolerances) -> Option<([DVec3; 2], [DVec3; 2])> {
+        let sign = if self.flip.0 == self.flip.1 {
+            1.0
+        } else {
+            -1.0
+        };
+        let axis = sign * grid.normals[self.at(grid, 0, 0)];
+        let lines = self.lines(grid);
+        let mut tangents = [DVec3::ZERO; 2];
+        let mut normals = [DVec3::ZERO; 2];
+        for (k, (line, name)) in lines.iter().zip([GuideName::U, GuideName::V]).enumerate() {
+            let raw = line.iter().map(|p| p.to_array()).collect();
+            let m = Guide::from_spec(&GuideSpec::points(raw), name, tol)
+                .ok()?
+                .plane_normal;
+            let t = m.cross(axis).normalize_or_zero();
+            if t == DVec3::ZERO {
+                return None;
+            }
+            tangents[k] = if t.dot(line[1] - line[0]) < 0.0 {
+                -t
+            } else {
+                t
+            };
+            normals[k] = m;
+        }
+        Some((tangents, normals))
+    }
+}
+
+/// What a patch of the layout takes its guides from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Role {
+    /// The first patch, in the origin's block: both guides free (slots 0 and 1).
+    First,
+    /// Attached to a side of an earlier patch, continuing a line of the cross through
+    /// the origin with the free guide `slot`.
+    Continue { attach: Attach, slot: usize },
+    /// Attached to a side of an earlier patch, its other guide a line of another.
+    Between { attach: Attach, from: Attach },
+}
+
+/// The patches of `layout` in design order: each one's block `(along guide_u, along
+/// guide_v)` and its [`Role`]. The origin is the block `(u / 2, v / 2)`: the first
+/// patch's corner is the middle of the layout (see the module documentation), and
+/// every patch is built after its neighbours towards the origin.
+fn plan(layout: PatchLayout) -> Vec<((usize, usize), Role)> {
+    let origin = (layout.u / 2, layout.v / 2);
+    let mut blocks: Vec<(usize, usize)> = (0..layout.u)
+        .flat_map(|a| (0..layout.v).map(move |b| (a, b)))
+        .collect();
+    blocks.sort_by_key(|&(a, b)| (a.abs_diff(origin.0) + b.abs_diff(origin.1), a, b));
+    let index = |block| blocks.iter().position(|b| *b == block).expect("a block");
+    // The side of the patch in block `from` whose line the patch in the next block
+    // `to` takes: a patch's own grid runs away from the origin.
+    let side = |from: (usize, usize), to: (usize, usize)| {
+        let (row, forward, flipped) = if from.0 == to.0 {
+            (false, to.1 > from.1, from.1 < origin.1)
+        } else {
+            (true, to.0 > from.0, from.0 < origin.0)
+        };
+        let side = match (row, forward != flipped) {
+            (true, true) => Side::LastRow,
+            (true, false) => Side::FirstRow,
+            (false, true) => Side::LastColumn,
+            (false, false) => Side::FirstColumn,
+        };
+        Attach {
+            patch: index(from),
+            side,
+        }
+    };
+    let inward = |k: usize, o: usize| if k > o { k - 1 } else { k + 1 };
+    let mut slots = 2..;
+    blocks
+        .iter()
+        .map(|&(a, b)| {
+            let role = if (a, b) == origin {
+                Role::First
+            } else if b == origin.1 {
+                Role::Continue {
+                    attach: side((inward(a, origin.0), b), (a, b)),
+                    slot: slots.next().expect("unbounded"),
+                }
+            } else if a == origin.0 {
+                Role::Continue {
+                    attach: side((a, inward(b, origin.1)), (a, b)),
+                    slot: slots.next().expect("unbounded"),
+                }
+            } else {
+                Role::Between {
+                    attach: side((inward(a, origin.0), b), (a, b)),
+                    from: side((a, inward(b, origin.1)), (a, b)),
+                }
+            };
+            ((a, b), role)
+        })
+        .collect()
+}
+
+/// The layout's patches and pieces, and the design of given parameters: every θ (in
+/// design order), then [`PER_GUIDE`] numbers per free guide (slot).
 struct Pieces {
-    layout: PatchLayout,
-    /// The single patch's corner, start tangents and guide-plane normals.
+    /// Per patch in design order: its role.
+    roles: Vec<Role>,
+    /// The first patch's corner, start tangents and guide-plane normals.
     corner: DVec3,
     tangents: [DVec3; 2],
     normals: [DVec3; 2],
-    /// The pieces of the single patch's guide_u, then of its guide_v.
+    /// Per slot, its piece of the single patch's lines through the origin.
     pieces: Vec<Vec<DVec3>>,
     /// Each piece in the plane of its guide: the single patch's for the first patch's
     /// two, the one its start forced at the first build for the continuations.
@@ -178,32 +326,87 @@ struct Pieces {
 }
 
 impl Pieces {
-    /// Index of patch `(a, b)` in the design.
-    fn index(&self, a: usize, b: usize) -> usize {
-        a * self.layout.v + b
+    /// The pieces of `layout` cut from the single patch `single`, and the parameters
+    /// that make the patches continue it (no displacement, its θ): every piece needs
+    /// at least two faces.
+    fn cut(single: &Approximation, layout: PatchLayout) -> Result<(Self, Vec<f64>), ApproxError> {
+        if single.design.mesh != MeshKind::Circular {
+            return Err(ApproxError::PatchesNotCircular);
+        }
+        let grid = &single.grid;
+        for (patches, segments, along) in [
+            (layout.u, grid.rows - 1, "guide_u"),
+            (layout.v, grid.cols - 1, "guide_v"),
+        ] {
+            if patches == 0 || layout.count() < 2 || segments < 2 * patches {
+                return Err(ApproxError::TooManyPatches {
+                    patches,
+                    segments,
+                    along,
+                });
+            }
+        }
+        let tol = single.design.tolerance.unwrap_or_default();
+        // The blocks: guide_u cut into `u` pieces and guide_v into `v`, of nearly equal
+        // numbers of samples; each patch's own grid runs away from the origin.
+        let roles = plan(layout);
+        let origin = (layout.u / 2, layout.v / 2);
+        let cuts = |segments: usize, n: usize, k: usize| (k * segments / n, (k + 1) * segments / n);
+        let blocks: Vec<Block> = roles
+            .iter()
+            .map(|&((a, b), _)| Block {
+                rows: cuts(grid.rows - 1, layout.u, a),
+                cols: cuts(grid.cols - 1, layout.v, b),
+                flip: (a < origin.0, b < origin.1),
+            })
+            .collect();
+        let roles: Vec<Role> = roles.into_iter().map(|(_, role)| role).collect();
+        let first = blocks[0];
+        let (tangents, normals) = first
+            .frame(grid, &tol)
+            .ok_or(ApproxError::NoPatchStart { patch: 0 })?;
+        // Per slot, its piece: the first patch's own lines, then each continuation's.
+        let mut pieces = vec![Vec::new(); layout.u + layout.v];
+        [pieces[0], pieces[1]] = first.lines(grid);
+        for (role, block) in roles.iter().zip(&blocks) {
+            if let Role::Continue { attach, slot } = role {
+                let [line_u, line_v] = block.lines(grid);
+                pieces[*slot] = if attach.side.is_row() { line_u } else { line_v };
+            }
+        }
+        // The first patch's two pieces in its own guide planes; the continuations' once
+        // their starts are known (first build).
+        let sections = (0..pieces.len())
+            .map(|slot| {
+                let axis = slot.min(1);
+                Section::of(&pieces[slot], tangents[axis], normals[axis])
+            })
+            .collect();
+        let setup = Pieces {
+            roles,
+            corner: grid.vertices[first.at(grid, 0, 0)],
+            tangents,
+            normals,
+            pieces,
+            sections: std::cell::RefCell::new(sections),
+            tolerance: single.design.tolerance,
+        };
+        let mut x0 = vec![0.0; layout.count() + (layout.u + layout.v) * PER_GUIDE];
+        // The single patch's θ in every patch: each then continues it (θ is the same
+        // in every block's own frame, whichever way it runs).
+        x0[..layout.count()].fill(single.design.theta_deg);
+        Ok((setup, x0))
     }
 
     /// Parameters of the free guide `slot` in `x`.
     fn slot<'x>(&self, x: &'x [f64], slot: usize) -> &'x [f64] {
-        let at = self.layout.count() + slot * PER_GUIDE;
+        let at = self.roles.len() + slot * PER_GUIDE;
         &x[at..at + PER_GUIDE]
-    }
-
-    /// The free guide a patch continues: guide_u's piece `a` for the first block
-    /// column, guide_v's piece `b` for the first block row, none inside.
-    fn slot_of(&self, k: usize) -> Option<usize> {
-        let (a, b) = (k / self.layout.v, k % self.layout.v);
-        match (a, b) {
-            (_, 0) => Some(a),
-            (0, _) => Some(self.layout.u + b),
-            _ => None,
-        }
     }
 
     /// The design of `x`; the continuations are placeholders of the right number of
     /// samples, which [`Pieces::build`] replaces.
     fn design(&self, x: &[f64]) -> MultiPatchDesign {
-        let (u, v) = (self.layout.u, self.layout.v);
         let sections = self.sections.borrow();
         let free = |slot: usize, axis: usize| {
             sections[slot].guide(
@@ -213,9 +416,11 @@ impl Pieces {
                 self.slot(x, slot),
             )
         };
-        let patches = (0..u * v)
-            .map(|k| {
-                let (a, b) = (k / v, k % v);
+        let patches = self
+            .roles
+            .iter()
+            .enumerate()
+            .map(|(k, role)| {
                 let mut spec = PatchSpec {
                     theta_deg: x[k],
                     guide_u: None,
@@ -224,34 +429,18 @@ impl Pieces {
                     guide: None,
                     guide_from: None,
                 };
-                match (a, b) {
-                    (0, 0) => {
+                match *role {
+                    Role::First => {
                         spec.guide_u = Some(free(0, 0));
-                        spec.guide_v = Some(free(u, 1));
+                        spec.guide_v = Some(free(1, 1));
                     }
-                    (_, 0) => {
-                        spec.attach = Some(Attach {
-                            patch: self.index(a - 1, 0),
-                            side: Side::LastRow,
-                        });
-                        spec.guide = Some(free(a, 0));
+                    Role::Continue { attach, slot } => {
+                        spec.attach = Some(attach);
+                        spec.guide = Some(free(slot, usize::from(!attach.side.is_row())));
                     }
-                    (0, _) => {
-                        spec.attach = Some(Attach {
-                            patch: b - 1,
-                            side: Side::LastColumn,
-                        });
-                        spec.guide = Some(free(u + b, 1));
-                    }
-                    _ => {
-                        spec.attach = Some(Attach {
-                            patch: self.index(a - 1, b),
-                            side: Side::LastRow,
-                        });
-                        spec.guide_from = Some(Attach {
-                            patch: self.index(a, b - 1),
-                            side: Side::LastColumn,
-                        });
+                    Role::Between { attach, from } => {
+                        spec.attach = Some(attach);
+                        spec.guide_from = Some(from);
                     }
                 }
                 spec
@@ -268,16 +457,15 @@ impl Pieces {
     /// The design of `x` and its mesh, each continuation in the plane its start forces
     /// ([`ContinuationStart::plane_normal`] turned by its tilt). With `fit`, each
     /// continuation's piece is first placed in that plane (with no displacement it
-    /// then continues the single patch's guide).
+    /// then continues the single patch's line).
     fn build(&self, x: &[f64], fit: bool) -> Option<(MultiPatchDesign, MultiPatch)> {
         let mut design = self.design(x);
-        let count = self.layout.count();
-        let mut guides: Vec<Option<GuideSpec>> = vec![None; count];
+        let mut guides: Vec<Option<GuideSpec>> = vec![None; self.roles.len()];
         let mp = build_with(
             &design,
             &GenerateOptions::default(),
             &mut |k, start: &ContinuationStart, placeholder| {
-                let Some(slot) = self.slot_of(k) else {
+                let Role::Continue { slot, .. } = self.roles[k] else {
                     return placeholder.clone();
                 };
                 if fit {
@@ -393,76 +581,26 @@ pub fn approximate_patches(
     options: &ApproxOptions,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<PatchApproximation, ApproxError> {
-    if single.design.mesh != MeshKind::Circular {
-        return Err(ApproxError::PatchesNotCircular);
-    }
-    let grid = &single.grid;
-    for (patches, segments, along) in [
-        (layout.u, grid.rows - 1, "guide_u"),
-        (layout.v, grid.cols - 1, "guide_v"),
-    ] {
-        if patches == 0 || layout.count() < 2 || segments < 2 * patches {
-            return Err(ApproxError::TooManyPatches {
-                patches,
-                segments,
-                along,
-            });
-        }
-    }
     let target = TargetCloud::new(points)?;
-    let tol = single.design.tolerance.unwrap_or_default();
-    let frame = |spec: &GuideSpec, name| {
-        Guide::from_spec(spec, name, &tol)
-            .map(|g| (g.tangent, g.plane_normal))
-            .map_err(|_| ApproxError::NoPatchStart { patch: 0 })
-    };
-    let (t_u, m_u) = frame(&single.design.guide_u, GuideName::U)?;
-    let (t_v, m_v) = frame(&single.design.guide_v, GuideName::V)?;
-    let line_u: Vec<DVec3> = grid.column(0).collect();
-    let line_v: Vec<DVec3> = grid.row(0).collect();
-    let cut = |line: &[DVec3], n: usize| -> Vec<Vec<DVec3>> {
-        let segments = line.len() - 1;
-        (0..n)
-            .map(|k| line[k * segments / n..=(k + 1) * segments / n].to_vec())
-            .collect()
-    };
-    let mut pieces = cut(&line_u, layout.u);
-    pieces.extend(cut(&line_v, layout.v));
-    let ortho = |m: DVec3, t: DVec3| (m - m.dot(t) * t).normalize();
-    let normals = [ortho(m_u, t_u), ortho(m_v, t_v)];
-    // The first patch's two pieces in the single patch's own guide planes; the
-    // continuations' once their starts are known (first build).
-    let sections = (0..pieces.len())
-        .map(|slot| {
-            let axis = usize::from(slot >= layout.u);
-            Section::of(&pieces[slot], [t_u, t_v][axis], normals[axis])
-        })
-        .collect();
-    let setup = Pieces {
-        layout,
-        corner: grid.vertex(0, 0),
-        tangents: [t_u, t_v],
-        normals,
-        pieces,
-        sections: std::cell::RefCell::new(sections),
-        tolerance: single.design.tolerance,
-    };
+    let (setup, x0) = Pieces::cut(single, layout)?;
+    let grid = &single.grid;
     let count = layout.count();
-    let n = count + (layout.u + layout.v) * PER_GUIDE;
-    let mut x0 = vec![0.0; n];
-    x0[..count].fill(single.design.theta_deg);
+    let n = x0.len();
     let stride = points.len().div_ceil(OBJECTIVE_POINTS);
     let stop = || {
         options
             .deadline
             .is_some_and(|d| std::time::Instant::now() >= d)
     };
-    let single_f = target.deviation_strided(grid, stride).objective();
+    let single_strided = target.deviation_strided(grid, stride);
     let mut evaluations = 0;
     let budget = count * 359 + options.max_evaluations.max(2 * n + 2);
-    let mut best: (f64, Option<Vec<f64>>) = (single_f, None);
+    // The best point seen by the search's objective, and the closest to the target
+    // (largest distance both ways, on the objective's points).
+    let mut best: (f64, Option<Vec<f64>>) = (single_strided.objective(), None);
+    let mut closest: (Deviation, Option<Vec<f64>>) = (single_strided, None);
     // The folded faces at `x` (all when it cannot be built) and the objective, NaN when
-    // it folds or the time is up; the best point seen is kept.
+    // it folds or the time is up.
     let mut evaluate = |x: &[f64], fit: bool| -> (usize, f64) {
         if stop() {
             return (usize::MAX, f64::NAN);
@@ -470,7 +608,13 @@ pub fn approximate_patches(
         evaluations += 1;
         let (folded, f) = match setup.build(x, fit) {
             Some((_, mp)) => match folds(&mp.grid) {
-                0 => (0, target.deviation_strided(&mp.grid, stride).objective()),
+                0 => {
+                    let d = target.deviation_strided(&mp.grid, stride);
+                    if d.closer_than(&closest.0) {
+                        closest = (d, Some(x.to_vec()));
+                    }
+                    (0, d.objective())
+                }
                 n => (n, f64::NAN),
             },
             None => (usize::MAX, f64::NAN),
@@ -555,11 +699,18 @@ pub fn approximate_patches(
             &vec![1.0; n],
         );
     }
-    let (design, mp, out_layout) = match &best.1 {
-        Some(x) => {
-            let (design, mp) = setup.build(x, false).expect("the best design was built");
-            (design, mp, layout)
+    // The closer to the target of the two, by the largest distance both ways over all
+    // its points, if closer than the single patch.
+    let mut kept: Option<(MultiPatchDesign, MultiPatch, Deviation)> = None;
+    for x in [&best.1, &closest.1].into_iter().flatten() {
+        let (design, mp) = setup.build(x, false).expect("the design was built");
+        let after = target.deviation(&mp.grid);
+        if after.closer_than(kept.as_ref().map_or(&single.after, |k| &k.2)) {
+            kept = Some((design, mp, after));
         }
+    }
+    let (design, mp, after, out_layout) = match kept {
+        Some((design, mp, after)) => (design, mp, after, layout),
         None => {
             // The single patch stays the best: a design of one patch.
             let design = MultiPatchDesign {
@@ -577,11 +728,11 @@ pub fn approximate_patches(
             };
             let mp = build(&design, &GenerateOptions::default())
                 .map_err(|_| ApproxError::NoPatchStart { patch: 0 })?;
-            (design, mp, PatchLayout { u: 1, v: 1 })
+            (design, mp, single.after, PatchLayout { u: 1, v: 1 })
         }
     };
     Ok(PatchApproximation {
-        after: target.deviation(&mp.grid),
+        after,
         per_patch: per_patch(&target, &mp),
         before: single.after,
         design,
@@ -589,4 +740,58 @@ pub fn approximate_patches(
         grid: mp.grid,
         evaluations,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::approximate::approximate;
+
+    /// A paraboloid on a 21 × 21 grid of 10 × 10, and its one-patch fit.
+    fn single() -> Approximation {
+        let target: Vec<DVec3> = (0..21 * 21)
+            .map(|k| {
+                let (x, y) = ((k % 21) as f64 * 0.5, (k / 21) as f64 * 0.5);
+                DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+            })
+            .collect();
+        let options = ApproxOptions {
+            faces: (8, 8),
+            starts: 1,
+            max_evaluations: 60,
+            ..Default::default()
+        };
+        approximate(&target, &options, &mut |_| {}).unwrap()
+    }
+
+    /// A layout's patches with the single patch's lines as guides and its θ rebuild it
+    /// (every vertex, measured against the single patch's own grid), the first patch's
+    /// corner in the middle; the design alone (as `monge patches` reads it) builds the
+    /// same mesh.
+    #[test]
+    fn layouts_cut_from_one_patch_rebuild_it() {
+        let single = single();
+        let size = single.grid.bbox_diagonal();
+        for (u, v) in [(2, 1), (1, 2), (2, 2), (3, 2), (3, 3), (4, 4)] {
+            let layout = PatchLayout { u, v };
+            let (pieces, x0) = Pieces::cut(&single, layout).unwrap();
+            let (design, mp) = pieces.build(&x0, true).unwrap();
+            assert_eq!(mp.layout, (u, v));
+            assert_eq!(mp.patches[0].block, (u / 2, v / 2));
+            assert_eq!(
+                (mp.patches[0].rows.0, mp.patches[0].cols.0),
+                ((u / 2) * 8 / u, (v / 2) * 8 / v),
+            );
+            let worst = mp
+                .grid
+                .vertices
+                .iter()
+                .zip(&single.grid.vertices)
+                .map(|(a, b)| a.distance(*b))
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-9 * size, "{layout}: {worst:e}");
+            let again = build(&design, &GenerateOptions::default()).unwrap();
+            assert_eq!(again.grid, mp.grid, "{layout}");
+        }
+    }
 }

@@ -384,7 +384,7 @@ pub fn approximate_to_tolerance(
         deviation: single.after,
         chosen: Chosen::OnePatch,
     };
-    if single.before.max() < best.deviation.max()
+    if single.before.closer_than(&best.deviation)
         && let Some(grid) = fair_mesh(&single.initial)
     {
         best = Seen {
@@ -423,7 +423,7 @@ pub fn approximate_to_tolerance(
                         patches,
                         outcome: Ok(deviation),
                     });
-                    if deviation.max() < best_max {
+                    if deviation.closer_than(&best.deviation) {
                         best_max = deviation.max();
                         best = Seen {
                             design,
