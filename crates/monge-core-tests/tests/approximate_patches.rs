@@ -1,19 +1,19 @@
 //! `approximate_patches` (§4.7): several patches, every guide and θ free, in a layout
-//! of `u × v` blocks: never worse than the single patch, every face planar and
-//! circular across the joins (measured by a plane and Ptolemy's equality, not by
-//! monge-core), seams stored once, and the errors. The measurement on the held-out
-//! free-form targets is an ignored test (release build).
+//! of `u × v` blocks from the middle: never farther from the target than the single
+//! patch (largest distance both ways), every face planar and circular across the joins
+//! (measured by a plane and Ptolemy's equality, not by monge-core), seams stored once,
+//! and the errors. The measurement on the held-out free-form targets is an ignored test
+//! (release build).
 
 use std::time::Instant;
 
 use glam::DVec3;
 use monge_core::approximate::{
-    approximate, approximate_patches, ApproxError, ApproxOptions, Deviation, PatchLayout,
+    approximate, approximate_patches, ApproxError, ApproxOptions, PatchLayout,
 };
-use monge_core::multipatch::{build, Side};
+use monge_core::multipatch::build;
 use monge_core::{GenerateOptions, QuadGrid};
 
-use crate::common::bits;
 use crate::heldout::{self, max_both_ways, targets};
 
 /// An elliptic paraboloid on a 21 × 21 grid of 10 × 10: no planar curvature lines.
@@ -33,10 +33,6 @@ fn quick(faces: usize, evaluations: usize) -> ApproxOptions {
         max_evaluations: evaluations,
         ..Default::default()
     }
-}
-
-fn objective(d: &Deviation) -> f64 {
-    d.mesh_to_target_rms.powi(2) + d.beyond_mesh_rms.powi(2)
 }
 
 /// Largest distance of a face's fourth vertex from the plane of the other three and
@@ -69,12 +65,13 @@ fn patches_along_either_guide_follow_at_least_as_closely_and_stay_exact() {
         let r = approximate_patches(&target, &single, layout, &options, &mut |_| {}).unwrap();
         eprintln!(
             "{layout}: one patch {:.3e}, patches {:.3e} ({} patches)",
-            objective(&single.after),
-            objective(&r.after),
+            single.after.max(),
+            r.after.max(),
             r.design.patches.len()
         );
-        // Never worse than the single patch, which stays the answer if nothing beats it.
-        assert!(objective(&r.after) <= objective(&single.after));
+        // Never farther from the target than the single patch, which stays the answer if
+        // nothing beats it.
+        assert!(r.after.max() <= single.after.max());
         assert_eq!(r.per_patch.len(), r.layout.count());
         assert_eq!(
             r.per_patch.iter().map(|p| p.target_points).sum::<usize>(),
@@ -104,24 +101,27 @@ fn a_two_by_two_layout_moves_every_guide_and_theta() {
     .unwrap();
     eprintln!(
         "2x2: one patch {:.3e}, patches {:.3e}; {:?}",
-        objective(&single.after),
-        objective(&r.after),
+        single.after.max(),
+        r.after.max(),
         r.per_patch
     );
-    assert!(objective(&r.after) <= objective(&single.after));
+    assert!(r.after.max() <= single.after.max());
     if r.layout == (PatchLayout { u: 2, v: 2 }) {
         let mp = build(&r.design, &GenerateOptions::default()).unwrap();
         assert_eq!(mp.layout, (2, 2));
-        assert!(r.design.patches[3].guide_from.is_some());
+        // The first patch's corner is the middle of the grid (10 × 10 faces), and the
+        // patch opposite to it takes both guides from its neighbours.
+        assert_eq!((mp.patches[0].rows.0, mp.patches[0].cols.0), (5, 5));
+        assert_eq!(
+            r.design
+                .patches
+                .iter()
+                .filter(|p| p.guide_from.is_some())
+                .count(),
+            1
+        );
         let (planar, cyclic) = planar_and_cyclic(&r.grid);
         assert!(planar < 1e-9 && cyclic < 1e-9, "{planar:e} {cyclic:e}");
-        for (a, sa, b, sb) in [
-            (0, Side::LastRow, 2, Side::FirstRow),
-            (1, Side::LastRow, 3, Side::FirstRow),
-            (2, Side::LastColumn, 3, Side::FirstColumn),
-        ] {
-            assert_eq!(bits(&mp.boundary(a, sa)), bits(&mp.boundary(b, sb)));
-        }
         for (k, p) in r.per_patch.iter().enumerate() {
             assert_eq!(p.theta_deg, r.design.patches[k].theta_deg);
             assert!(p.max >= p.rms && p.max.is_finite(), "{p:?}");

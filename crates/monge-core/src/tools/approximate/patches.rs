@@ -2,25 +2,35 @@
 //! target, several patches with piecewise planar curvature lines, in a layout of
 //! `u × v` blocks ([`PatchLayout`]).
 //!
-//! The single patch's guides are cut into pieces: `guide_u` into `u`, `guide_v` into
-//! `v`, of nearly equal numbers of samples. Patch `(a, b)` (design index `a·v + b`)
-//! is the first patch for `(0, 0)`; it is attached to the last row of patch
-//! `(a − 1, b)` for `a ≥ 1`, and to the last column of patch `(a, b − 1)` otherwise.
-//! The patches of the first block column continue `guide_u` with their own guide,
-//! those of the first block row continue `guide_v`, and the others take their second
-//! guide from the last column of patch `(a, b − 1)` (`guide_from`): the curvature
-//! lines are planar in each patch and change plane at each seam, where the panels
-//! stay planar and circular and the beams C¹ (§4.7).
+//! The single patch's grid is cut into blocks: along guide_u into `u`, along guide_v
+//! into `v`, of nearly equal numbers of samples. The layout's origin is in the middle:
+//! the corner of block `(u / 2, v / 2)`, where the single patch's row and column
+//! through it cross (for `u = 1` or `v = 1`, its first row or column). The first
+//! patch is that block, its guides the two lines of the cross leaving the origin; every
+//! other patch's own grid runs away from the origin (its corner, where its guides
+//! start, is the one nearest to it), so that each target corner is one block from a
+//! free guide both ways, not `u` or `v` blocks. The patches along the cross continue
+//! its lines, each attached to its neighbour towards the origin (a first row or column
+//! on the far side of the origin: the continuation runs backwards there, and the
+//! normals are turned in the assembly), with its own guide; the others are attached to
+//! their neighbour towards the origin along guide_u and take their second guide from
+//! their neighbour towards it along guide_v (`guide_from`). Patches are built
+//! outwards from the origin. The curvature lines are planar in each patch and change
+//! plane at each seam, where the panels stay planar and circular and the beams C¹
+//! (§4.7). With every guide its piece of the single patch's lines and the single
+//! patch's θ in every patch (θ is the same in every block's own frame), the patches
+//! rebuild the single patch to round-off: the search starts there.
 //!
 //! Every free guide — both of the first patch, each continuation — is a cubic
 //! B-spline of 5 control points in a plane through its start tangent (forced by the
 //! patches before it, [`ContinuationStart`]): the plane's tilt about that tangent, the
 //! second control point's distance along it and both in-plane coordinates of the
 //! others are free, as in [`approximate`](super::approximate). With every patch's θ,
-//! BOBYQA moves them all together from the single patch's own guides and θ, with the
+//! BOBYQA moves them all together from the single patch's own lines and θ, with the
 //! objective of the single patch (a folded mesh counts as worse than the start by its
-//! number of folded faces, never as a result). The result is never worse
-//! than the best design seen, the single patch included (then a design of one patch).
+//! number of folded faces, never as a result). The result is the design seen closest
+//! to the target by the largest distance both ways ([`Deviation::closer_than`]), the
+//! single patch included (then a design of one patch).
 
 use glam::DVec3;
 
@@ -77,8 +87,8 @@ pub struct PatchApproximation {
 
 impl PatchApproximation {
     /// Whether these patches follow the target closer than `single`, the patch they
-    /// started from (§4.7), by the search's own objective (the mesh's vertices to the
-    /// target and the target beyond the mesh, both RMS): the design to keep.
+    /// started from (§4.7), by the largest distance both ways
+    /// ([`Deviation::closer_than`]): the design to keep.
     ///
     /// ```
     /// use glam::DVec3;
@@ -548,9 +558,9 @@ pub(super) fn per_patch(target: &TargetCloud, mp: &MultiPatch) -> Vec<PatchFit> 
 }
 
 /// Several patches following the target more closely than the single patch `single`
-/// (§4.7; see the module documentation): `layout.u` pieces of its `guide_u` times
-/// `layout.v` pieces of its `guide_v`, every guide and θ free. Circular meshes only;
-/// every piece needs at least two faces.
+/// (§4.7; see the module documentation): its grid cut into `layout.u` blocks along
+/// guide_u times `layout.v` along guide_v, the first patch in the middle, every free
+/// guide and θ free. Circular meshes only; every block needs at least two faces each way.
 ///
 /// ```
 /// use glam::DVec3;
@@ -566,12 +576,8 @@ pub(super) fn per_patch(target: &TargetCloud, mp: &MultiPatch) -> Vec<PatchFit> 
 /// let single = approximate(&target, &options, &mut |_| {}).unwrap();
 /// let two = approximate_patches(&target, &single, PatchLayout { u: 2, v: 1 }, &options, &mut |_| {})
 ///     .unwrap();
-/// // Never worse than the single patch (the objective: vertices to the target, and the
-/// // target beyond the mesh).
-/// let objective = |d: &monge_core::approximate::Deviation| {
-///     d.mesh_to_target_rms.powi(2) + d.beyond_mesh_rms.powi(2)
-/// };
-/// assert!(objective(&two.after) <= objective(&single.after));
+/// // Never farther from the target than the single patch (the largest distance both ways).
+/// assert!(two.after.max() <= single.after.max());
 /// assert_eq!(two.per_patch.len(), two.layout.u * two.layout.v);
 /// ```
 pub fn approximate_patches(
