@@ -328,8 +328,8 @@ struct Seen {
 /// The design nearest to a target within `options.tolerance` both ways: one patch
 /// ([`super::approximate`]), then the layouts of [`refinements`] of up to
 /// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`]: the one-patch
-/// result's guides cut into pieces, every guide and θ free, §4.7), until one is within
-/// the tolerance. The
+/// result cut into blocks from its middle, every free guide and θ free, §4.7), until
+/// one is within the tolerance. The
 /// result is the nearest design seen (largest distance both ways; the initial guess
 /// included), whether or not within the tolerance ([`ToleranceFit::met`],
 /// [`ToleranceFit::stop`]). `progress` is called after every mesh generated.
