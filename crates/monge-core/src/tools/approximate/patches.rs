@@ -27,9 +27,8 @@
 //! second control point's distance along it and both in-plane coordinates of the
 //! others are free, as in [`approximate`](super::approximate). With every patch's θ,
 //! BOBYQA moves them all together from the single patch's own lines and θ, with the
-//! objective of the single patch plus the square of the largest distance both ways (a
-//! folded mesh counts as worse than the start by its number of folded faces, never as
-//! a result). The result is the design seen closest
+//! objective of the single patch (a folded mesh counts as worse than the start by its
+//! number of folded faces, never as a result). The result is the design seen closest
 //! to the target by the largest distance both ways ([`Deviation::closer_than`]), the
 //! single patch included (then a design of one patch).
 
@@ -503,13 +502,6 @@ impl Pieces {
     }
 }
 
-/// The search's objective: the single patch's ([`Deviation::objective`]) plus the
-/// square of the largest distance both ways, which the tolerance is on: the RMS terms
-/// alone leave the worst point (a target corner the mesh stops short of) where it is.
-fn objective(d: &Deviation) -> f64 {
-    d.objective() + d.max().powi(2)
-}
-
 /// Folded faces of a mesh (§5.2), all of them if a vertex is not finite.
 fn folds(grid: &QuadGrid) -> usize {
     if grid.vertices.iter().all(|v| v.is_finite()) {
@@ -611,7 +603,7 @@ pub fn approximate_patches(
     let budget = count * 359 + options.max_evaluations.max(2 * n + 2);
     // The best point seen by the search's objective, and the closest to the target
     // (largest distance both ways, on the objective's points).
-    let mut best: (f64, Option<Vec<f64>>) = (objective(&single_strided), None);
+    let mut best: (f64, Option<Vec<f64>>) = (single_strided.objective(), None);
     let mut closest: (Deviation, Option<Vec<f64>>) = (single_strided, None);
     // The folded faces at `x` (all when it cannot be built) and the objective, NaN when
     // it folds or the time is up.
@@ -627,7 +619,7 @@ pub fn approximate_patches(
                     if d.closer_than(&closest.0) {
                         closest = (d, Some(x.to_vec()));
                     }
-                    (0, objective(&d))
+                    (0, d.objective())
                 }
                 n => (n, f64::NAN),
             },
