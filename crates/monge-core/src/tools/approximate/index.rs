@@ -25,6 +25,14 @@ pub struct TargetCloud {
     patches: Vec<Quadric>,
     /// Unit outward direction in the tangent plane at a boundary point, zero inside.
     outward: Vec<DVec3>,
+    /// How far each boundary point lies behind the outermost of its neighbours along its
+    /// outward direction (zero inside, and along a mesh's edges, whose vertices are on
+    /// them): where the target's edge is, seen from it, as far as its sampling says.
+    behind: Vec<f64>,
+    /// How far the target's true edge may lie beyond its outermost points: up to about
+    /// the mean spacing for a random sampling, nil for a mesh's vertices
+    /// ([`edge_gap`]).
+    edge_gap: f64,
     /// Mean distance from a point to its nearest neighbour.
     pub(super) spacing: f64,
     /// How much of each point's height above its own quadric is the surface's rather than
@@ -83,6 +91,7 @@ impl TargetCloud {
         let mut normals = Vec::with_capacity(points.len());
         let mut patches = Vec::with_capacity(points.len());
         let mut outward = Vec::with_capacity(points.len());
+        let mut behind = Vec::with_capacity(points.len());
         let mut nearest = 0.0;
         let (mut sums, mut dof) = ((0.0, 0.0), (0.0, 0.0));
         let share_stride = points.len().div_ceil(SHARE_POINTS);
@@ -118,13 +127,22 @@ impl TargetCloud {
                 let n = near.len() as f64;
                 dof = (dof.0 + (n - 6.0).max(0.0), dof.1 + (n - 10.0).max(0.0));
             }
-            outward.push(if gap > BOUNDARY_GAP {
+            let out = if gap > BOUNDARY_GAP {
                 middle.cos() * x + middle.sin() * y
             } else {
                 DVec3::ZERO
-            });
+            };
+            outward.push(out);
+            behind.push(
+                near[1..]
+                    .iter()
+                    .map(|q| (*q - *p).dot(out))
+                    .fold(0.0, f64::max),
+            );
         }
         let through = through_point_share(sums, dof, size);
+        let spacing = nearest / points.len() as f64;
+        let edge_gap = edge_gap(&behind, &outward, spacing);
         Ok(TargetCloud {
             through,
             points: points.to_vec(),
@@ -132,7 +150,9 @@ impl TargetCloud {
             normals,
             patches,
             outward,
-            spacing: nearest / points.len() as f64,
+            behind,
+            edge_gap,
+            spacing,
             up: principal_axes(points).2,
             size: bbox_diagonal(points),
         })
@@ -144,14 +164,16 @@ impl TargetCloud {
     }
 
     /// Distance from `v` to the target: to the quadric fitted around the nearest target
-    /// point, combined, at the target's boundary, with how far `v` lies beyond it
-    /// (more than the sampling's mean spacing).
+    /// point, combined, at the target's boundary, with how far `v` lies beyond it: beyond
+    /// the outermost of that point's neighbours (a mesh's edge itself), or for a random
+    /// sampling beyond where its true edge may be ([`edge_gap`]).
     pub(super) fn distance_from(&self, v: DVec3) -> f64 {
-        let nearest = self
+        let i = self
             .tree
             .nearest_neighbor(v.to_array())
-            .expect("a target has points");
-        let (across, beyond) = self.offsets(v, nearest.data, self.spacing);
+            .expect("a target has points")
+            .data;
+        let (across, beyond) = self.offsets(v, i, self.behind[i].max(self.edge_gap));
         across.hypot(beyond)
     }
 
@@ -324,6 +346,28 @@ impl TargetCloud {
         let deviation = self.deviation_given(grid, &distances, 1);
         (distances, deviation)
     }
+}
+
+/// Mean depth of a random sampling's boundary points behind the outermost of their
+/// neighbours, in mean spacings (about 0.3 for uniform random points of a square).
+const RANDOM_BEHIND: f64 = 0.3;
+
+/// How far the target's true edge may lie beyond its outermost points, from how far its
+/// boundary points lie `behind` the outermost of their neighbours (`outward` zero:
+/// inside): a mesh's vertices lie on its edges, and a regular sampling's boundary points
+/// on one line, nil; a random sampling's outermost points lie inside the true edge by up
+/// to about its mean `spacing`, which its boundary points' depths, about
+/// [`RANDOM_BEHIND`] spacings on average, tell. Between, in proportion.
+fn edge_gap(behind: &[f64], outward: &[DVec3], spacing: f64) -> f64 {
+    let (sum, count) = behind
+        .iter()
+        .zip(outward)
+        .filter(|(_, o)| **o != DVec3::ZERO)
+        .fold((0.0, 0usize), |(s, n), (b, _)| (s + b, n + 1));
+    if count == 0 {
+        return 0.0;
+    }
+    spacing * (sum / count as f64 / (RANDOM_BEHIND * spacing)).min(1.0)
 }
 
 /// The share of a point's height above its own quadric that is the surface's (the
@@ -594,6 +638,35 @@ mod tests {
         let target = TargetCloud::new(points).unwrap();
         let matches = target.matches(&grid, 1);
         edge_residuals(&edge_windows(&grid, &target.points, &matches))
+    }
+
+    /// Beyond a mesh's edge every overhang counts: measured against the true distance
+    /// to the unit square's edge (its points are a 11 × 11 grid, 0.1 apart), from 0.02 to
+    /// 0.3 beyond a side and beyond a corner; a scan's vertices at its outermost points
+    /// read 0.
+    #[test]
+    fn a_vertex_beyond_the_edge_is_measured_from_the_edge() {
+        let target = TargetCloud::new(&unit_square().vertices).unwrap();
+        for beyond in [0.02, 0.05, 0.1, 0.3] {
+            // Beside the middle of side x = 1, between two of its points.
+            let side = DVec3::new(1.0 + beyond, 0.55, 0.0);
+            assert!(
+                (target.distance_from(side) - beyond).abs() < 1e-9,
+                "{beyond}"
+            );
+            // Beyond the corner (1, 1), along the side y = 1.
+            let corner = DVec3::new(1.0 + beyond, 1.0, 0.0);
+            let d = target.distance_from(corner);
+            assert!(d >= 0.7 * beyond && d <= beyond + 1e-9, "{beyond}: {d}");
+        }
+        // A random sampling's outermost points lie inside its true edge: a vertex on the
+        // edge reads at most a quarter of a spacing (the sampling's own uncertainty).
+        let scan = TargetCloud::new(&Uniform(3).square(2000)).unwrap();
+        for k in 0..=60 {
+            let on_edge = DVec3::new(1.0, 0.2 + 0.01 * k as f64, 0.0);
+            let d = scan.distance_from(on_edge);
+            assert!(d < 0.3 * scan.spacing, "{on_edge}: {d} ({})", scan.spacing);
+        }
     }
 
     #[test]
