@@ -1,6 +1,6 @@
 //! `approximate` (monge's extension of the method, related to §4.7/§4.8): recovery of a
 //! surface with planar curvature lines, the deviation from a non-PCL target (an
-//! elliptic paraboloid), refusal of umbilics (a sphere cap) and flat targets, and every
+//! elliptic paraboloid), a sphere cap (umbilic everywhere), refusal of flat targets, and every
 //! error; every deviation measured independently by brute force (every triangle of the
 //! mesh, another point-triangle formula, not the library's spatial index).
 
@@ -374,19 +374,33 @@ fn the_library_distances_equal_brute_force() {
 }
 
 #[test]
-fn a_sphere_cap_is_refused_where_it_is_umbilic() {
+fn a_sphere_cap_umbilic_everywhere_is_fitted() {
+    // A sphere's principal directions are nowhere defined: the corners' quadrics give no
+    // start, the sides of its square plan, its boundary and its whole quadric do.
+    let radius = 2.0;
     let cap: Vec<DVec3> = (0..400)
         .map(|k| {
             let (a, b) = ((k % 20) as f64 / 19.0 - 0.5, (k / 20) as f64 / 19.0 - 0.5);
-            DVec3::new(a, b, (4.0 - a * a - b * b).sqrt())
+            DVec3::new(a, b, (radius * radius - a * a - b * b).sqrt())
         })
         .collect();
-    let e = approximate(&cap, &quick(8), &mut |_| {}).unwrap_err();
-    assert!(matches!(e, ApproxError::Umbilic { .. }), "{e:?}");
-    let message = e.to_string();
+    let size = monge_core::grid::bbox_diagonal(&cap);
+    let r = approximate(&cap, &quick(8), &mut |_| {}).unwrap();
+    // Independently: the result's vertices' distance to the sphere, and the target's to
+    // the result's faces (brute force).
+    let (to_max, _) = max_rms(
+        r.grid
+            .vertices
+            .iter()
+            .map(|v| (v.length() - radius).abs() / size),
+    );
+    let (from_max, _) = max_rms(cap.iter().map(|p| brute_to_mesh(*p, &r.grid) / size));
+    eprintln!("sphere cap: mesh → sphere max {to_max:.2e}, cap → mesh max {from_max:.2e}");
+    // Measured with the quick settings: 1.7e-6 and 1.6e-3 (the cap's points to the 8 × 8
+    // faces, their sag included).
     assert!(
-        message.contains("umbilic") && message.contains("cannot follow"),
-        "{message}"
+        to_max <= 1e-4 && from_max <= 3e-3,
+        "{to_max:e} {from_max:e}"
     );
 }
 
@@ -594,4 +608,102 @@ fn a_scans_noise_is_averaged_out_of_the_distance_and_a_meshs_own_vertices_are_on
     let (max, _) = max_rms(mesh.distances(&grid).iter().map(|d| d / mesh.size()));
     eprintln!("exact vertices → themselves: max {max:.2e}");
     assert!(max <= 1e-12, "max {max:e}");
+}
+
+/// A moulding surface (§4.1.2): the planar rail `(s, 0.3 s², 0)` and, in its normal
+/// planes, the profile `(0.8 t, 0.5 (1 − t²) + 0.2 t³)` (the first held-out target's),
+/// scaled by 10 and sampled on `n × n` parameters, and its point at `(s, t)`.
+fn moulding(s: f64, t: f64) -> DVec3 {
+    let tangent = DVec3::new(1.0, 0.6 * s, 0.0).normalize();
+    let normal = DVec3::new(-tangent.y, tangent.x, 0.0);
+    10.0 * (DVec3::new(s, 0.3 * s * s, 0.0)
+        + 0.8 * t * normal
+        + (0.5 * (1.0 - t * t) + 0.2 * t * t * t) * DVec3::Z)
+}
+
+/// θ of a design up to the Gauss map's symmetries (−θ, 180° − θ), in [0°, 90°].
+fn folded(theta_deg: f64) -> f64 {
+    let t = theta_deg.rem_euclid(180.0);
+    t.min(180.0 - t)
+}
+
+#[test]
+fn a_moulding_is_recovered_with_theta_zero() {
+    // A moulding's rail lies level, off the surface's normal by the profile's slope (63°
+    // at one edge): its guide plane is tilted, θ = 0° (or 180°) is an end of the
+    // admissible range. Its corners' normal sections, scanned every 10°, missed it
+    // (2.0e-1 of its size off, θ 57° off); its curvature lines give its own guides.
+    let n = 21;
+    let target: Vec<DVec3> = (0..n * n)
+        .map(|k| {
+            let (s, t) = ((k / n) as f64, (k % n) as f64);
+            moulding(
+                2.0 * s / (n - 1) as f64 - 1.0,
+                2.0 * t / (n - 1) as f64 - 1.0,
+            )
+        })
+        .collect();
+    let size = monge_core::grid::bbox_diagonal(&target);
+    let r = approximate(&target, &quick(10), &mut |_| {}).unwrap();
+    // Independently: the result's vertices to the closed form's fine triangulation, the
+    // target's points to the result's faces, by brute force.
+    let m = 81;
+    let fine: Vec<DVec3> = (0..m * m)
+        .map(|k| {
+            let (s, t) = ((k / m) as f64, (k % m) as f64);
+            moulding(
+                2.0 * s / (m - 1) as f64 - 1.0,
+                2.0 * t / (m - 1) as f64 - 1.0,
+            )
+        })
+        .collect();
+    let truth = QuadGrid::new(m, m, fine, vec![DVec3::Z; m * m]);
+    // The design found regenerated finer (40 × 40 faces), so that the comparison is of
+    // the surfaces, not of the 10 × 10 faces' sag.
+    let result = finer(&r.design, 41);
+    let (to_max, _) = max_rms(
+        result
+            .vertices
+            .iter()
+            .map(|v| brute_to_mesh(*v, &truth) / size),
+    );
+    let (from_max, _) = max_rms(target.iter().map(|p| brute_to_mesh(*p, &result) / size));
+    let theta = folded(r.design.theta_deg);
+    eprintln!("moulding: mesh → target {to_max:.2e}, target → mesh {from_max:.2e}, θ {theta:.3}°");
+    // Measured with the quick settings (10 × 10 faces, 300 meshes a run): 4.5e-4 and
+    // 1.5e-3, θ 0.05° (the held-out measurement, 40 × 40 faces: within 2e-4).
+    assert!(
+        to_max <= 1e-3 && from_max <= 2e-3,
+        "{to_max:e} {from_max:e}"
+    );
+    assert!(theta <= 0.5, "θ {theta}");
+}
+
+#[test]
+fn a_shallow_dome_of_revolution_is_not_refused_and_is_fitted() {
+    // A paraboloid of revolution over a square plan, its axis off the centre (rise 0.31
+    // over a span of 2): its centre and one corner are umbilic to 5 %, which refused it.
+    let dome = |x: f64, y: f64| -0.1 * ((x - 0.3).powi(2) + (y + 0.2).powi(2));
+    let target: Vec<DVec3> = (0..21 * 21)
+        .map(|k| {
+            let (x, y) = ((k % 21) as f64 / 10.0 - 1.0, (k / 21) as f64 / 10.0 - 1.0);
+            DVec3::new(x, y, dome(x, y))
+        })
+        .collect();
+    let size = monge_core::grid::bbox_diagonal(&target);
+    let r = approximate(&target, &quick(10), &mut |_| {}).unwrap();
+    let h = 1e-5;
+    let (to_max, _) = max_rms(r.grid.vertices.iter().map(|v| {
+        let gx = (dome(v.x + h, v.y) - dome(v.x - h, v.y)) / (2.0 * h);
+        let gy = (dome(v.x, v.y + h) - dome(v.x, v.y - h)) / (2.0 * h);
+        (v.z - dome(v.x, v.y)).abs() / DVec3::new(gx, gy, -1.0).length() / size
+    }));
+    let (from_max, _) = max_rms(target.iter().map(|p| brute_to_mesh(*p, &r.grid) / size));
+    eprintln!("dome of revolution: mesh → surface {to_max:.2e}, target → mesh {from_max:.2e}");
+    // Measured with the quick settings: 8.3e-4 and 1.4e-3 (the target's points to the
+    // 10 × 10 faces, their sag included).
+    assert!(
+        to_max <= 2e-3 && from_max <= 3e-3,
+        "{to_max:e} {from_max:e}"
+    );
 }

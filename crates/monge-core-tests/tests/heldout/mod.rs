@@ -83,6 +83,40 @@ fn moulding(u: f64, v: f64) -> DVec3 {
     c + 0.8 * t * normal + (0.5 * (1.0 - t * t) + 0.2 * t * t * t) * DVec3::Z
 }
 
+/// A second moulding: the planar rail `c(u) = (s, 0.2 s² + 0.1 s³)` and the profile
+/// `(0.6 t, 0.25 sin(1.5 t + 0.5))` in the rail's normal planes.
+fn moulding_sine(u: f64, v: f64) -> DVec3 {
+    let (s, t) = (2.0 * u - 1.0, 2.0 * v - 1.0);
+    let c = DVec3::new(s, 0.2 * s * s + 0.1 * s * s * s, 0.0);
+    let tangent = DVec3::new(1.0, 0.4 * s + 0.3 * s * s, 0.0).normalize();
+    let normal = DVec3::new(-tangent.y, tangent.x, 0.0);
+    c + 0.6 * t * normal + 0.25 * (1.5 * t + 0.5).sin() * DVec3::Z
+}
+
+/// An onion dome's side: the profile `r = 1 + 0.5 sin(πt) − 0.4 t²`, `z = 1.6 t`, turned
+/// through 150° about the z axis (its u-lines parallels, its v-lines meridians).
+fn onion(u: f64, v: f64) -> DVec3 {
+    let (angle, t) = (150f64.to_radians() * u, v);
+    let r = 1.0 + 0.5 * (std::f64::consts::PI * t).sin() - 0.4 * t * t;
+    DVec3::new(r * angle.cos(), r * angle.sin(), 1.6 * t)
+}
+
+/// A shallow dome of revolution over a square plan: the paraboloid `z = −0.1 ρ²`, its
+/// axis at (0.3, −0.2), off the plan's centre (so that its corners see different
+/// curvatures, one nearly umbilic), over [−1, 1]² (rise 0.31 over a span of 2). Its
+/// curvature lines are planar (meridians and parallels), its plan not cut along them.
+fn dome_of_revolution(u: f64, v: f64) -> DVec3 {
+    let (x, y) = (2.0 * u - 1.0, 2.0 * v - 1.0);
+    DVec3::new(x, y, -0.1 * ((x - 0.3).powi(2) + (y + 0.2).powi(2)))
+}
+
+/// A spherical cap of radius 3 over [−1, 1]² (rise 0.35 over a span of 2): umbilic
+/// everywhere.
+fn spherical_cap(u: f64, v: f64) -> DVec3 {
+    let (x, y) = (2.0 * u - 1.0, 2.0 * v - 1.0);
+    DVec3::new(x, y, (9.0 - x * x - y * y).sqrt())
+}
+
 /// A ring Dupin cyclide (a = 10, c = 3, μ = 5) over part of its curvature-line
 /// parameters (its u- and v-lines are circles).
 fn cyclide(u: f64, v: f64) -> DVec3 {
@@ -300,6 +334,18 @@ pub fn targets() -> Vec<Target> {
         Target::placed("Bézier roof", bezier, false, 50.0, 1e5, 6),
         Target::placed("flat-edge dome", flat_edge_dome, false, 100.0, 1e4, 7),
         Target::placed("flat-edge dome 1 m", flat_edge_dome, false, 1.0, 1e3, 8),
+        Target::placed("sine moulding", moulding_sine, true, 5.0, 1e4, 9),
+        Target::placed("onion dome", onion, true, 20.0, 1e5, 10),
+        // Planar curvature lines, but not along the square plan's parameters: θ untested.
+        Target::placed(
+            "dome of revolution",
+            dome_of_revolution,
+            false,
+            30.0,
+            1e4,
+            11,
+        ),
+        Target::placed("spherical cap", spherical_cap, false, 10.0, 1e3, 12),
     ]
 }
 

@@ -138,6 +138,31 @@ impl ThetaRange {
     }
 }
 
+/// The admissible θ (degrees) at the angle `phi_deg` around the circle of admissible
+/// values (§3.2): θ and −θ at either end of the range give the same axes (`E = 0`: `M =
+/// Q2`; `D = 0`: `M` at infinity), so the admissible θ form a circle, and along it
+/// `√E = √E_max·|sin(φ/2)|`, `√D = √a·|cos(φ/2)|` (`a = 1/(1 + c_v²)`, `E_max = a/(a +
+/// δ²)`): the axes of [`pencil_axes`] turn smoothly with φ, across both ends, where they
+/// turn as the square root of θ's distance to the end. φ = 0 gives `min_deg`, ±180°
+/// `±max_deg`; in the characteristic case (`c_u = c_v = 0`) θ = φ.
+///
+/// ```
+/// use monge_core::gauss_map::{admissible_theta_at, ThetaRange};
+/// assert!((admissible_theta_at(0.0, 0.0, 37.0) - 37.0).abs() < 1e-12);
+/// let r = ThetaRange::new(0.5, 0.2);
+/// assert!((admissible_theta_at(0.5, 0.2, 0.0) - r.min_deg).abs() < 1e-9);
+/// assert!((admissible_theta_at(0.5, 0.2, -180.0) + r.max_deg).abs() < 1e-9);
+/// ```
+pub fn admissible_theta_at(c_u: f64, c_v: f64, phi_deg: f64) -> f64 {
+    let phi = normalize_theta_deg(phi_deg).to_radians();
+    let a = 1.0 / (1.0 + c_v * c_v);
+    let delta2 = c_u * c_u / (1.0 - c_u * c_u * c_v * c_v);
+    let e = a / (a + delta2) * libm::sin(0.5 * phi).powi(2);
+    // E = S² − c_v²C² = S²(1 + c_v²) − c_v².
+    let s2 = ((e + c_v * c_v) * a).clamp(0.0, 1.0);
+    phi.signum() * 2.0 * libm::asin(s2.sqrt()).to_degrees()
+}
+
 /// θ in degrees reduced to (−180, 180] (§2.1.2: θ and θ ± 360° are the same).
 ///
 /// ```
@@ -557,6 +582,51 @@ mod tests {
         for k in 0..pts.len() - 1 {
             let e = (pts[k + 1] - pts[k]).normalize();
             assert!((n[k + 1] - n[k]).cross(e).length() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn the_admissible_thetas_are_a_circle_the_axes_follow_smoothly() {
+        // A frame whose guide planes are tilted (c_u = 0.5, c_v = 0.2): every φ gives an
+        // admissible θ, the ends of the range at 0° and ±180°, and the axes' point M on
+        // L1 (as an affine point, or a direction at infinity) moves smoothly with φ,
+        // across both ends: second differences of the order of the step squared.
+        let n_u = DVec3::new(0.0, -(1.0f64 - 0.25).sqrt(), 0.5);
+        let n_v = DVec3::new(-(1.0f64 - 0.04).sqrt(), 0.0, 0.2);
+        let f = StartFrame::new(DVec3::X, DVec3::Y, n_u, n_v);
+        let (c_u, c_v) = (f.c_u(), f.c_v());
+        let range = f.admissible_theta();
+        let theta = |phi: f64| admissible_theta_at(c_u, c_v, phi);
+        assert!((theta(0.0) - range.min_deg).abs() < 1e-9);
+        assert!((theta(180.0) - range.max_deg).abs() < 1e-9);
+        assert!((theta(-90.0) + theta(90.0)).abs() < 1e-12);
+        // L1's Plücker coordinates, unit, their sign that of the middle sample's.
+        let line = |phi: f64| {
+            let l1 = pencil_axes(&f, theta(phi)).unwrap().l1;
+            let v = [
+                l1.dir.x,
+                l1.dir.y,
+                l1.dir.z,
+                l1.moment.x,
+                l1.moment.y,
+                l1.moment.z,
+            ];
+            let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            v.map(|x| x / norm)
+        };
+        let h = 0.01;
+        for phi in [0.0, 45.0, 179.99, -120.0] {
+            let b = line(phi);
+            let [a, c] = [line(phi - h), line(phi + h)].map(|x| {
+                let sign = x.iter().zip(&b).map(|(x, b)| x * b).sum::<f64>().signum();
+                x.map(|x| sign * x)
+            });
+            let second = (0..6)
+                .map(|k| (a[k] - 2.0 * b[k] + c[k]).abs())
+                .fold(0.0, f64::max);
+            // Smooth: of the order of (h in radians)², 3e-8; θ itself as the
+            // parameter would leave √h, 1e-2, at φ = 0.
+            assert!(second < 1e-6, "φ {phi}: {second:e}");
         }
     }
 

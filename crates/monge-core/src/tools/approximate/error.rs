@@ -78,13 +78,16 @@ pub enum ApproxError {
         /// [`FLAT_CURVATURE`].
         limit: f64,
     },
-    /// The target is umbilic at the corner: principal directions are undefined.
+    /// The target is umbilic at its corners (principal directions undefined) and no other
+    /// start exists (boundary, curvature lines, whole quadric).
     #[error(
         "the target is umbilic at {where_} ({point:?}), like a sphere: its principal \
          curvatures {k1:.4e} and {k2:.4e} differ by {percent:.2} % (less than {limit_percent} %), \
-         so its curvature lines have no direction there and the method, one surface with \
-         planar curvature lines started along them, cannot follow the target there. \
-         Approximate a part of the target away from its umbilics"
+         so its curvature lines have no direction there, and no other start exists: its \
+         boundary could not be traced from any corner, nor its curvature lines followed, nor \
+         (its centre not a dome's) its whole quadric. The method, one surface with planar \
+         curvature lines started along them, cannot follow the target: sample its edges more \
+         densely, or approximate a part of it away from its umbilics"
     )]
     Umbilic {
         /// `the corner` or `the centre`.

@@ -9,25 +9,34 @@
 //! exactly generated mesh is nearest to the target both ways:
 //!
 //! 1. **initial guess**: a quadric fitted to the whole target gives its principal
-//!    directions at its centre and, along them, the corner of the target; a quadric
-//!    fitted near that corner gives the principal directions there (an umbilic or a
-//!    flat corner, where they are undefined, is refused: [`ApproxError::Umbilic`],
-//!    [`ApproxError::Flat`]); each guide is a cubic B-spline (5 control points) in the
-//!    normal plane of one direction, fitted to the target's section by that plane.
-//!    A second start at each corner follows the target's own boundary: the two
-//!    boundary curves leaving the corner are traced through the points (gift
-//!    wrapping), a plane is fitted to each, a B-spline to each in its plane
-//!    (Levenberg–Marquardt over the control points and the points' parameters), and
-//!    their start tangents, made orthogonal, give the frame: a target cut along its
-//!    curvature lines is started from its own guides. Where the target's centre is
-//!    elliptic, a third lies on the quadric fitted to the whole target, at its point
-//!    nearest to the corner, its frame along the principal directions at the centre
-//!    and its guides the quadric's sections along them: a dome whose edges lie flat
-//!    (its corners saddles, their principal directions along the diagonals) is
-//!    started along its edges. θ comes from a scan every 10°;
+//!    directions at its centre (where the centre is umbilic, a dome of revolution or a
+//!    spherical cap, the sides of the smallest rectangle enclosing the target's plan
+//!    instead; a flat centre is refused: [`ApproxError::Flat`]) and, along them, the
+//!    corners of the target; a quadric fitted near a corner gives the principal
+//!    directions there, and each guide is a cubic B-spline (5 control points) in the
+//!    normal plane of one direction, fitted to the target's section by that plane (not
+//!    at an umbilic corner, where they are undefined). A second start at each corner
+//!    follows the target's own boundary: the two boundary curves leaving the corner are
+//!    traced through the points (gift wrapping), a plane is fitted to each, a B-spline to
+//!    each in its plane (Levenberg–Marquardt over the control points and the points'
+//!    parameters), and their start tangents, made orthogonal, give the frame: a target
+//!    cut along its curvature lines is started from its own guides. A third follows the
+//!    target's curvature lines (each step on the quadric of the nearest target points):
+//!    from the centre to the boundary and along it to the corner, then the two lines
+//!    leaving the corner are the curves of the boundary start's construction, their
+//!    planes tilted as the target's are (a moulding's level rail). Where the target's
+//!    centre is elliptic, a fourth lies on the quadric fitted to the whole target, at
+//!    its point nearest to the corner, its frame along the centre's directions and its
+//!    guides the quadric's sections along them: a dome whose edges lie flat (its corners
+//!    saddles, their principal directions along the diagonals) is started along its
+//!    edges. Only a target with no start at all is refused ([`ApproxError::Umbilic`]).
+//!    θ comes from a scan every 10° of the angle φ around the circle of the admissible
+//!    θ ([`crate::gauss_map::admissible_theta_at`]): where a guide plane is tilted, θ =
+//!    0° or 180° (the surfaces of revolution and the mouldings, §4.1) is an end of the
+//!    admissible range, which φ = 0° or 180° reaches and the search crosses smoothly;
 //! 2. **optimisation** by least squares (Levenberg–Marquardt with Marquardt's diagonal
 //!    damping) of the corner, the frame's rotation, the tilt of each guide plane about
-//!    its start tangent, θ and the control points' coordinates in their planes (the
+//!    its start tangent, φ and the control points' coordinates in their planes (the
 //!    second control point only along the start tangent, ahead of the corner, so the
 //!    guides stay planar and meet at 90° exactly), from the best θ of the scan and the
 //!    next best ones in turn until one recovers the target (multi-start), first on a
@@ -65,6 +74,7 @@ use glam::DVec3;
 
 use crate::conical::conical_dual;
 use crate::design::{Design, GuideSpec, MeshKind, Xyz};
+use crate::gauss_map::admissible_theta_at;
 use crate::generate::{generate, GenerateOptions};
 use crate::grid::QuadGrid;
 
@@ -201,7 +211,11 @@ fn design_of(start: &Start, x: &[f64], samples: (usize, usize), kind: MeshKind) 
     let rotation = glam::DQuat::from_scaled_axis(DVec3::new(x[3], x[4], x[5]));
     let (t_u, t_v, n) = (rotation * t_u, rotation * t_v, rotation * n);
     let corner = start.corner + x[0] * t_u + x[1] * t_v + x[2] * n;
-    let theta = x[8];
+    // x[8] is the angle around the circle of admissible θ (φ): the surfaces of
+    // revolution and the mouldings (θ = 0° or 180°, §4.1) lie at the ends of the
+    // admissible range of a design whose guide planes are tilted (§3.2), which φ
+    // crosses smoothly.
+    let theta = admissible_theta_at(x[6].sin(), x[7].sin(), x[8]);
     let per_guide = 1 + 2 * (CONTROL_POINTS - 2);
     let guide = |t: DVec3, other: DVec3, tilt: f64, c: &[f64], samples: usize| {
         let up = tilt.cos() * n - tilt.sin() * other;
@@ -456,11 +470,12 @@ impl<'a> Search<'a> {
     }
 }
 
-/// The start's own parameters: no move, θ given, its guides' control points.
-fn start_parameters(start: &Start, theta: f64) -> Vec<f64> {
+/// The start's own parameters: no move, φ given (see [`design_of`]), its guides'
+/// control points.
+fn start_parameters(start: &Start, phi: f64) -> Vec<f64> {
     let mut x = vec![0.0; PARAMETERS];
     x[6..8].copy_from_slice(&start.tilts);
-    x[8] = theta;
+    x[8] = phi;
     let per_guide = start.guides[0].len();
     for (k, c) in start.guides.iter().enumerate() {
         x[9 + k * per_guide..9 + (k + 1) * per_guide].copy_from_slice(c);
@@ -475,15 +490,12 @@ fn start_parameters(start: &Start, theta: f64) -> Vec<f64> {
 /// ```
 /// use glam::DVec3;
 /// use monge_core::approximate::{approximate, ApproxError};
-/// // A sphere cap: umbilic everywhere.
-/// let cap: Vec<DVec3> = (0..400)
-///     .map(|k| {
-///         let (a, b) = ((k % 20) as f64 / 19.0 - 0.5, (k / 20) as f64 / 19.0 - 0.5);
-///         DVec3::new(a, b, (4.0 - a * a - b * b).sqrt())
-///     })
+/// // A plane: no curvature to follow.
+/// let plane: Vec<DVec3> = (0..400)
+///     .map(|k| DVec3::new((k % 20) as f64, (k / 20) as f64, 0.0))
 ///     .collect();
-/// let e = approximate(&cap, &Default::default(), &mut |_| {}).unwrap_err();
-/// assert!(matches!(e, ApproxError::Umbilic { .. }));
+/// let e = approximate(&plane, &Default::default(), &mut |_| {}).unwrap_err();
+/// assert!(matches!(e, ApproxError::Flat { .. }));
 /// ```
 pub fn approximate(
     points: &[DVec3],
@@ -529,7 +541,7 @@ pub fn approximate_until(
         stride: points.len().div_ceil(EDGE_POINTS),
         evaluations: 0,
         budget,
-        total: guesses.len() * 34 + (starts_wanted + 1) * budget,
+        total: guesses.len() * 35 + (starts_wanted + 1) * budget,
         best: f64::INFINITY,
         stop: &|| options.deadline.is_some_and(|d| Instant::now() >= d) || stop(),
         timed_out: false,
@@ -537,8 +549,8 @@ pub fn approximate_until(
     // θ from a scan every 10° (§4.3) at each corner; the best few as starts.
     let mut scan: Vec<(f64, usize, f64)> = Vec::new();
     for (g, start) in guesses.iter().enumerate() {
-        for k in (-17..=17).filter(|k| *k != 9) {
-            let theta = 10.0 * k as f64;
+        for k in (-17..=18).filter(|k| *k != 9) {
+            let theta = 10.0 * f64::from(k);
             let f = search.objective(start, &start_parameters(start, theta), coarse);
             if f.is_finite() {
                 scan.push((f, g, theta));
@@ -558,7 +570,7 @@ pub fn approximate_until(
             chosen.push((*g, *theta));
         }
     }
-    let (first, initial_theta_deg) = *chosen.first().ok_or(if search.timed_out {
+    let (first, initial_phi) = *chosen.first().ok_or(if search.timed_out {
         ApproxError::TimeLimit
     } else {
         ApproxError::NoStart
@@ -627,7 +639,7 @@ pub fn approximate_until(
             ApproxError::NoStart
         })?;
     // Never worse than the initial guess: the better of the two on the full grid.
-    let initial_x = start_parameters(&guesses[first], initial_theta_deg);
+    let initial_x = start_parameters(&guesses[first], initial_phi);
     let full = |s: &Start, x: &[f64]| {
         search
             .residuals(s, x, (fu, fv))
@@ -657,10 +669,10 @@ pub fn approximate_until(
     Ok(Approximation {
         design,
         grid,
+        initial_theta_deg: initial.theta_deg,
         initial,
         before: before.unwrap_or(nan),
         after,
-        initial_theta_deg,
         objective: (objective_before, objective_after),
         corner_curvatures: start.curvatures,
         evaluations: search.evaluations,

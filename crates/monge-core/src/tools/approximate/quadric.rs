@@ -34,6 +34,66 @@ pub(super) fn principal_axes_about(points: &[DVec3], c: DVec3) -> (DVec3, DVec3,
     (axis(0), axis(1), axis(2))
 }
 
+/// The sides of the smallest rectangle enclosing the points' projections on the plane
+/// through their centroid normal to `normal` (rotating calipers over the hull's edges):
+/// two orthogonal unit directions in that plane, the longer side's first. The directions
+/// of a target's plan (a square dome's edges) where its curvature gives none.
+pub(super) fn plan_sides(points: &[DVec3], normal: DVec3) -> (DVec3, DVec3) {
+    let x = normal.any_orthonormal_vector();
+    let y = normal.cross(x);
+    let mut plan: Vec<(f64, f64)> = points.iter().map(|p| (p.dot(x), p.dot(y))).collect();
+    // Andrew's monotone chain: the convex hull, counter-clockwise.
+    plan.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let turn = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f64, f64)> = Vec::with_capacity(plan.len() + 1);
+    let backwards: Vec<(f64, f64)> = plan.iter().rev().copied().collect();
+    for chain in [&plan, &backwards] {
+        let floor = hull.len();
+        for p in chain.iter() {
+            while hull.len() >= floor + 2
+                && turn(hull[hull.len() - 2], hull[hull.len() - 1], *p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(*p);
+        }
+        hull.pop();
+    }
+    // The hull edge along which the enclosing rectangle is smallest.
+    let mut best = (f64::INFINITY, (1.0, 0.0));
+    for k in 0..hull.len() {
+        let (a, b) = (hull[k], hull[(k + 1) % hull.len()]);
+        let length = (b.0 - a.0).hypot(b.1 - a.1);
+        if length <= 0.0 {
+            continue;
+        }
+        let (c, s) = ((b.0 - a.0) / length, (b.1 - a.1) / length);
+        let extent = |f: &dyn Fn(&(f64, f64)) -> f64| {
+            hull.iter()
+                .map(f)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v), hi.max(v))
+                })
+        };
+        let along = extent(&|p| p.0 * c + p.1 * s);
+        let across = extent(&|p| p.1 * c - p.0 * s);
+        let area = (along.1 - along.0) * (across.1 - across.0);
+        if area < best.0 {
+            let direction = if along.1 - along.0 >= across.1 - across.0 {
+                (c, s)
+            } else {
+                (-s, c)
+            };
+            best = (area, direction);
+        }
+    }
+    let (c, s) = best.1;
+    let first = c * x + s * y;
+    (first, normal.cross(first))
+}
+
 /// A height function `z = a x² + b xy + c y² + d x + e y + f` over a frame.
 #[derive(Clone, Debug)]
 pub(super) struct Quadric {

@@ -8,7 +8,9 @@ use glam::DVec3;
 use super::error::{ApproxError, MIN_POINTS};
 use super::fit_guide::{fit_guide, section_guide};
 use super::index::TargetCloud;
-use super::quadric::{check_curvature, principal_axes, principal_axes_about, Quadric};
+use super::quadric::{
+    check_curvature, plan_sides, principal_axes, principal_axes_about, Principal, Quadric,
+};
 
 /// The initial guess: corner, frame and each guide's control points in its plane.
 #[derive(Clone, Debug)]
@@ -37,11 +39,18 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
     let global = Quadric::fit(points, centroid, principal_axes(points).2);
     let (u, v) = global.uv(centroid);
     let centre = global.principal(u, v);
-    check_curvature(&centre, size, "the centre")?;
-    let mut starts = Vec::with_capacity(4);
+    // The directions along which the corners are sought: the principal directions at
+    // the centre, or, where it is umbilic (a dome of revolution, a spherical cap), the
+    // sides of the target's plan.
+    let (c1, c2) = match check_curvature(&centre, size, "the centre") {
+        Ok(()) => (centre.d1, centre.d2),
+        Err(ApproxError::Umbilic { .. }) => plan_sides(points, centre.normal),
+        Err(e) => return Err(e),
+    };
+    let mut starts = Vec::with_capacity(12);
     let mut refused = None;
     for (s1, s2) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
-        let (d1, d2) = (s1 * centre.d1, s2 * centre.d2);
+        let (d1, d2) = (s1 * c1, s2 * c2);
         // The corner: least coordinates along the principal directions at the centre.
         let low = |d: DVec3| {
             points
@@ -67,37 +76,56 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
         let local = Quadric::fit(&near, global.principal(cu, cv).point, centre.normal);
         let (lu, lv) = local.uv(guess);
         let corner = local.principal(lu, lv);
-        if let Err(e) = check_curvature(&corner, size, "a corner") {
-            refused.get_or_insert(e);
-            continue;
+        // Where the corner is umbilic, its principal directions are none: the boundary
+        // and quadric starts there only.
+        match check_curvature(&corner, size, "a corner") {
+            Ok(()) => starts.push(corner_start(points, &corner, d1, d2, size)),
+            Err(e) => {
+                refused.get_or_insert(e);
+            }
         }
-        // Start tangents pointing into the target: the corner's principal direction
-        // nearer each of the centre's, turned along it.
-        let (a, b) = if corner.d1.dot(d1).abs() >= corner.d1.dot(d2).abs() {
-            (corner.d1, corner.d2)
-        } else {
-            (corner.d2, corner.d1)
-        };
-        let t_u = a * a.dot(d1).signum();
-        let t_v = b * b.dot(d2).signum();
-        let n = t_u.cross(t_v);
-        let guide = |t: DVec3, other: DVec3| section_guide(points, corner.point, t, other, n, size);
-        starts.push(Start {
-            corner: corner.point,
-            frame: [t_u, t_v, n],
-            guides: [guide(t_u, t_v), guide(t_v, t_u)],
-            tilts: [0.0; 2],
-            on_boundary: false,
-            curvatures: (corner.k1, corner.k2),
-        });
         // The target's own corner there, and its boundary curves from it.
         if let Some(start) = boundary_start(target, d1, d2, (corner.k1, corner.k2)) {
             starts.push(start);
         }
+        // Its curvature lines to that corner, and from it.
+        starts.extend(curvature_line_start(
+            target,
+            centre.point,
+            d1,
+            d2,
+            (corner.k1, corner.k2),
+        ));
     }
     match refused {
         Some(e) if starts.is_empty() => Err(e),
         _ => Ok(starts),
+    }
+}
+
+/// The start at a corner of the target from its own quadric there (`corner`, not
+/// umbilic): the frame along its principal directions, each turned along the nearer of
+/// `d1` and `d2` (into the target), and each guide fitted to the target's section by
+/// the normal plane of the other direction.
+fn corner_start(points: &[DVec3], corner: &Principal, d1: DVec3, d2: DVec3, size: f64) -> Start {
+    // Start tangents pointing into the target: the corner's principal direction
+    // nearer each of the centre's, turned along it.
+    let (a, b) = if corner.d1.dot(d1).abs() >= corner.d1.dot(d2).abs() {
+        (corner.d1, corner.d2)
+    } else {
+        (corner.d2, corner.d1)
+    };
+    let t_u = a * a.dot(d1).signum();
+    let t_v = b * b.dot(d2).signum();
+    let n = t_u.cross(t_v);
+    let guide = |t: DVec3, other: DVec3| section_guide(points, corner.point, t, other, n, size);
+    Start {
+        corner: corner.point,
+        frame: [t_u, t_v, n],
+        guides: [guide(t_u, t_v), guide(t_v, t_u)],
+        tilts: [0.0; 2],
+        on_boundary: false,
+        curvatures: (corner.k1, corner.k2),
     }
 }
 
@@ -164,6 +192,80 @@ fn quadric_start(
     })
 }
 
+/// The start along the target's curvature lines at its corner lowest along `d1` and
+/// `d2` (the directions at its centre, turned towards that corner): from the target's
+/// point nearest to its centre, the curvature line nearest to `−d1` is followed to the
+/// boundary, then the one nearest to `−d2` to the target's corner; from there the two
+/// curvature lines leaving it are the curves of [`curves_start`]. On a target cut along
+/// its planar curvature lines (a moulding, a surface of revolution) these are its own
+/// guides, their planes tilted as the target's are (a moulding's rail, level, leaves
+/// the surface's normal at the slope of its profile), wherever its corners lie.
+fn curvature_line_start(
+    target: &TargetCloud,
+    centre: DVec3,
+    d1: DVec3,
+    d2: DVec3,
+    curvatures: (f64, f64),
+) -> Option<Start> {
+    let from = DVec3::from_array(*target.tree.nearest_neighbor(centre.to_array())?.geom());
+    let edge = *follow_curvature_line(target, from, -d1).last()?;
+    let corner = *follow_curvature_line(target, edge, -d2).last()?;
+    let path_u = follow_curvature_line(target, corner, d1);
+    let path_v = follow_curvature_line(target, corner, d2);
+    curves_start(corner, &path_u, &path_v, curvatures, false)
+}
+
+/// Target points whose quadric gives the principal directions along a curvature line.
+const LINE_NEIGHBOURS: usize = 48;
+
+/// The curvature line of the target through `from` along the principal direction
+/// nearest to `along` (Heun's steps of 2.5 mean spacings, each point on the quadric
+/// fitted to its [`LINE_NEIGHBOURS`] nearest target points; straight on where the
+/// target is umbilic), until the target ends: its points, `from` first. The target
+/// ends where the centroid of a point's neighbours lags behind it by 0.3 of their
+/// radius (a half disc's lags 0.42).
+fn follow_curvature_line(target: &TargetCloud, from: DVec3, along: DVec3) -> Vec<DVec3> {
+    let step = 2.5 * target.spacing;
+    let longest = (4.0 * target.size / step) as usize + 4;
+    // The surface point at `p`, the principal direction there nearest to `d` (turned
+    // along it) and whether the target goes on beyond `p` along `d`.
+    let at = |p: DVec3, d: DVec3| -> (DVec3, DVec3, bool) {
+        let near: Vec<DVec3> = target
+            .tree
+            .nearest_neighbor_iter(p.to_array())
+            .take(LINE_NEIGHBOURS)
+            .map(|n| DVec3::from_array(*n.geom()))
+            .collect();
+        let count = near.len() as f64;
+        let centroid = near.iter().copied().sum::<DVec3>() / count;
+        let radius = near.iter().map(|q| q.distance(p)).fold(0.0, f64::max);
+        let inside = (centroid - p).dot(d) > -0.3 * radius;
+        let normal = principal_axes_about(&near, centroid).2;
+        let quadric = Quadric::fit(&near, p, normal);
+        let (u, v) = quadric.uv(p);
+        let here = quadric.principal(u, v);
+        let tangent = |e: DVec3| e - e.dot(here.normal) * here.normal;
+        let e = if check_curvature(&here, target.size, "a curvature line").is_err() {
+            tangent(d)
+        } else if here.d1.dot(d).abs() >= here.d2.dot(d).abs() {
+            here.d1
+        } else {
+            here.d2
+        };
+        let e = (e * e.dot(d).signum()).normalize_or_zero();
+        (here.point, e, inside)
+    };
+    let (mut p, mut d, mut inside) = at(from, along);
+    let mut path = vec![p];
+    while inside && d != DVec3::ZERO && path.len() < longest {
+        let (_, ahead, _) = at(p + step * d, d);
+        let next = p + 0.5 * step * (d + ahead);
+        (p, d, inside) = at(next, d + ahead);
+        path.push(p);
+    }
+    path
+}
+
 /// Longest inward turn of the boundary between two steps of [`trace_boundary`]
 /// (radians): a sharper one is the target's next corner.
 const BOUNDARY_TURN: f64 = 0.75;
@@ -190,13 +292,28 @@ fn boundary_start(
     let step = 2.5 * target.spacing;
     let path_u = trace_boundary(target, corner_index, d1, -d2, step);
     let path_v = trace_boundary(target, corner_index, d2, -d1, step);
+    curves_start(corner, &path_u, &path_v, curvatures, true)
+}
+
+/// The start whose guides follow two curves of the target leaving `corner` (its
+/// boundary curves, or its curvature lines): a plane fitted to each curve through the
+/// corner meets the tangent plane in a start tangent, and a cubic B-spline fitted to
+/// each curve in the plane through its tangent nearest to the curve's plane is its
+/// guide. `None` when a curve has too few points.
+fn curves_start(
+    corner: DVec3,
+    path_u: &[DVec3],
+    path_v: &[DVec3],
+    curvatures: (f64, f64),
+    on_boundary: bool,
+) -> Option<Start> {
     if path_u.len() < 4 || path_v.len() < 4 {
         return None;
     }
     // Each curve's plane through the corner.
     let (m_u, m_v) = (
-        principal_axes_about(&path_u, corner).2,
-        principal_axes_about(&path_v, corner).2,
+        principal_axes_about(path_u, corner).2,
+        principal_axes_about(path_v, corner).2,
     );
     // Each curve's own start tangent: a guide fitted in its plane, tangent free.
     let tangent = |m: DVec3, path: &[DVec3]| -> Option<DVec3> {
@@ -210,7 +327,7 @@ fn boundary_start(
         let p1 = fit_guide(&section, true)?[1];
         Some((p1.0 * e1 + p1.1 * e2).normalize_or_zero())
     };
-    let (a, b) = (tangent(m_u, &path_u)?, tangent(m_v, &path_v)?);
+    let (a, b) = (tangent(m_u, path_u)?, tangent(m_v, path_v)?);
     // Orthonormal, symmetric about their bisector: curvature lines meet at 90°.
     let (bisector, half) = ((a + b).normalize_or_zero(), (a - b).normalize_or_zero());
     let t_u = (bisector + half) * std::f64::consts::FRAC_1_SQRT_2;
@@ -233,14 +350,14 @@ fn boundary_start(
         guide.extend(p[2..].iter().flat_map(|(s, w)| [*s, *w]));
         Some((guide, tilt))
     };
-    let (g_u, tilt_u) = guide(t_u, t_v, m_u, &path_u)?;
-    let (g_v, tilt_v) = guide(t_v, t_u, m_v, &path_v)?;
+    let (g_u, tilt_u) = guide(t_u, t_v, m_u, path_u)?;
+    let (g_v, tilt_v) = guide(t_v, t_u, m_v, path_v)?;
     Some(Start {
         corner,
         frame: [t_u, t_v, n],
         guides: [g_u, g_v],
         tilts: [tilt_u, tilt_v],
-        on_boundary: true,
+        on_boundary,
         curvatures,
     })
 }
