@@ -208,10 +208,18 @@ fn curvature_line_start(
     curvatures: (f64, f64),
 ) -> Option<Start> {
     let from = DVec3::from_array(*target.tree.nearest_neighbor(centre.to_array())?.geom());
-    let edge = *follow_curvature_line(target, from, -d1).last()?;
-    let corner = *follow_curvature_line(target, edge, -d2).last()?;
-    let path_u = follow_curvature_line(target, corner, d1);
-    let path_v = follow_curvature_line(target, corner, d2);
+    // Each turn onto the other family: across the direction of arrival, in the tangent
+    // plane (the centre's directions may have turned far on a strongly curved target).
+    let (to_edge, a1, n1) = follow_curvature_line(target, from, -d1);
+    let edge = *to_edge.last()?;
+    let across = n1.cross(a1);
+    let (to_corner, a2, n2) =
+        follow_curvature_line(target, edge, across * across.dot(-d2).signum());
+    let corner = *to_corner.last()?;
+    let inward = n2.cross(a2);
+    let inward = inward * inward.dot(from - corner).signum();
+    let (path_u, ..) = follow_curvature_line(target, corner, inward);
+    let (path_v, ..) = follow_curvature_line(target, corner, -a2);
     curves_start(corner, &path_u, &path_v, curvatures, false)
 }
 
@@ -221,15 +229,20 @@ const LINE_NEIGHBOURS: usize = 48;
 /// The curvature line of the target through `from` along the principal direction
 /// nearest to `along` (Heun's steps of 2.5 mean spacings, each point on the quadric
 /// fitted to its [`LINE_NEIGHBOURS`] nearest target points; straight on where the
-/// target is umbilic), until the target ends: its points, `from` first. The target
+/// target is umbilic), until the target ends: its points, `from` first, and the
+/// direction and the normal at the last. The target
 /// ends where the centroid of a point's neighbours lags behind it by 0.3 of their
 /// radius (a half disc's lags 0.42).
-fn follow_curvature_line(target: &TargetCloud, from: DVec3, along: DVec3) -> Vec<DVec3> {
+fn follow_curvature_line(
+    target: &TargetCloud,
+    from: DVec3,
+    along: DVec3,
+) -> (Vec<DVec3>, DVec3, DVec3) {
     let step = 2.5 * target.spacing;
     let longest = (4.0 * target.size / step) as usize + 4;
     // The surface point at `p`, the principal direction there nearest to `d` (turned
-    // along it) and whether the target goes on beyond `p` along `d`.
-    let at = |p: DVec3, d: DVec3| -> (DVec3, DVec3, bool) {
+    // along it), whether the target goes on beyond `p` along `d`, and the normal.
+    let at = |p: DVec3, d: DVec3| -> (DVec3, DVec3, bool, DVec3) {
         let near: Vec<DVec3> = target
             .tree
             .nearest_neighbor_iter(p.to_array())
@@ -253,17 +266,17 @@ fn follow_curvature_line(target: &TargetCloud, from: DVec3, along: DVec3) -> Vec
             here.d2
         };
         let e = (e * e.dot(d).signum()).normalize_or_zero();
-        (here.point, e, inside)
+        (here.point, e, inside, here.normal)
     };
-    let (mut p, mut d, mut inside) = at(from, along);
+    let (mut p, mut d, mut inside, mut normal) = at(from, along);
     let mut path = vec![p];
     while inside && d != DVec3::ZERO && path.len() < longest {
-        let (_, ahead, _) = at(p + step * d, d);
+        let (_, ahead, _, _) = at(p + step * d, d);
         let next = p + 0.5 * step * (d + ahead);
-        (p, d, inside) = at(next, d + ahead);
+        (p, d, inside, normal) = at(next, d + ahead);
         path.push(p);
     }
-    path
+    (path, d, normal)
 }
 
 /// Longest inward turn of the boundary between two steps of [`trace_boundary`]
