@@ -195,8 +195,8 @@ fn quadric_start(
 /// The start along the target's curvature lines at its corner lowest along `d1` and
 /// `d2` (the directions at its centre, turned towards that corner): from the target's
 /// point nearest to its centre, the curvature line nearest to `−d1` is followed to the
-/// boundary, then the one nearest to `−d2` to the target's corner; from there the two
-/// curvature lines leaving it are the curves of [`curves_start`]. On a target cut along
+/// boundary, then the other family's, towards `−d2`, to the target's corner; from there
+/// the two curvature lines leaving it are the curves of [`curves_start`]. On a target cut along
 /// its planar curvature lines (a moulding, a surface of revolution) these are its own
 /// guides, their planes tilted as the target's are (a moulding's rail, level, leaves
 /// the surface's normal at the slope of its profile), wherever its corners lie.
@@ -230,9 +230,8 @@ const LINE_NEIGHBOURS: usize = 48;
 /// nearest to `along` (Heun's steps of 2.5 mean spacings, each point on the quadric
 /// fitted to its [`LINE_NEIGHBOURS`] nearest target points; straight on where the
 /// target is umbilic), until the target ends: its points, `from` first, and the
-/// direction and the normal at the last. The target
-/// ends where the centroid of a point's neighbours lags behind it by 0.3 of their
-/// radius (a half disc's lags 0.42).
+/// direction and the normal at the last. The target ends where the centroid of a
+/// point's neighbours lags behind it by 0.3 of their radius (a half disc's lags 0.42).
 fn follow_curvature_line(
     target: &TargetCloud,
     from: DVec3,
