@@ -143,15 +143,16 @@ impl ThetaRange {
 /// Q2`; `D = 0`: `M` at infinity), so the admissible θ form a circle, and along it
 /// `√E = √E_max·|sin(φ/2)|`, `√D = √a·|cos(φ/2)|` (`a = 1/(1 + c_v²)`, `E_max = a/(a +
 /// δ²)`): the axes of [`pencil_axes`] turn smoothly with φ, across both ends, where they
-/// turn as the square root of θ's distance to the end. φ = 0 gives `min_deg`, ±180°
-/// `±max_deg`; in the characteristic case (`c_u = c_v = 0`) θ = φ.
+/// turn as the square root of θ's distance to the end. φ (taken modulo 360°, in
+/// (−180°, 180°]) = 0 gives `min_deg`, 180° `max_deg`, −φ gives −θ; in the
+/// characteristic case (`c_u = c_v = 0`) θ = φ.
 ///
 /// ```
 /// use monge_core::gauss_map::{admissible_theta_at, ThetaRange};
 /// assert!((admissible_theta_at(0.0, 0.0, 37.0) - 37.0).abs() < 1e-12);
 /// let r = ThetaRange::new(0.5, 0.2);
 /// assert!((admissible_theta_at(0.5, 0.2, 0.0) - r.min_deg).abs() < 1e-9);
-/// assert!((admissible_theta_at(0.5, 0.2, -180.0) + r.max_deg).abs() < 1e-9);
+/// assert!((admissible_theta_at(0.5, 0.2, 180.0) - r.max_deg).abs() < 1e-9);
 /// ```
 pub fn admissible_theta_at(c_u: f64, c_v: f64, phi_deg: f64) -> f64 {
     let phi = normalize_theta_deg(phi_deg).to_radians();
