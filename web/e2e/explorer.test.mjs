@@ -807,11 +807,6 @@ async function main() {
         explorer.state.latencies.length = 0;
         explorer.state.generated.length = 0;
         explorer.resetDetail(); // the drag's first frame at the finest detail
-        // The canvases' sizes, watched through the drag and its rest.
-        const size = (r) => `${r.attributeName} ${r.oldValue ?? ''} → ${r.target.getAttribute(r.attributeName)}`;
-        window.resizes = [];
-        window.resized = new MutationObserver((records) => window.resizes.push(...records.map(size)));
-        window.resized.observe(document.getElementById('view'), { subtree: true, attributes: true, attributeOldValue: true, attributeFilter: ['width', 'height'] });
         return performance.now();
       });
       await page.mouse.move(x, y);
@@ -823,10 +818,6 @@ async function main() {
       await page.mouse.up();
       await idle();
       const cycle = await page.evaluate((t) => ({
-        resized: (() => {
-          window.resized.disconnect();
-          return window.resizes;
-        })(),
         latencies: explorer.state.latencies,
         long: window.longTasks.filter((e) => e.startTime >= t).map((e) => e.duration),
         frames: explorer.frames(),
@@ -841,8 +832,6 @@ async function main() {
         `a pointer drag of ${cycle.latencies.length} frames ${figures(cycle.latencies)}; long tasks (> 50 ms) during the drag and its rest: ` +
         `${cycle.long.length}${cycle.long.length ? `, the longest ${Math.max(...cycle.long).toFixed(0)} ms` : ''}; ` +
         `a drag frame draws ${frames.drag} primitives (the mesh by at most ${frames.detail} faces a side), the full-quality frame ${frames.steps.length} steps of at most ${Math.max(...frames.steps)} indices`);
-      // No canvas is resized when the drag begins or rests (software GL would wait for its new drawing buffer).
-      assert.deepEqual(cycle.resized, [], `no canvas resized during the drag and its rest: ${cycle.resized}`);
       assert.ok(frames.steps.every((n) => n <= frames.stepIndices), `each step of the full frame draws at most ${frames.stepIndices} indices: ${frames.steps}`);
       // Each move's mesh was generated at the drag frames' detail (its guides
       // sampled as coarsely), at most the finest level's vertices, whatever the

@@ -11,21 +11,6 @@ const view = $('view');
 export const renderer = new THREE.WebGLRenderer({ antialias: false });
 renderer.setPixelRatio(window.devicePixelRatio);
 view.appendChild(renderer.domElement);
-/**
- * The drag frames are drawn by a renderer of their own, on a canvas of
- * DRAG_PIXEL_RATIO of the view's pixels laid over the full-quality one
- * (stretched to the same size, shown only while it holds the last frame).
- * No canvas changes size between a drag and its rest: the first drag frame
- * after a rest resized the one canvas, and software GL waited for its new
- * drawing buffer (round trips to the GPU process, a layout) before it drew.
- * The drag frames draw a drag's few vertices (see `dragGeometry`), so the
- * second renderer holds little more than those (the mesh coloured by face,
- * drawn whole, is the exception). (Stretching a smaller target onto the one
- * canvas, blitFramebuffer, cost software GL more than the frame itself.)
- */
-const dragRenderer = new THREE.WebGLRenderer({ antialias: false });
-dragRenderer.domElement.classList.add('drag-frame');
-view.appendChild(dragRenderer.domElement);
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xffffff);
 export const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1e5);
@@ -99,7 +84,6 @@ scene.add(arcLines, surface, coloured, wire, guideLines.u, guideLines.v, handles
  */
 export const SETTLE_MS = 150;
 const DRAG_PIXEL_RATIO = 0.5;
-dragRenderer.setPixelRatio(window.devicePixelRatio * DRAG_PIXEL_RATIO);
 /** The Gauss map's size beside the mesh: its unit sphere is drawn at this share of the mesh's bounding radius. */
 const GAUSS_SCALE = 0.4;
 /** The drag frames' detail, from the latencies of those drawn so far (see detail.js). */
@@ -237,7 +221,7 @@ function tick() {
   }
   build = null;
   if (!warm) warmUp();
-  dragRenderer.domElement.hidden = true;
+  pixelRatio(1);
   renderer.state.bindFramebuffer(gl.READ_FRAMEBUFFER, renderer.properties.get(target).__webglFramebuffer);
   renderer.state.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
   gl.blitFramebuffer(0, 0, target.width, target.height, 0, 0, target.width, target.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
@@ -246,9 +230,10 @@ function tick() {
 }
 
 /**
- * The drag frames draw in their own context, whose software GL pipelines are
- * compiled when first drawn (about half a second): the first full frame
- * shown draws a drag frame (hidden), so that the first drag does not wait.
+ * The drag frames draw on the canvas, whose software GL pipelines differ from
+ * the target's, each compiled when first drawn (about half a second): the
+ * first full frame shown draws a drag frame under it, so that the first drag
+ * does not wait.
  */
 let warm = false;
 function warmUp() {
@@ -257,10 +242,9 @@ function warmUp() {
   quality(true);
   drawDrag();
   quality(fast);
-  dragRenderer.domElement.hidden = true;
 }
 
-/** The target sized as the canvas. */
+/** The target sized as the canvas at the device's pixel ratio. */
 function fitTarget() {
   const size = renderer.getSize(new THREE.Vector2()).multiplyScalar(window.devicePixelRatio).floor();
   if (target.width !== size.x || target.height !== size.y) target.setSize(size.x, size.y);
@@ -269,6 +253,11 @@ function fitTarget() {
 function abandon() {
   if (build?.fence) gl.deleteSync(build.fence);
   build = null;
+}
+
+function pixelRatio(factor) {
+  const ratio = window.devicePixelRatio * factor;
+  if (renderer.getPixelRatio() !== ratio) renderer.setPixelRatio(ratio); // clears the canvas
 }
 
 /**
@@ -314,11 +303,11 @@ function dragGeometry(grid) {
 
 /** The grids drawn by at most `dragFaces` of their faces a side. */
 function drawDrag() {
+  pixelRatio(DRAG_PIXEL_RATIO);
   const grids = [surface, gaussSurface].map((m) => [m, m.geometry, dragGeometry(m)]).filter(([, , coarse]) => coarse);
   for (const [m, , coarse] of grids) m.geometry = coarse;
-  dragRenderer.render(scene, camera);
-  dragRenderer.domElement.hidden = false;
-  drawn.drag = dragRenderer.info.render.triangles + dragRenderer.info.render.lines;
+  renderer.render(scene, camera);
+  drawn.drag = renderer.info.render.triangles + renderer.info.render.lines;
   drawn.detail = dragFaces(surface);
   drawn.byDetail.set(drawn.detail, drawn.drag);
   for (const [m, full] of grids) m.geometry = full;
@@ -416,7 +405,6 @@ function recordLatency(ms, drag) {
 export function resize() {
   const { clientWidth: w, clientHeight: h } = view;
   renderer.setSize(w, h);
-  dragRenderer.setSize(w, h);
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
   redraw();
