@@ -646,31 +646,24 @@ fn a_moulding_is_recovered_with_theta_zero() {
     // at one edge): its guide plane is tilted, θ = 0° (or 180°) is an end of the
     // admissible range. Its corners' normal sections, scanned every 10°, missed it
     // (2.0e-1 of its size off, θ 57° off); its curvature lines give its own guides.
-    let n = 21;
-    let target: Vec<DVec3> = (0..n * n)
-        .map(|k| {
-            let (s, t) = ((k / n) as f64, (k % n) as f64);
-            moulding(
-                2.0 * s / (n - 1) as f64 - 1.0,
-                2.0 * t / (n - 1) as f64 - 1.0,
-            )
-        })
-        .collect();
+    let samples = |n: usize| -> Vec<DVec3> {
+        (0..n * n)
+            .map(|k| {
+                let (s, t) = ((k / n) as f64, (k % n) as f64);
+                moulding(
+                    2.0 * s / (n - 1) as f64 - 1.0,
+                    2.0 * t / (n - 1) as f64 - 1.0,
+                )
+            })
+            .collect()
+    };
+    let target = samples(21);
     let size = monge_core::grid::bbox_diagonal(&target);
     let r = approximate(&target, &quick(10), &mut |_| {}).unwrap();
     // Independently: the result's vertices to the closed form's fine triangulation, the
     // target's points to the result's faces, by brute force.
     let m = 81;
-    let fine: Vec<DVec3> = (0..m * m)
-        .map(|k| {
-            let (s, t) = ((k / m) as f64, (k % m) as f64);
-            moulding(
-                2.0 * s / (m - 1) as f64 - 1.0,
-                2.0 * t / (m - 1) as f64 - 1.0,
-            )
-        })
-        .collect();
-    let truth = QuadGrid::new(m, m, fine, vec![DVec3::Z; m * m]);
+    let truth = QuadGrid::new(m, m, samples(m), vec![DVec3::Z; m * m]);
     // The design found regenerated finer (40 × 40 faces), so that the comparison is of
     // the surfaces, not of the 10 × 10 faces' sag.
     let result = finer(&r.design, 41);
