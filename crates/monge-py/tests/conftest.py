@@ -76,17 +76,14 @@ def cli_error(cli):
     return run
 
 
-def bezier_roof_brep():
-    """A curved rhino3dm surface sent as Grasshopper sends it, a Brep: a bicubic
-    Bézier roof of 10 × 8 model units rising 2."""
+def torus_patch_brep():
+    """A curved rhino3dm surface sent as Grasshopper sends it, a Brep: a surface of
+    revolution (a circular profile from x = 10 to 14, rising 3, turned 1.2 radians
+    about the z axis), a torus patch, which has planar curvature lines (§4.1.1), so
+    that one patch fits it at once."""
     import rhino3dm
 
-    s = rhino3dm.NurbsSurface.Create(3, False, 4, 4, 4, 4)
-    for a in range(4):
-        for b in range(4):
-            z = 2.0 * np.sin(np.pi * a / 3) * np.sin(np.pi * b / 3)
-            s.Points[a, b] = rhino3dm.Point4d(10 * a / 3, 8 * b / 3, z, 1.0)
-    for knots in (s.KnotsU, s.KnotsV):
-        for k, t in enumerate([0.0, 0.0, 0.0, 1.0, 1.0, 1.0]):
-            knots[k] = t
-    return rhino3dm.Brep.CreateFromSurface(s)
+    arc = rhino3dm.Arc(rhino3dm.Point3d(10, 0, 0), rhino3dm.Point3d(12.5, 0, 3), rhino3dm.Point3d(14, 0, 0))
+    axis = rhino3dm.Line(rhino3dm.Point3d(0, 0, 0), rhino3dm.Point3d(0, 0, 1))
+    surface = rhino3dm.RevSurface.Create(arc.ToNurbsCurve(), axis, 0.0, 1.2)
+    return rhino3dm.Brep.CreateFromRevSurface(surface, False, False)

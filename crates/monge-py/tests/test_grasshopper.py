@@ -15,7 +15,7 @@ import monge
 import monge.grasshopper as mgh
 import monge.rhino
 import measure_np as mnp
-from conftest import bezier_roof_brep
+from conftest import torus_patch_brep
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[3] / "examples" / "grasshopper"
 SAMPLES = 25
@@ -122,8 +122,9 @@ def test_hops_reports_errors_as_metrics(hops_client):
 
 
 def test_hops_approximates_a_surface(hops_client):
-    # A curved surface (a bicubic Bézier roof) sent as Hops sends a Brep.
-    brep = bezier_roof_brep()
+    # A curved surface (a torus patch, which one patch fits at once) sent as Hops
+    # sends a Brep.
+    brep = torus_patch_brep()
 
     def request(target, tolerance=None):
         def item(name, type_, data):
