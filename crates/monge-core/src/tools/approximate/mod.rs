@@ -78,6 +78,7 @@ use crate::gauss_map::admissible_theta_at;
 use crate::generate::{generate, GenerateOptions};
 use crate::grid::QuadGrid;
 
+mod cut;
 mod distance;
 mod error;
 mod fit_guide;
