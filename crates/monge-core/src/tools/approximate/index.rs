@@ -158,6 +158,15 @@ impl TargetCloud {
         })
     }
 
+    /// The `count` target points nearest to `p`, nearest first.
+    pub(super) fn nearest(&self, p: DVec3, count: usize) -> Vec<DVec3> {
+        self.tree
+            .nearest_neighbor_iter(p.to_array())
+            .take(count)
+            .map(|n| DVec3::from_array(*n.geom()))
+            .collect()
+    }
+
     /// The target's size: the diagonal of its bounding box.
     pub fn size(&self) -> f64 {
         self.size

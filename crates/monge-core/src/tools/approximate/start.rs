@@ -66,12 +66,7 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
         }
         // The corner's own quadric, from its nearest tenth of the target.
         let count = (points.len() / 10).max(MIN_POINTS);
-        let near: Vec<DVec3> = target
-            .tree
-            .nearest_neighbor_iter(guess.to_array())
-            .take(count)
-            .map(|n| DVec3::from_array(*n.geom()))
-            .collect();
+        let near = target.nearest(guess, count);
         let (cu, cv) = global.uv(guess);
         let local = Quadric::fit(&near, global.principal(cu, cv).point, centre.normal);
         let (lu, lv) = local.uv(guess);
@@ -242,12 +237,7 @@ fn follow_curvature_line(
     // The surface point at `p`, the principal direction there nearest to `d` (turned
     // along it), whether the target goes on beyond `p` along `d`, and the normal.
     let at = |p: DVec3, d: DVec3| -> (DVec3, DVec3, bool, DVec3) {
-        let near: Vec<DVec3> = target
-            .tree
-            .nearest_neighbor_iter(p.to_array())
-            .take(LINE_NEIGHBOURS)
-            .map(|n| DVec3::from_array(*n.geom()))
-            .collect();
+        let near = target.nearest(p, LINE_NEIGHBOURS);
         let count = near.len() as f64;
         let centroid = near.iter().copied().sum::<DVec3>() / count;
         let radius = near.iter().map(|q| q.distance(p)).fold(0.0, f64::max);
