@@ -80,6 +80,7 @@ use crate::grid::QuadGrid;
 
 mod cut;
 mod distance;
+mod edge;
 mod error;
 mod fit_guide;
 mod index;

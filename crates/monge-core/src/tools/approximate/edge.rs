@@ -1,0 +1,399 @@
+//! The target's edge (§4.7, monge's extension): where a mesh's sides stand against the
+//! envelope of the target's points, for the least squares (windows along each side), and
+//! how far a point lies beyond the target's edge, for the distance (the local hull of
+//! the target's points, its sides moved out by the gap a sampling leaves).
+
+use glam::{DVec2, DVec3};
+
+use crate::grid::QuadGrid;
+
+use super::index::Matches;
+
+/// Windows along each side of the mesh in which the edge residuals are measured, at
+/// least.
+const EDGE_WINDOWS: usize = 2;
+
+/// Length of an edge window, at least, in mean spacings of the target's points (about
+/// as many outermost points as lie along it): a window's outermost offset is the
+/// largest of a random sampling's, off by the gap `A / (n·L)` that grows as the window
+/// shortens, so a sparse scan keeps long windows; a dense one, whose gaps are small, is
+/// held in more, which follow its edges' shape closer (θ of held-out scans of 2 000
+/// points within 0.3° with three windows on their long sides, 0.9° with two; a scan of
+/// 1 500 points of a square roof keeps two, with three its edges are missed by 2.2e-3
+/// of its size).
+const WINDOW_SPACINGS: f64 = 35.0;
+
+/// How many windows a side of length `length` is cut into, the target's points being
+/// `spacing` apart: one per [`WINDOW_SPACINGS`] spacings, at least [`EDGE_WINDOWS`].
+fn windows_along(length: f64, spacing: f64) -> usize {
+    let count = length / (WINDOW_SPACINGS * spacing);
+    if count.is_finite() {
+        (count as usize).max(EDGE_WINDOWS)
+    } else {
+        EDGE_WINDOWS
+    }
+}
+
+/// How many windows each side of `grid` is cut into ([`windows_along`]), the target's
+/// points being `spacing` apart.
+pub(super) fn side_windows(grid: &QuadGrid, spacing: f64) -> [usize; 4] {
+    sides(grid).map(|(side, _, _)| {
+        let length: f64 = side
+            .windows(2)
+            .map(|k| grid.vertices[k[0]].distance(grid.vertices[k[1]]))
+            .sum();
+        windows_along(length, spacing)
+    })
+}
+
+/// Rows of faces along a side whose matched target points count for its edge.
+const EDGE_DEPTH: usize = 3;
+
+/// Outermost offsets of each window whose mean spacing estimates the sampling's gap.
+const EDGE_ORDER: usize = 4;
+
+/// One window of a side of the mesh: its length, the offsets of its target points
+/// beyond the side (negative inside), and how deep its strip of faces reaches.
+pub(super) struct EdgeWindow {
+    length: f64,
+    offsets: Vec<f64>,
+    depth: f64,
+}
+
+/// For a triangle (face `i`, `j`) of a grid of `rows` × `cols` vertices, its place along
+/// a side and its depth in rows from it.
+type Place = fn(usize, usize, usize, usize) -> (usize, usize);
+
+/// The four sides of `grid`: each its vertices from one end, their neighbours one row
+/// inside, and its [`Place`].
+fn sides(grid: &QuadGrid) -> [(Vec<usize>, Vec<usize>, Place); 4] {
+    let (rows, cols) = (grid.rows, grid.cols);
+    [
+        (
+            (0..cols).collect(),
+            (0..cols).map(|j| cols + j).collect(),
+            |i, j, _, _| (j, i),
+        ),
+        (
+            (0..cols).map(|j| (rows - 1) * cols + j).collect(),
+            (0..cols).map(|j| (rows - 2) * cols + j).collect(),
+            |i, j, rows, _| (j, rows - 2 - i),
+        ),
+        (
+            (0..rows).map(|i| i * cols).collect(),
+            (0..rows).map(|i| i * cols + 1).collect(),
+            |i, j, _, _| (i, j),
+        ),
+        (
+            (0..rows).map(|i| i * cols + cols - 1).collect(),
+            (0..rows).map(|i| i * cols + cols - 2).collect(),
+            |i, j, _, cols| (i, cols - 2 - j),
+        ),
+    ]
+}
+
+/// The windows of each side of `grid` ([`Matches::windows`](super::index::Matches)), with the offsets of the
+/// target points (every `stride`-th of `points`) matched to faces of their strip.
+pub(super) fn edge_windows(
+    grid: &QuadGrid,
+    points: &[DVec3],
+    matches: &Matches,
+) -> Vec<EdgeWindow> {
+    let (rows, cols) = (grid.rows, grid.cols);
+    let mut windows = Vec::new();
+    for ((side, inner, place), count) in sides(grid).iter().zip(matches.windows) {
+        let v = |k: usize| grid.vertices[side[k]];
+        let m = side.len() - 1;
+        // The outward direction at each vertex of the side: from its inner neighbour,
+        // across the side.
+        let outward: Vec<DVec3> = (0..=m)
+            .map(|k| {
+                let tangent = (v(k.min(m - 1) + 1) - v(k.saturating_sub(1))).normalize_or_zero();
+                let out = v(k) - grid.vertices[inner[k]];
+                (out - out.dot(tangent) * tangent).normalize_or_zero()
+            })
+            .collect();
+        let row = (0..=m)
+            .map(|k| v(k).distance(grid.vertices[inner[k]]))
+            .sum::<f64>()
+            / (m + 1) as f64;
+        // No shorter than one edge of the mesh.
+        let count = count.min(m);
+        let window_of = |k: usize| (k * count / m).min(count - 1);
+        let mut these: Vec<EdgeWindow> = (0..count)
+            .map(|_| EdgeWindow {
+                length: 0.0,
+                offsets: Vec::new(),
+                depth: EDGE_DEPTH as f64 * row,
+            })
+            .collect();
+        for k in 0..m {
+            these[window_of(k)].length += v(k).distance(v(k + 1));
+        }
+        for (t, p) in matches
+            .points
+            .iter()
+            .zip(points.iter().step_by(matches.stride))
+        {
+            let (along, depth) = place(t.0, t.1, rows, cols);
+            if depth >= EDGE_DEPTH {
+                continue;
+            }
+            // The nearer of the face's two vertices on the side.
+            let k = if p.distance(v(along)) <= p.distance(v(along + 1)) {
+                along
+            } else {
+                along + 1
+            };
+            these[window_of(along)]
+                .offsets
+                .push((*p - v(k)).dot(outward[k]));
+        }
+        windows.extend(these);
+    }
+    windows
+}
+
+/// The residual of each window ([`TargetCloud::residuals`](super::TargetCloud::residuals)): its outermost offset plus
+/// the gap the sampling leaves beyond it, in model units. A window without points
+/// (the mesh reaches far beyond the target there) has its outermost point at least its
+/// strip's depth inside.
+pub(super) fn edge_residuals(windows: &[EdgeWindow]) -> Vec<f64> {
+    let mut sorted: Vec<Vec<f64>> = windows
+        .iter()
+        .map(|w| {
+            let mut o = w.offsets.clone();
+            o.sort_by(|a, b| b.total_cmp(a));
+            o
+        })
+        .collect();
+    // Area per point: the mean spacing of the outermost offsets times the window's length.
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (w, o) in windows.iter().zip(&sorted) {
+        if o.len() >= EDGE_ORDER {
+            sum += (o[0] - o[EDGE_ORDER - 1]) / (EDGE_ORDER - 1) as f64 * w.length;
+            count += 1;
+        }
+    }
+    let area_per_point = sum / count.max(1) as f64;
+    windows
+        .iter()
+        .zip(sorted.iter_mut())
+        .map(|(w, o)| {
+            let outermost = o.first().copied().unwrap_or(-w.depth);
+            outermost + area_per_point / w.length.max(f64::MIN_POSITIVE)
+        })
+        .collect()
+}
+
+/// Target points around a vertex among which the target's edge near it is sought: on a
+/// random sampling a half disc about 16 mean spacings in radius at a side, 22 at a
+/// corner, enough for each side to hold several outermost points away from the ends of
+/// the window, which its disc thins (with half as many, a scan's edge was read 4
+/// spacings short in places); on a mesh six or seven rows.
+pub(super) const EDGE_NEIGHBOURS: usize = 96;
+
+/// A side of the points' convex hull stands for the target's edge when the points lie
+/// thick along it: its fifth outermost point within this many mean spacings of it. Along
+/// a side of a random sampling that depth is about half a spacing (the points of a strip
+/// of the half disc a side sees), at a corner's cut about two (a corner's points thin
+/// out as a triangle towards its tip), on a mesh's sides nil, at its corners (the cut of
+/// a mesh's corner has a single point on it) √2.
+const SIDE_DEPTH: f64 = 1.0;
+
+/// How far `q` lies beyond the target's edge near it (model units, 0 within): `near` are
+/// the target's points around `q` ([`EDGE_NEIGHBOURS`]), in a plane (its tangent plane),
+/// `spacing` their mean distance to their nearest.
+///
+/// The edge is the intersection of the half-planes of the sides of `near`'s convex hull
+/// along which the points lie thick ([`SIDE_DEPTH`]), each side moved out by the gap the
+/// sampling leaves beyond its outermost points (the mean spacing of the next three, as
+/// for the largest of a uniform sample: nil on a mesh's edge, whose vertices are on it):
+/// a corner is where its two sides meet, not the chord across the corner that a random
+/// sampling's hull cuts; `q`'s distance to it is measured in any direction (beyond a
+/// corner as beyond a side). A concave edge is bridged by the hull over the width of
+/// `near`.
+pub(super) fn beyond_edge(q: DVec2, near: &[DVec2], spacing: f64) -> f64 {
+    let hull = convex_hull(near);
+    if hull.len() < 3 {
+        return 0.0;
+    }
+    let sides: Vec<(DVec2, DVec2)> = (0..hull.len())
+        .map(|k| (hull[k], hull[(k + 1) % hull.len()]))
+        .collect();
+    if sides.iter().all(|(a, b)| (*b - *a).perp_dot(q - *a) >= 0.0) {
+        return 0.0;
+    }
+    // Each side as a line `n · x = c`, `n` its outward normal, moved out by its gap.
+    let lines = |thick_only: bool| -> Vec<(DVec2, f64)> {
+        sides
+            .iter()
+            .filter_map(|(a, b)| {
+                let d = (*b - *a).normalize();
+                let n = DVec2::new(d.y, -d.x);
+                let mut depths: Vec<f64> = near.iter().map(|p| n.dot(*a - *p)).collect();
+                depths.sort_by(f64::total_cmp);
+                let fifth = depths[depths.len().min(5) - 1];
+                (!thick_only || fifth <= SIDE_DEPTH * spacing).then(|| (n, n.dot(*a) + fifth / 3.0))
+            })
+            .collect()
+    };
+    let mut edge = lines(true);
+    if edge.is_empty() {
+        edge = lines(false);
+    }
+    distance_to_polygon(q, &edge, 1e-9 * spacing)
+}
+
+/// The distance from `q` to the intersection of the half-planes `n · x ≤ c` of `lines`
+/// (0 within): the nearest of the feet of `q` on the lines and of the lines' crossings
+/// that lie within all of them (within `tolerance`).
+fn distance_to_polygon(q: DVec2, lines: &[(DVec2, f64)], tolerance: f64) -> f64 {
+    let outside = |x: DVec2| {
+        lines
+            .iter()
+            .map(|(n, c)| n.dot(x) - c)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let beyond = outside(q);
+    if beyond <= 0.0 {
+        return 0.0;
+    }
+    let feet = lines.iter().map(|(n, c)| q - (n.dot(q) - c) * *n);
+    let crossings = lines.iter().enumerate().flat_map(|(k, (n, c))| {
+        lines[k + 1..].iter().filter_map(move |(m, e)| {
+            let det = n.perp_dot(*m);
+            (det.abs() > 1e-12).then(|| DVec2::new(c * m.y - e * n.y, n.x * e - m.x * c) / det)
+        })
+    });
+    let nearest = feet
+        .chain(crossings)
+        .filter(|x| outside(*x) <= tolerance)
+        .map(|x| x.distance(q))
+        .fold(f64::INFINITY, f64::min);
+    // Rounding could leave no candidate within: the largest excess, a lower bound.
+    if nearest.is_finite() {
+        nearest
+    } else {
+        beyond
+    }
+}
+
+/// The convex hull of `points`, counter-clockwise, without collinear points (Andrew's
+/// monotone chain).
+fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
+    // `+ 0.0` makes -0 +0, which the order below would put first.
+    let mut sorted: Vec<DVec2> = points.iter().map(|p| *p + 0.0).collect();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    sorted.dedup();
+    if sorted.len() < 3 {
+        return sorted;
+    }
+    let mut hull: Vec<DVec2> = Vec::with_capacity(2 * sorted.len());
+    let turns_left = |hull: &[DVec2], p: DVec2| {
+        let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
+        (b - a).perp_dot(p - a) > 0.0
+    };
+    for p in &sorted {
+        while hull.len() >= 2 && !turns_left(&hull, *p) {
+            hull.pop();
+        }
+        hull.push(*p);
+    }
+    let lower = hull.len() + 1;
+    for p in sorted.iter().rev().skip(1) {
+        while hull.len() >= lower && !turns_left(&hull, *p) {
+            hull.pop();
+        }
+        hull.push(*p);
+    }
+    hull.pop();
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::approximate::TargetCloud;
+
+    /// A flat mesh of 10 × 10 faces over the unit square (z = 0).
+    fn unit_square() -> QuadGrid {
+        let vertices: Vec<DVec3> = (0..121)
+            .map(|k| DVec3::new((k / 11) as f64 / 10.0, (k % 11) as f64 / 10.0, 0.0))
+            .collect();
+        QuadGrid::new(11, 11, vertices, vec![DVec3::Z; 121])
+    }
+
+    /// `n` uniform random points of the unit square (z = 0).
+    fn square(rng: &mut fastrand::Rng, n: usize) -> Vec<DVec3> {
+        (0..n)
+            .map(|_| DVec3::new(rng.f64(), rng.f64(), 0.0))
+            .collect()
+    }
+
+    /// The edge residuals of the unit square against `points` (model units).
+    fn edges(points: &[DVec3]) -> Vec<f64> {
+        let grid = unit_square();
+        let target = TargetCloud::new(points).unwrap();
+        let matches = target.matches(&grid, 1);
+        edge_residuals(&edge_windows(&grid, &target.points, &matches))
+    }
+
+    #[test]
+    fn a_sides_residual_is_nil_on_a_meshs_boundary_and_unbiased_on_a_random_sampling() {
+        // A 21 × 21 grid on the square: its boundary points lie on the sides, no gap.
+        let grid: Vec<DVec3> = (0..441)
+            .map(|k| DVec3::new((k / 21) as f64 / 20.0, (k % 21) as f64 / 20.0, 0.0))
+            .collect();
+        for r in edges(&grid) {
+            assert!(r.abs() < 1e-12, "{r:e}");
+        }
+        // 2 000 uniform random points: the outermost point of a window of length L (half
+        // a side) lies inside it by 1/(2000·L) = 1e-3 on average; with the gap estimated
+        // from the spacing of the outermost points, the residual (the side's offset from
+        // the estimated edge) is nil on average. 40 samplings, 8 windows each.
+        let mut rng = fastrand::Rng::with_seed(7);
+        let (mut with_gap, mut outermost, mut count) = (0.0, 0.0, 0.0);
+        for _ in 0..40 {
+            let points = square(&mut rng, 2000);
+            for r in edges(&points) {
+                with_gap += r;
+                count += 1.0;
+            }
+            // The outermost offset alone, from the mesh's windows, less its expected gap.
+            let grid = unit_square();
+            let target = TargetCloud::new(&points).unwrap();
+            let matches = target.matches(&grid, 1);
+            for w in edge_windows(&grid, &target.points, &matches) {
+                outermost += w.offsets.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+                    + 1.0 / (2000.0 * w.length);
+            }
+        }
+        let (with_gap, outermost) = (with_gap / count, outermost / count);
+        // Standard error of the mean: 1e-3 / √320 ≈ 6e-5.
+        assert!(with_gap.abs() < 2e-4, "{with_gap:e}");
+        assert!(outermost.abs() < 2e-4, "{outermost:e}");
+    }
+
+    #[test]
+    fn a_dense_scan_holds_each_side_in_more_windows_than_a_sparse_one() {
+        // Points of a planar Poisson sampling of density n are 1/(2√n) from their nearest
+        // on average: a unit side is about 2√n spacings long, 89 for 2 000 points of the
+        // unit square and 200 for 10 000 (fewer near the edges, where the nearest lie
+        // on one side only). A window is at least 35 spacings long.
+        let grid = unit_square();
+        let count = |points: &[DVec3]| {
+            let target = TargetCloud::new(points).unwrap();
+            edge_windows(&grid, &target.points, &target.matches(&grid, 1)).len()
+        };
+        let mut rng = fastrand::Rng::with_seed(11);
+        assert_eq!(count(&square(&mut rng, 2000)), 4 * 2);
+        let dense = count(&square(&mut rng, 10_000));
+        assert!((4 * 4..=4 * 5).contains(&dense), "{dense}");
+        // A mesh's 21 × 21 vertices: 20 spacings a side, two windows.
+        let vertices: Vec<DVec3> = (0..441)
+            .map(|k| DVec3::new((k / 21) as f64 / 20.0, (k % 21) as f64 / 20.0, 0.0))
+            .collect();
+        assert_eq!(count(&vertices), 4 * 2);
+    }
+}
