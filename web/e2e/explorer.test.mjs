@@ -793,9 +793,10 @@ async function main() {
     const latency = async () => {
       await page.evaluate(() => { explorer.state.latencies.length = 0; });
       await page.focus('#theta');
+      // One press at a time, each timed from its own input to the frame that shows
+      // it (two presses before a frame would share it, timed from the earlier).
       for (let k = 0; k < latencySteps; k++) {
         await page.keyboard.press(k % 2 ? 'ArrowLeft' : 'ArrowRight');
-        await page.keyboard.press('ArrowRight');
         await idle();
       }
       const keys = await page.evaluate(() => explorer.state.latencies);
