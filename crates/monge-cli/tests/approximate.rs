@@ -352,6 +352,50 @@ fn approximate_to_a_tolerance_met_writes_a_design_within_it() {
     assert!((printed_t - t).abs() < 0.05 * t + 1e-9, "{printed_t} {t}");
 }
 
+/// A scan resampled from a mesh (the shipped roof scan: random vertices of a surface with
+/// planar curvature lines, noised by 1e-4 of its size) has its edge where its outermost
+/// points are: one patch counts as within 1e-3 of it, as it is, measured independently
+/// against the roof it was sampled from (its design regenerated; each vertex of the
+/// result's mesh to the roof's triangles, by brute force).
+#[test]
+fn approximate_to_a_tolerance_counts_a_scan_of_an_exact_surface_within_it() {
+    let dir = TempDir::new().unwrap();
+    let design = dir.path().join("fit.json");
+    let out = monge()
+        .arg("approximate")
+        .arg(examples().join("targets/roof-pcl.obj"))
+        .arg("-o")
+        .arg(&design)
+        .args(["--grid", "20x20", "--tolerance", "1e-3"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("within the tolerance: largest distance"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
+    let (mesh, roof) = (dir.path().join("fit.obj"), dir.path().join("roof.obj"));
+    generate_and_check(&design, &mesh);
+    generate_and_check(&examples().join("targets/roof.design.json"), &roof);
+    let triangles: Vec<[[f64; 3]; 3]> = common::obj_faces(&roof)
+        .iter()
+        .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
+        .collect();
+    let farthest = obj_points(&mesh)
+        .iter()
+        .map(|v| {
+            triangles
+                .iter()
+                .map(|[a, b, c]| to_triangle(*v, *a, *b, *c))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max);
+    let size = number_after(&stdout, "size");
+    assert!(farthest <= 1e-3 * size, "{farthest} of {size}");
+}
+
 #[test]
 fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
     let dir = TempDir::new().unwrap();
