@@ -42,6 +42,10 @@ impl<'a> MeshFaces<'a> {
     pub(super) fn nearest(&self, p: DVec3) -> (Triangle, (f64, f64)) {
         let (rows, cols) = (self.grid.rows, self.grid.cols);
         let mut best = ((0, 0, 0), (f64::INFINITY, f64::INFINITY));
+        // The faces around the nearest vertices, each once (neighbouring vertices share
+        // them), in the order they are met.
+        let mut seen = [(usize::MAX, usize::MAX); 4 * FACE_CANDIDATES];
+        let mut count = 0;
         for n in self
             .tree
             .nearest_neighbor_iter(p.to_array())
@@ -50,6 +54,11 @@ impl<'a> MeshFaces<'a> {
             let (i, j) = (n.data / cols, n.data % cols);
             for fi in i.saturating_sub(1)..=i.min(rows - 2) {
                 for fj in j.saturating_sub(1)..=j.min(cols - 2) {
+                    if seen[..count].contains(&(fi, fj)) {
+                        continue;
+                    }
+                    seen[count] = (fi, fj);
+                    count += 1;
                     for half in 0..2 {
                         let offsets = triangle_offsets(self.grid, (fi, fj, half), p);
                         if offsets.0 < best.1 .0 {
