@@ -38,8 +38,9 @@
 //!    damping) of the corner, the frame's rotation, the tilt of each guide plane about
 //!    its start tangent, φ and the control points' coordinates in their planes (the
 //!    second control point only along the start tangent, ahead of the corner, so the
-//!    guides stay planar and meet at 90° exactly), from the best θ of the scan and the
-//!    next best ones in turn until one recovers the target (multi-start), first on a
+//!    guides stay planar and meet at 90° exactly), from the best θ of the scan at each
+//!    corner (whichever of its starts gives it) and the next best ones in turn until one
+//!    recovers the target (multi-start), first on a
 //!    grid of half the resolution, then on the full grid. The Jacobian is taken by
 //!    forward differences, its columns in parallel, against the spatial matches of the
 //!    current mesh (which target point is nearest to each vertex, which face to each
@@ -472,6 +473,38 @@ impl<'a> Search<'a> {
     }
 }
 
+/// The starts of the least squares from the θ scan (objective, start, φ), `wanted` of
+/// them: the best φ of each corner first (whichever of the corner's starts it is: they
+/// compete for its place), then the best φ of each other start, then further φ, each at
+/// least 15° from its start's others. Taking the best of each start first let two
+/// corners' curvature-line starts (the best of the scan) push the other two corners
+/// out, and with them the least squares that came nearest to the held-out hyperbolic
+/// paraboloid.
+fn choose_starts(
+    mut scan: Vec<(f64, usize, f64)>,
+    corners: &[usize],
+    wanted: usize,
+) -> Vec<(usize, f64)> {
+    scan.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut chosen: Vec<(usize, f64)> = Vec::new();
+    // Pass 0: a corner not chosen yet; 1: a start not chosen yet; 2: φ apart.
+    let allowed = |pass: usize, chosen: &[(usize, f64)], g: usize, phi: f64| {
+        chosen.iter().all(|(h, t)| match pass {
+            0 => corners[*h] != corners[g],
+            1 => *h != g,
+            _ => *h != g || (t - phi).abs() > 15.0,
+        })
+    };
+    for pass in 0..3 {
+        for (_, g, phi) in &scan {
+            if chosen.len() < wanted && allowed(pass, &chosen, *g, *phi) {
+                chosen.push((*g, *phi));
+            }
+        }
+    }
+    chosen
+}
+
 /// The start's own parameters: no move, φ given (see [`design_of`]), its guides'
 /// control points.
 fn start_parameters(start: &Start, phi: f64) -> Vec<f64> {
@@ -559,19 +592,8 @@ pub fn approximate_until(
             }
         }
     }
-    scan.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut chosen: Vec<(usize, f64)> = Vec::new();
-    for (_, g, theta) in &scan {
-        // The best θ of each corner first, then further θ.
-        let distinct = chosen.iter().all(|(h, _)| h != g)
-            || (chosen.len() >= guesses.len()
-                && chosen
-                    .iter()
-                    .all(|(h, t)| h != g || (t - theta).abs() > 15.0));
-        if chosen.len() < starts_wanted && distinct {
-            chosen.push((*g, *theta));
-        }
-    }
+    let corners: Vec<usize> = guesses.iter().map(|g| g.at_corner).collect();
+    let chosen = choose_starts(scan, &corners, starts_wanted);
     let (first, initial_phi) = *chosen.first().ok_or(if search.timed_out {
         ApproxError::TimeLimit
     } else {
@@ -681,4 +703,34 @@ pub fn approximate_until(
         starts,
         timed_out: search.timed_out,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::choose_starts;
+
+    #[test]
+    fn the_starts_take_the_best_of_each_corner_first() {
+        // Starts 0 and 1 at corner 0, 2 and 3 at corner 1, 4 at corner 2, 5 at corner 3;
+        // the scan (objective, start, φ) best at corners 0 and 1.
+        let corners = [0, 0, 1, 1, 2, 3];
+        let scan = vec![
+            (1.0, 0, 10.0),
+            (2.0, 1, 80.0),
+            (3.0, 2, 40.0),
+            (4.0, 3, 50.0),
+            (5.0, 0, 100.0),
+            (6.0, 4, 140.0),
+            (7.0, 0, 20.0),
+            (8.0, 5, 30.0),
+        ];
+        // Every corner once, each by its best start and φ.
+        let four = [(0, 10.0), (2, 40.0), (4, 140.0), (5, 30.0)];
+        assert_eq!(choose_starts(scan.clone(), &corners, 4), four);
+        // Then the best φ of each start not chosen yet, then further φ of a start, at
+        // least 15° from its others (φ 20° of start 0 is within 15° of its 10°).
+        let all = choose_starts(scan, &corners, 8);
+        assert_eq!(all[..4], four);
+        assert_eq!(all[4..], [(1, 80.0), (3, 50.0), (0, 100.0)]);
+    }
 }

@@ -26,6 +26,9 @@ pub(super) struct Start {
     /// Whether the guides are the target's own boundary curves ([`boundary_start`]).
     pub(super) on_boundary: bool,
     pub(super) curvatures: (f64, f64),
+    /// Which of the target's four corners it starts from (0 to 3): the scan's choice
+    /// of starts takes the best of each corner first.
+    pub(super) at_corner: usize,
 }
 
 /// Corner, principal frame and guides fitted to the target's sections (step 1), at
@@ -49,7 +52,9 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
     };
     let mut starts = Vec::with_capacity(12);
     let mut refused = None;
-    for (s1, s2) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+    let signs = [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)];
+    for (at_corner, (s1, s2)) in signs.into_iter().enumerate() {
+        let first = starts.len();
         let (d1, d2) = (s1 * c1, s2 * c2);
         // The corner: least coordinates along the principal directions at the centre.
         let low = |d: DVec3| {
@@ -91,6 +96,9 @@ pub(super) fn initial_guesses(target: &TargetCloud) -> Result<Vec<Start>, Approx
             d2,
             (corner.k1, corner.k2),
         ));
+        for start in &mut starts[first..] {
+            start.at_corner = at_corner;
+        }
     }
     match refused {
         Some(e) if starts.is_empty() => Err(e),
@@ -121,6 +129,7 @@ fn corner_start(points: &[DVec3], corner: &Principal, d1: DVec3, d2: DVec3, size
         tilts: [0.0; 2],
         on_boundary: false,
         curvatures: (corner.k1, corner.k2),
+        at_corner: 0,
     }
 }
 
@@ -184,6 +193,7 @@ fn quadric_start(
         tilts: [0.0; 2],
         on_boundary: false,
         curvatures: (corner.k1, corner.k2),
+        at_corner: 0,
     })
 }
 
@@ -361,6 +371,7 @@ fn curves_start(
         tilts: [tilt_u, tilt_v],
         on_boundary,
         curvatures,
+        at_corner: 0,
     })
 }
 
