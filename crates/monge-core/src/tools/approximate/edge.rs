@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 
 use crate::grid::QuadGrid;
 
-use super::index::Matches;
+use super::distance::Triangle;
 
 /// Windows along each side of the mesh in which the edge residuals are measured, at
 /// least.
@@ -92,16 +92,18 @@ fn sides(grid: &QuadGrid) -> [(Vec<usize>, Vec<usize>, Place); 4] {
     ]
 }
 
-/// The windows of each side of `grid` ([`Matches::windows`](super::index::Matches)), with the offsets of the
-/// target points (every `stride`-th of `points`) matched to faces of their strip.
+/// The windows of each side of `grid` (`counts` of them: [`side_windows`]), with the
+/// offsets of the target points (every `stride`-th of `points`, each matched to one of
+/// `triangles`) matched to faces of their strip.
 pub(super) fn edge_windows(
     grid: &QuadGrid,
     points: &[DVec3],
-    matches: &Matches,
+    (triangles, stride): (&[Triangle], usize),
+    counts: [usize; 4],
 ) -> Vec<EdgeWindow> {
     let (rows, cols) = (grid.rows, grid.cols);
     let mut windows = Vec::new();
-    for ((side, inner, place), count) in sides(grid).iter().zip(matches.windows) {
+    for ((side, inner, place), count) in sides(grid).iter().zip(counts) {
         let v = |k: usize| grid.vertices[side[k]];
         let m = side.len() - 1;
         // The outward direction at each vertex of the side: from its inner neighbour,
@@ -130,11 +132,7 @@ pub(super) fn edge_windows(
         for k in 0..m {
             these[window_of(k)].length += v(k).distance(v(k + 1));
         }
-        for (t, p) in matches
-            .points
-            .iter()
-            .zip(points.iter().step_by(matches.stride))
-        {
+        for (t, p) in triangles.iter().zip(points.iter().step_by(stride)) {
             let (along, depth) = place(t.0, t.1, rows, cols);
             if depth >= EDGE_DEPTH {
                 continue;
@@ -335,8 +333,13 @@ mod tests {
     fn edges(points: &[DVec3]) -> Vec<f64> {
         let grid = unit_square();
         let target = TargetCloud::new(points).unwrap();
-        let matches = target.matches(&grid, 1);
-        edge_residuals(&edge_windows(&grid, &target.points, &matches))
+        let m = target.matches(&grid, 1);
+        edge_residuals(&edge_windows(
+            &grid,
+            &target.points,
+            (&m.points, m.stride),
+            m.windows,
+        ))
     }
 
     #[test]
@@ -363,8 +366,8 @@ mod tests {
             // The outermost offset alone, from the mesh's windows, less its expected gap.
             let grid = unit_square();
             let target = TargetCloud::new(&points).unwrap();
-            let matches = target.matches(&grid, 1);
-            for w in edge_windows(&grid, &target.points, &matches) {
+            let m = target.matches(&grid, 1);
+            for w in edge_windows(&grid, &target.points, (&m.points, m.stride), m.windows) {
                 outermost += w.offsets.iter().copied().fold(f64::NEG_INFINITY, f64::max)
                     + 1.0 / (2000.0 * w.length);
             }
@@ -384,7 +387,8 @@ mod tests {
         let grid = unit_square();
         let count = |points: &[DVec3]| {
             let target = TargetCloud::new(points).unwrap();
-            edge_windows(&grid, &target.points, &target.matches(&grid, 1)).len()
+            let m = target.matches(&grid, 1);
+            edge_windows(&grid, &target.points, (&m.points, m.stride), m.windows).len()
         };
         let mut rng = fastrand::Rng::with_seed(11);
         assert_eq!(count(&square(&mut rng, 2000)), 4 * 2);

@@ -280,7 +280,12 @@ impl TargetCloud {
     pub(super) fn residuals(&self, grid: &QuadGrid, matches: &Matches) -> Vec<f64> {
         let weight = |n: usize| 1.0 / (self.size * (n as f64).sqrt());
         let w_vertices = weight(grid.vertices.len());
-        let windows = edge_windows(grid, &self.points, matches);
+        let windows = edge_windows(
+            grid,
+            &self.points,
+            (&matches.points, matches.stride),
+            matches.windows,
+        );
         let mut out = Vec::with_capacity(2 * grid.vertices.len() + windows.len());
         for (v, i) in grid.vertices.iter().zip(&matches.vertices) {
             let (across, beyond) = self.offsets(*v, *i, OVERHANG_SPACINGS * self.spacing);
