@@ -318,6 +318,19 @@ fn number_after(text: &str, label: &str) -> f64 {
     word.trim_end_matches([';', ',']).parse().unwrap()
 }
 
+/// The standard output of an `approximate --tolerance` run that `out` is, checked to say
+/// it is within the tolerance at one patch (exit status 0).
+fn within_at_one_patch(out: std::process::Output) -> String {
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("within the tolerance: largest distance"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
+    stdout
+}
+
 #[test]
 fn approximate_to_a_tolerance_met_writes_a_design_within_it() {
     let dir = TempDir::new().unwrap();
@@ -326,13 +339,7 @@ fn approximate_to_a_tolerance_met_writes_a_design_within_it() {
         .args(["--tolerance", "0.2"])
         .output()
         .unwrap();
-    let stdout = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(out.status.code(), Some(0), "{stdout}");
-    assert!(
-        stdout.contains("within the tolerance: largest distance"),
-        "{stdout}"
-    );
-    assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
+    let stdout = within_at_one_patch(out);
     assert!(
         stdout.contains("panels 36, distinct node types"),
         "{stdout}"
@@ -369,13 +376,7 @@ fn approximate_to_a_tolerance_counts_a_scan_of_an_exact_surface_within_it() {
         .args(["--grid", "20x20", "--tolerance", "1e-3"])
         .output()
         .unwrap();
-    let stdout = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(out.status.code(), Some(0), "{stdout}");
-    assert!(
-        stdout.contains("within the tolerance: largest distance"),
-        "{stdout}"
-    );
-    assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
+    let stdout = within_at_one_patch(out);
     let (mesh, roof) = (dir.path().join("fit.obj"), dir.path().join("roof.obj"));
     generate_and_check(&design, &mesh);
     generate_and_check(&examples().join("targets/roof.design.json"), &roof);

@@ -310,12 +310,12 @@ fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::approximate::TargetCloud;
 
     /// A flat mesh of 10 × 10 faces over the unit square (z = 0).
-    fn unit_square() -> QuadGrid {
+    pub(in crate::tools::approximate) fn unit_square() -> QuadGrid {
         let vertices: Vec<DVec3> = (0..121)
             .map(|k| DVec3::new((k / 11) as f64 / 10.0, (k % 11) as f64 / 10.0, 0.0))
             .collect();

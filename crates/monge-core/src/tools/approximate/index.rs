@@ -455,15 +455,8 @@ fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 #[cfg(test)]
 mod tests {
+    use super::super::edge::tests::unit_square;
     use super::*;
-
-    /// A flat mesh of 10 × 10 faces over the unit square (z = 0).
-    fn unit_square() -> QuadGrid {
-        let vertices: Vec<DVec3> = (0..121)
-            .map(|k| DVec3::new((k / 11) as f64 / 10.0, (k % 11) as f64 / 10.0, 0.0))
-            .collect();
-        QuadGrid::new(11, 11, vertices, vec![DVec3::Z; 121])
-    }
 
     /// The distance from a point of the plane z = 0 to the unit square (closed form).
     fn to_unit_square(p: DVec3) -> f64 {
