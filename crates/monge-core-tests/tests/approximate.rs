@@ -67,6 +67,12 @@ fn brute_to_mesh(p: DVec3, grid: &QuadGrid) -> f64 {
     best
 }
 
+/// Largest and RMS distance from `points` to `grid` ([`brute_to_mesh`]), relative to
+/// `size`.
+fn to_mesh(points: &[DVec3], grid: &QuadGrid, size: f64) -> (f64, f64) {
+    max_rms(points.iter().map(|p| brute_to_mesh(*p, grid) / size))
+}
+
 /// Largest and RMS of `values`.
 fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let v: Vec<f64> = values.collect();
@@ -131,25 +137,10 @@ fn a_noised_surface_with_planar_curvature_lines_is_recovered() {
         .unwrap()
         .grid;
     let result = finer(&r.design, 41);
-    let (to_max, to_rms) = max_rms(
-        result
-            .vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &truth) / size),
-    );
-    let (from_max, from_rms) = max_rms(
-        truth
-            .vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &result) / size),
-    );
+    let (to_max, to_rms) = to_mesh(&result.vertices, &truth, size);
+    let (from_max, from_rms) = to_mesh(&truth.vertices, &result, size);
     // And the 10 × 10 mesh's own vertices.
-    let (coarse_max, _) = max_rms(
-        r.grid
-            .vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &truth) / size),
-    );
+    let (coarse_max, _) = to_mesh(&r.grid.vertices, &truth, size);
     eprintln!(
         "recovery: surface found → surface max {to_max:.2e} RMS {to_rms:.2e}, surface → surface \
          found max {from_max:.2e} RMS {from_rms:.2e}; 10 × 10 vertices → surface max \
@@ -203,12 +194,7 @@ fn a_random_scan_is_recovered_to_its_edges() {
     let r = approximate(&scan, &quick(10), &mut |_| {}).unwrap();
     let result = finer(&r.design, 41);
     // Both ways against the exact roof, by brute force, every third vertex of it.
-    let (to_max, _) = max_rms(
-        result
-            .vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &truth) / size),
-    );
+    let (to_max, _) = to_mesh(&result.vertices, &truth, size);
     let (from_max, _) = max_rms(
         truth
             .vertices
@@ -287,7 +273,7 @@ fn height_field_fit_on(
         let gy = (f(v.x, v.y + h) - f(v.x, v.y - h)) / (2.0 * h);
         (v.z - f(v.x, v.y)).abs() / DVec3::new(gx, gy, -1.0).length() / size
     }));
-    let (from_max, from_rms) = max_rms(target.iter().map(|p| brute_to_mesh(*p, &r.grid) / size));
+    let (from_max, from_rms) = to_mesh(&target, &r.grid, size);
     eprintln!(
         "{name}: mesh → surface max {to_max:.2e}; target → mesh max {from_max:.2e} RMS {from_rms:.2e}"
     );
@@ -376,11 +362,7 @@ fn the_library_distances_equal_brute_force() {
     let cloud = TargetCloud::new(&fine.vertices).unwrap();
     let d = cloud.deviation(&coarse);
     let size = cloud.size();
-    let (max, rms) = max_rms(
-        fine.vertices
-            .iter()
-            .map(|p| brute_to_mesh(*p, &coarse) / size),
-    );
+    let (max, rms) = to_mesh(&fine.vertices, &coarse, size);
     assert!(
         (d.target_to_mesh_max - max).abs() <= 1e-12 && (d.target_to_mesh_rms - rms).abs() <= 1e-12
     );
@@ -407,7 +389,7 @@ fn a_sphere_cap_umbilic_everywhere_is_fitted() {
             .iter()
             .map(|v| (v.length() - radius).abs() / size),
     );
-    let (from_max, _) = max_rms(cap.iter().map(|p| brute_to_mesh(*p, &r.grid) / size));
+    let (from_max, _) = to_mesh(&cap, &r.grid, size);
     eprintln!("sphere cap: mesh → sphere max {to_max:.2e}, cap → mesh max {from_max:.2e}");
     // Measured with the quick settings: 1.7e-6 and 1.6e-3 (the cap's points to the 8 × 8
     // faces, their sag included).
@@ -526,12 +508,7 @@ fn keep_boundary_keeps_the_targets_boundary_curves_as_guides() {
         .map(to_boundary)
         .fold(0.0, f64::max);
     // The whole surface near the truth too (θ is searched).
-    let (to_max, _) = max_rms(
-        r.grid
-            .vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &fine) / size),
-    );
+    let (to_max, _) = to_mesh(&r.grid.vertices, &fine, size);
     eprintln!("keep boundary: guides to the boundary {worst:.2e}, mesh → surface {to_max:.2e}");
     // Measured 2026-11-25: 5.5e-4 and 6.0e-4 of the size.
     assert!(worst <= 1e-3, "{worst:e}");
@@ -667,13 +644,8 @@ fn a_moulding_is_recovered_with_theta_zero() {
     // The design found regenerated finer (40 × 40 faces), so that the comparison is of
     // the surfaces, not of the 10 × 10 faces' sag.
     let result = finer(&r.design, 41);
-    let (to_max, _) = max_rms(
-        result
-            .vertices
-            .iter()
-            .map(|v| brute_to_mesh(*v, &truth) / size),
-    );
-    let (from_max, _) = max_rms(target.iter().map(|p| brute_to_mesh(*p, &result) / size));
+    let (to_max, _) = to_mesh(&result.vertices, &truth, size);
+    let (from_max, _) = to_mesh(&target, &result, size);
     let theta = folded(r.design.theta_deg);
     eprintln!("moulding: mesh → target {to_max:.2e}, target → mesh {from_max:.2e}, θ {theta:.3}°");
     // Measured with the quick settings (10 × 10 faces, 300 meshes a run): 4.5e-4 and
