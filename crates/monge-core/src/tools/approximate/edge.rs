@@ -222,24 +222,25 @@ pub(super) fn beyond_edge(q: DVec2, near: &[DVec2], spacing: f64) -> f64 {
     if sides.iter().all(|(a, b)| (*b - *a).perp_dot(q - *a) >= 0.0) {
         return 0.0;
     }
-    // Each side as a line `n · x = c`, `n` its outward normal, moved out by its gap.
-    let lines = |thick_only: bool| -> Vec<(DVec2, f64)> {
-        sides
-            .iter()
-            .filter_map(|(a, b)| {
-                let d = (*b - *a).normalize();
-                let n = DVec2::new(d.y, -d.x);
-                let mut depths: Vec<f64> = near.iter().map(|p| n.dot(*a - *p)).collect();
-                depths.sort_by(f64::total_cmp);
-                let fifth = depths[depths.len().min(5) - 1];
-                (!thick_only || fifth <= SIDE_DEPTH * spacing).then(|| (n, n.dot(*a) + fifth / 3.0))
-            })
-            .collect()
+    // Each side as a line `n · x = c`, `n` its outward normal, moved out by its gap, with
+    // the depth of its fifth outermost point.
+    let lines: Vec<(DVec2, f64, f64)> = sides
+        .iter()
+        .map(|(a, b)| {
+            let d = (*b - *a).normalize();
+            let n = DVec2::new(d.y, -d.x);
+            let mut depths: Vec<f64> = near.iter().map(|p| n.dot(*a - *p)).collect();
+            let k = depths.len().min(5) - 1;
+            let fifth = *depths.select_nth_unstable_by(k, f64::total_cmp).1;
+            (n, n.dot(*a) + fifth / 3.0, fifth)
+        })
+        .collect();
+    let thick = lines.iter().filter(|l| l.2 <= SIDE_DEPTH * spacing);
+    let edge: Vec<(DVec2, f64)> = if thick.clone().next().is_some() {
+        thick.map(|l| (l.0, l.1)).collect()
+    } else {
+        lines.iter().map(|l| (l.0, l.1)).collect()
     };
-    let mut edge = lines(true);
-    if edge.is_empty() {
-        edge = lines(false);
-    }
     distance_to_polygon(q, &edge, 1e-9 * spacing)
 }
 
