@@ -227,6 +227,40 @@ pub(super) fn section_guide(
     out
 }
 
+/// A guide's free numbers (the second control point's distance along the start
+/// tangent, then `(along, up)` of each later control point, as
+/// [`approximate`](super::approximate) moves them) for the same cubic B-spline with
+/// every span of its clamped uniform knots halved (knot insertion, Boehm 1980): the
+/// same curve, sampled at the same parameters, with `2n − 3` control points for `n`,
+/// so that the least squares can follow a target's curve more closely from where
+/// they stopped. The second control point stays on the start tangent.
+pub(super) fn refine_guide(free: &[f64]) -> Vec<f64> {
+    let mut points = vec![(0.0, 0.0), (free[0], 0.0)];
+    points.extend(free[1..].chunks(2).map(|c| (c[0], c[1])));
+    let mut knots = crate::guide::clamped_uniform_knots(points.len(), 3);
+    let mids: Vec<f64> = knots
+        .windows(2)
+        .filter(|w| w[1] > w[0])
+        .map(|w| 0.5 * (w[0] + w[1]))
+        .collect();
+    for u in mids {
+        let k = bspline::span(&knots, 3, u);
+        let mut next = Vec::with_capacity(points.len() + 1);
+        next.extend_from_slice(&points[..=k - 3]);
+        for i in k - 2..=k {
+            let a = (u - knots[i]) / (knots[i + 3] - knots[i]);
+            let (p, q) = (points[i - 1], points[i]);
+            next.push(((1.0 - a) * p.0 + a * q.0, (1.0 - a) * p.1 + a * q.1));
+        }
+        next.extend_from_slice(&points[k..]);
+        points = next;
+        knots.insert(k + 1, u);
+    }
+    let mut out = vec![points[1].0];
+    out.extend(points[2..].iter().flat_map(|(s, w)| [*s, *w]));
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -282,5 +316,33 @@ mod tests {
         );
         // Too few points for the unknowns.
         assert_eq!(fit_guide(&sampled(&truth, 5), false), None);
+    }
+
+    #[test]
+    fn a_refined_guide_is_the_same_curve() {
+        // 5 control points (the fitted guides'), then 7, then 11.
+        let five = [2.5, 5.0, -0.949, 7.5, -1.686, 10.0, -2.108];
+        let seven = refine_guide(&five);
+        let eleven = refine_guide(&seven);
+        assert_eq!((seven.len(), eleven.len()), (11, 19));
+        // Sampled by the guide module's de Boor at the same parameters.
+        let curve = |free: &[f64]| {
+            let mut polygon = vec![[0.0; 3], [free[0], 0.0, 0.0]];
+            polygon.extend(free[1..].chunks(2).map(|c| [c[0], 0.0, c[1]]));
+            let spec = GuideSpec::bspline(3, polygon, 101);
+            let guide = Guide::from_spec(&spec, GuideName::U, &Default::default()).unwrap();
+            guide.points
+        };
+        let truth = curve(&five);
+        for finer in [&seven, &eleven] {
+            let gap = truth
+                .iter()
+                .zip(curve(finer))
+                .map(|(a, b)| a.distance(b))
+                .fold(0.0, f64::max);
+            assert!(gap < 1e-12, "{gap}");
+        }
+        // The second control point on the start tangent, nearer the corner.
+        assert!(seven[0] > 0.0 && seven[0] < five[0]);
     }
 }

@@ -25,7 +25,7 @@ pub struct TargetCloud {
     /// distance `d` from the point, as much as a random sampling's spacing makes it).
     patches: Vec<Quadric>,
     /// Unit outward direction in the tangent plane at a boundary point, zero inside.
-    outward: Vec<DVec3>,
+    pub(super) outward: Vec<DVec3>,
     /// The boundary points (those with an outward direction), indexed: whether a point
     /// is near the target's edge.
     boundary: RTree<Indexed>,

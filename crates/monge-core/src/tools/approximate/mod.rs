@@ -16,7 +16,10 @@
 //!    directions there, and each guide is a cubic B-spline (5 control points) in the
 //!    normal plane of one direction, fitted to the target's section by that plane (not
 //!    at an umbilic corner, where they are undefined). A second start at each corner
-//!    follows the target's own boundary: the two boundary curves leaving the corner are
+//!    follows the target's own boundary: at its corner (the boundary point lowest along
+//!    the centre's directions whose neighbours fill a sector of at most 135°: the
+//!    lowest point of all may be halfway up a side that bulges out), the two boundary
+//!    curves leaving it along that sector's edges are
 //!    traced through the points (gift wrapping), a plane is fitted to each, a B-spline to
 //!    each in its plane (Levenberg–Marquardt over the control points and the points'
 //!    parameters), and their start tangents, made orthogonal, give the frame: a target
@@ -48,9 +51,12 @@
 //!    the least squares stall away from the target (one patch cannot follow it), BOBYQA
 //!    (Powell 2009, set up as in [`crate::optimise`]) runs from the same starts and
 //!    polishes the result. Designs that cannot be generated or whose mesh folds
-//!    ([`QuadGrid::folds`], §5.2) are infeasible. The result is the best of the designs
-//!    refined on the full grid and the initial guess, so it is never worse than where
-//!    the search started;
+//!    ([`QuadGrid::folds`], §5.2) are infeasible. The least squares then run again with
+//!    finer guides (knot insertion: 7, then 11 control points, the same curves), kept
+//!    only when closer to the target by the largest distance both ways: five control
+//!    points may not follow a profile with an inflection as closely as the rest of the
+//!    design can. The result is the best of the designs refined on the full grid and
+//!    the initial guess, so it is never worse than where the search started;
 //! 3. the objective (`TargetCloud::residuals`) is the mean squared distance of the
 //!    mesh's vertices to the target (to the quadric fitted around the nearest target
 //!    point, so that a random sampling's spacing does not bias it by `κd²/2`, moved
@@ -96,7 +102,7 @@ use start::{initial_guesses, Start};
 
 pub use distance::{point_triangle, Deviation};
 pub use error::{ApproxError, FLAT_CURVATURE, MIN_POINTS, UMBILIC_RATIO};
-use fit_guide::CONTROL_POINTS;
+use fit_guide::{refine_guide, CONTROL_POINTS};
 use index::Matches;
 pub use index::TargetCloud;
 pub use layout::PatchLayout;
@@ -219,12 +225,12 @@ fn design_of(start: &Start, x: &[f64], samples: (usize, usize), kind: MeshKind) 
     // admissible range of a design whose guide planes are tilted (§3.2), which φ
     // crosses smoothly.
     let theta = admissible_theta_at(x[6].sin(), x[7].sin(), x[8]);
-    let per_guide = 1 + 2 * (CONTROL_POINTS - 2);
+    let per_guide = per_guide(x);
     let guide = |t: DVec3, other: DVec3, tilt: f64, c: &[f64], samples: usize| {
         let up = tilt.cos() * n - tilt.sin() * other;
         let mut control: Vec<Xyz> = vec![corner.to_array(), (corner + c[0] * t).to_array()];
-        for k in 0..CONTROL_POINTS - 2 {
-            control.push((corner + c[1 + 2 * k] * t + c[2 + 2 * k] * up).to_array());
+        for w in c[1..].chunks(2) {
+            control.push((corner + w[0] * t + w[1] * up).to_array());
         }
         GuideSpec::bspline(3, control, samples)
     };
@@ -235,6 +241,21 @@ fn design_of(start: &Start, x: &[f64], samples: (usize, usize), kind: MeshKind) 
         mesh: kind,
         tolerance: None,
     }
+}
+
+/// Free numbers of each guide among a design's parameters `x` (those of [`PARAMETERS`],
+/// or more once refined by [`refine_guides`]).
+fn per_guide(x: &[f64]) -> usize {
+    (x.len() - 9) / 2
+}
+
+/// The same design with finer guides ([`refine_guide`]).
+fn refine_guides(x: &[f64]) -> Vec<f64> {
+    let per_guide = per_guide(x);
+    let mut out = x[..9].to_vec();
+    out.extend(refine_guide(&x[9..9 + per_guide]));
+    out.extend(refine_guide(&x[9 + per_guide..]));
+    out
 }
 
 /// The mesh of `design` if it can be generated without folds.
@@ -312,8 +333,7 @@ impl Search<'_> {
         // Each guide leaves the corner along its start tangent: its second control point
         // ahead of the corner (behind, the guide turns back in a cusp; a coarse grid may
         // not fold there, the full one does).
-        let per_guide = 1 + 2 * (CONTROL_POINTS - 2);
-        if x[9] <= 0.0 || x[9 + per_guide] <= 0.0 {
+        if x[9] <= 0.0 || x[9 + per_guide(x)] <= 0.0 {
             return None;
         }
         fair_mesh(&design_of(
@@ -662,6 +682,11 @@ pub fn approximate_until(
         } else {
             ApproxError::NoStart
         })?;
+    let fine = if options.keep_boundary {
+        fine
+    } else {
+        search.finer_guides(start, fine, (fu, fv), progress)
+    };
     // Never worse than the initial guess: the better of the two on the full grid.
     let initial_x = start_parameters(&guesses[first], initial_phi);
     let full = |s: &Start, x: &[f64]| {

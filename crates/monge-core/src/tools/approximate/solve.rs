@@ -2,7 +2,10 @@
 //! §4.7): Levenberg–Marquardt on the residuals, with a finite-difference Jacobian,
 //! and BOBYQA where the least squares stall.
 
-use super::{sum_of_squares, Matches, Progress, Search, Start, RECOVERED};
+use super::{
+    design_of, fair_mesh, refine_guides, samples_for, sum_of_squares, Matches, Progress, Search,
+    Start, RECOVERED,
+};
 
 impl Search<'_> {
     /// The Jacobian of the residuals at `x` (real units), measured against the
@@ -200,7 +203,65 @@ impl Search<'_> {
             (f, x)
         }
     }
+
+    /// The least squares ([`Search::run`]) from `x` on `faces` again with finer guides
+    /// ([`refine_guides`]: the same design to round-off), up to [`GUIDE_REFINEMENTS`]
+    /// times, each kept only when it lowers the objective and comes closer to the target
+    /// by the largest distance both ways ([`Deviation::closer_than`](super::Deviation::closer_than)).
+    /// A guide of five control points may not follow a target's curve (a profile with an
+    /// inflection, the offset of a parabola) as closely as θ and the rest of the design
+    /// could; where the residual is a scan's noise and its sparse edges, finer guides
+    /// would chase those, and the largest distance says so.
+    pub(super) fn finer_guides(
+        &mut self,
+        start: &Start,
+        mut x: Vec<f64>,
+        faces: (usize, usize),
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Vec<f64> {
+        let samples = samples_for(faces, self.kind);
+        let reading = |s: &Self, x: &[f64]| {
+            fair_mesh(&design_of(start, x, samples, s.kind)).map(|m| s.target.deviation(&m))
+        };
+        for _ in 0..GUIDE_REFINEMENTS {
+            // Each knot span sampled by enough of the mesh's faces: between its samples, a
+            // guide finer than its mesh is free to wiggle, and a design is regenerated
+            // at any resolution.
+            let control_points = (super::per_guide(&x) - 1) / 2 + 2;
+            let spans = 2 * (control_points - 3);
+            if faces.0.min(faces.1) < FACES_PER_SPAN * spans {
+                break;
+            }
+            let Some(f) = self
+                .residuals(start, &x, faces)
+                .map(|r| sum_of_squares(&r.0))
+            else {
+                break;
+            };
+            if self.timed_out || f.sqrt() <= LM_FLOOR {
+                break;
+            }
+            let (g, y) = self.run(start, &refine_guides(&x), faces, progress);
+            let closer = match (reading(self, &y), reading(self, &x)) {
+                (Some(a), Some(b)) => a.closer_than(&b),
+                _ => false,
+            };
+            if !(closer && g < f) {
+                break;
+            }
+            x = y;
+        }
+        x
+    }
 }
+
+/// Times [`Search::finer_guides`] refines the guides: from 5 control points to 7, then 11.
+const GUIDE_REFINEMENTS: usize = 2;
+
+/// Fewest faces of the mesh along each knot span of a refined guide
+/// once refined ([`Search::finer_guides`]): 40 faces take guides of 11 control points
+/// (8 spans), 20 of 7 (4 spans).
+const FACES_PER_SPAN: usize = 5;
 
 /// Bounds of the parameters around `x0` (real units), for a target of `size`.
 fn bounds(x0: &[f64], size: f64) -> (Vec<f64>, Vec<f64>) {
