@@ -55,8 +55,12 @@
 //!    finer guides (knot insertion: 7, then 11 control points, the same curves), kept
 //!    only when closer to the target by the largest distance both ways: five control
 //!    points may not follow a profile with an inflection as closely as the rest of the
-//!    design can. The result is the best of the designs refined on the full grid and
-//!    the initial guess, so it is never worse than where the search started;
+//!    design can. Where θ ends within 5° of 0° or 180°, the nearest surface of
+//!    revolution or moulding surface (§4.1: θ at that end of its range) is kept if its
+//!    objective is within 1.5 times the free design's: there θ moves by degrees for a
+//!    small gain, with a scan's noise. The result is the best of the designs refined on
+//!    the full grid and the initial guess, so it is never worse than where the search
+//!    started;
 //! 3. the objective (`TargetCloud::residuals`) is the mean squared distance of the
 //!    mesh's vertices to the target (to the quadric fitted around the nearest target
 //!    point, so that a random sampling's spacing does not bias it by `κd²/2`, moved
@@ -685,7 +689,8 @@ pub fn approximate_until(
     let fine = if options.keep_boundary {
         fine
     } else {
-        search.finer_guides(start, fine, (fu, fv), progress)
+        let fine = search.finer_guides(start, fine, (fu, fv), progress);
+        search.moulding(start, fine, (fu, fv), progress)
     };
     // Never worse than the initial guess: the better of the two on the full grid.
     let initial_x = start_parameters(&guesses[first], initial_phi);
