@@ -676,27 +676,32 @@ fn a_moulding_is_recovered_with_theta_zero() {
     assert!(theta <= 0.5, "θ {theta}");
 }
 
+/// The held-out target `name` approximated from `sample` of it (its mesh or a scan) with
+/// `options`, measured independently: the design regenerated at 40 × 40 faces against
+/// the closed form's fine triangulation, both ways by brute force, and θ folded.
+fn held_out_fit(
+    name: &str,
+    sample: impl Fn(&crate::heldout::Target) -> Vec<DVec3>,
+    options: &ApproxOptions,
+) -> (f64, f64, f64) {
+    use crate::heldout::{fold_theta, max_both_ways, targets};
+    let target = targets().into_iter().find(|t| t.name == name).unwrap();
+    let r = approximate(&sample(&target), options, &mut |_| {}).unwrap();
+    let (to_max, from_max) = max_both_ways(&target, &finer(&r.design, 41));
+    let theta = fold_theta(r.design.theta_deg);
+    eprintln!("{name}: mesh → target {to_max:.2e}, target → mesh {from_max:.2e}, θ {theta:.3}°");
+    (to_max, from_max, theta)
+}
+
 #[test]
 fn an_onion_domes_side_is_recovered_from_its_own_corner() {
-    use crate::heldout::{fold_theta, max_both_ways, targets};
     // The held-out onion dome's side (a surface of revolution cut along its curvature
     // lines, θ = 0°), rotated and far from the origin, every vertex of a 41 × 41 mesh.
     // Its meridians bulge out halfway up, where the boundary start had taken its corner:
     // it traced one side both ways and the search settled away from θ = 0° (here 3.9e-2
     // of the size off, θ 1.7°; the held-out measurement at 40 × 40 faces: 4.0e-2, θ 12°).
-    let onion = targets()
-        .into_iter()
-        .find(|t| t.name == "onion dome")
-        .unwrap();
-    let r = approximate(&onion.grid(41), &quick(20), &mut |_| {}).unwrap();
-    // Independently: the design regenerated at 40 × 40 faces against the closed form's
-    // fine triangulation, both ways, by brute force.
-    let (to_max, from_max) = max_both_ways(&onion, &finer(&r.design, 41));
-    let theta = fold_theta(r.design.theta_deg);
-    eprintln!(
-        "onion dome: mesh → target {to_max:.2e}, target → mesh {from_max:.2e}, θ {theta:.3}°"
-    );
-    // Measured with 20 × 20 faces: 9.2e-4 and 4.2e-4, θ 0.08°.
+    let (to_max, from_max, theta) = held_out_fit("onion dome", |t| t.grid(41), &quick(20));
+    // Measured with 20 × 20 faces: 8.6e-4 and 4.3e-4, θ 0.000°.
     assert!(
         to_max <= 1e-3 && from_max <= 1e-3,
         "{to_max:e} {from_max:e}"
@@ -706,23 +711,14 @@ fn an_onion_domes_side_is_recovered_from_its_own_corner() {
 
 #[test]
 fn a_scanned_moulding_comes_back_a_moulding() {
-    use crate::heldout::{fold_theta, max_both_ways, targets};
     // The held-out sine moulding (θ = 0°) scanned: 2 000 random points noised by 1e-4 of
     // its size. With θ free its fit settled at θ 2.7° (θ 177.3°), 6.2e-4 / 1.6e-3 of the
     // size from the surface: near an end of its range θ moves by degrees for a small gain.
-    let moulding = targets()
-        .into_iter()
-        .find(|t| t.name == "sine moulding")
-        .unwrap();
-    let r = approximate(
-        &moulding.scan(2000, 1e-4, 7),
+    let (to_max, from_max, theta) = held_out_fit(
+        "sine moulding",
+        |t| t.scan(2000, 1e-4, 7),
         &ApproxOptions::default(),
-        &mut |_| {},
-    )
-    .unwrap();
-    let (to_max, from_max) = max_both_ways(&moulding, &r.grid);
-    let theta = fold_theta(r.design.theta_deg);
-    eprintln!("sine moulding scan: mesh → target {to_max:.2e}, target → mesh {from_max:.2e}, θ {theta:.3}°");
+    );
     // Measured: 9.9e-4 and 1.5e-3, θ 0.000°.
     assert!(theta <= 0.5, "θ {theta}");
     assert!(
