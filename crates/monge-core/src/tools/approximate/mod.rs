@@ -362,6 +362,13 @@ impl Search<'_> {
         Some((self.target.residuals(&grid, &matches), matches))
     }
 
+    /// The sum of squares of [`Search::residuals`] (not counted), or `None` when
+    /// infeasible.
+    fn sum_of_squares_at(&self, start: &Start, x: &[f64], faces: (usize, usize)) -> Option<f64> {
+        self.residuals(start, x, faces)
+            .map(|r| sum_of_squares(&r.0))
+    }
+
     /// [`Search::residuals`], counted, or `None` once stopped.
     fn evaluate(
         &mut self,
@@ -696,8 +703,8 @@ pub fn approximate_until(
     let initial_x = start_parameters(&guesses[first], initial_phi);
     let full = |s: &Start, x: &[f64]| {
         search
-            .residuals(s, x, (fu, fv))
-            .map_or(f64::INFINITY, |r| sum_of_squares(&r.0))
+            .sum_of_squares_at(s, x, (fu, fv))
+            .unwrap_or(f64::INFINITY)
     };
     let objective_before = full(&guesses[first], &initial_x);
     let mut objective_after = full(start, &fine);

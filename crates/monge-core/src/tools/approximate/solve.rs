@@ -238,6 +238,8 @@ impl Search<'_> {
         let reading = |s: &Self, x: &[f64]| {
             fair_mesh(&design_of(start, x, samples, s.kind)).map(|m| s.target.deviation(&m))
         };
+        // The current design's objective and reading, each measured once.
+        let (mut f, mut read) = (None, None);
         for _ in 0..GUIDE_REFINEMENTS {
             // Each knot span sampled by enough of the mesh's faces: between its samples, a
             // guide finer than its mesh is free to wiggle, and a design is regenerated
@@ -247,30 +249,27 @@ impl Search<'_> {
             if faces.0.min(faces.1) < FACES_PER_SPAN * spans {
                 break;
             }
-            let Some(f) = self
-                .residuals(start, &x, faces)
-                .map(|r| sum_of_squares(&r.0))
-            else {
+            let Some(f_x) = f.or_else(|| self.sum_of_squares_at(start, &x, faces)) else {
                 break;
             };
-            if self.timed_out || f.sqrt() <= LM_FLOOR {
+            if self.timed_out || f_x.sqrt() <= LM_FLOOR {
                 break;
             }
             let (g, y) = self.run(start, &refine_guides(&x), faces, progress);
-            let closer = match (reading(self, &y), reading(self, &x)) {
-                (Some(a), Some(b)) => a.closer_than(&b),
-                _ => false,
-            };
-            if !(closer && g < f) {
+            // Kept only when lower (not when either is NaN).
+            if g.partial_cmp(&f_x) != Some(std::cmp::Ordering::Less) {
                 break;
             }
-            x = y;
+            let read_x = read.unwrap_or_else(|| reading(self, &x));
+            let read_y = reading(self, &y);
+            if !matches!((read_y, read_x), (Some(a), Some(b)) if a.closer_than(&b)) {
+                break;
+            }
+            (x, f, read) = (y, Some(g), Some(read_y));
         }
         x
     }
-}
 
-impl Search<'_> {
     /// The nearest surface of revolution or moulding surface (§4.1: θ = 0° or 180°, φ at
     /// an end of the admissible range, the other guide's plane through the node axis:
     /// the rail's profile in its normal planes) to the design `x` on `faces`, by the
@@ -291,10 +290,7 @@ impl Search<'_> {
         if theta.min(180.0 - theta) > MOULDING_THETA || self.timed_out {
             return x;
         }
-        let Some(f) = self
-            .residuals(start, &x, faces)
-            .map(|r| sum_of_squares(&r.0))
-        else {
+        let Some(f) = self.sum_of_squares_at(start, &x, faces) else {
             return x;
         };
         let mut best = (MOULDING_RATIO * f, x.clone());
