@@ -29,13 +29,31 @@ const EVEN_SAMPLING: f64 = 0.001;
 /// A guide's control polygon in its plane, `(along, up)`, from the corner `(0, 0)`.
 pub(super) type Polygon = [(f64, f64); CONTROL_POINTS];
 
+/// Where [`fit_guide`] places a curve's points along the guide.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Parameters {
+    /// Each point's parameter fitted with the control points: a mesh's curves, whose
+    /// points lie on them.
+    Fitted,
+    /// At the points' chord lengths: a scan's boundary, traced through its outermost
+    /// points, which zigzag by about a spacing. Fitted parameters tied such a guide into
+    /// loops (a second control point behind the first, or one beyond the end and back)
+    /// that every θ folded.
+    ChordLength,
+}
+
 /// The cubic B-spline guide nearest to the points `(s, w)` of a curve in its plane,
 /// from `(0, 0)` to the last point, its start tangent along `s` unless `free_tangent`:
-/// the free control points and each point's parameter by Levenberg–Marquardt, from
-/// chord-length parameters, which also hold the parameters near chord lengths (weight
-/// [`EVEN_SAMPLING`]), so the guide is sampled evenly as a designer draws it. `None`
-/// for fewer points than unknowns.
-pub(super) fn fit_guide(section: &[(f64, f64)], free_tangent: bool) -> Option<Polygon> {
+/// the free control points by linear least squares at chord-length parameters, then
+/// with [`Parameters::Fitted`] with each point's parameter by Levenberg–Marquardt,
+/// which also holds the parameters near chord lengths (weight [`EVEN_SAMPLING`]), so
+/// the guide is sampled evenly as a designer draws it. `None` for fewer points than
+/// unknowns.
+pub(super) fn fit_guide(
+    section: &[(f64, f64)],
+    free_tangent: bool,
+    parameters: Parameters,
+) -> Option<Polygon> {
     let m = section.len();
     if m < CONTROL_POINTS + 1 {
         return None;
@@ -87,6 +105,14 @@ pub(super) fn fit_guide(section: &[(f64, f64)], free_tangent: bool) -> Option<Po
         x.extend([along[1 + k], up[up_first + k]]);
     }
     x.extend(&u[1..m - 1]);
+    let finite = |p: Polygon| {
+        p.iter()
+            .all(|(a, b)| a.is_finite() && b.is_finite())
+            .then_some(p)
+    };
+    if parameters == Parameters::ChordLength {
+        return finite(polygon(&x));
+    }
     let residuals = |x: &[f64]| -> nalgebra::DVector<f64> {
         let p = polygon(x);
         nalgebra::DVector::from_fn(3 * (m - 2), |r, _| {
@@ -147,10 +173,7 @@ pub(super) fn fit_guide(section: &[(f64, f64)], free_tangent: bool) -> Option<Po
             break;
         }
     }
-    let p = polygon(&x);
-    p.iter()
-        .all(|(a, b)| a.is_finite() && b.is_finite())
-        .then_some(p)
+    finite(polygon(&x))
 }
 
 /// The point at `u` of the guide of control polygon `p` in its plane.
@@ -287,7 +310,7 @@ mod tests {
         ];
         for samples in [26, 11] {
             let points = sampled(&truth, samples);
-            let fitted = fit_guide(&points, false).unwrap();
+            let fitted = fit_guide(&points, false, Parameters::Fitted).unwrap();
             // The curve, to 2e-4 of its length (~10.6): every point near the fitted curve.
             let curve = sampled(&fitted, 4001);
             let residual = points
@@ -309,13 +332,54 @@ mod tests {
         // With the start tangent free, it is found too (turned by 0.1 rad here).
         let (c, s) = (0.1f64.cos(), 0.1f64.sin());
         let turned = truth.map(|(x, y)| (c * x - s * y, s * x + c * y));
-        let fitted = fit_guide(&sampled(&turned, 21), true).unwrap();
+        let fitted = fit_guide(&sampled(&turned, 21), true, Parameters::Fitted).unwrap();
         assert!(
             (fitted[1].1.atan2(fitted[1].0) - 0.1).abs() < 1e-3,
             "{fitted:?}"
         );
         // Too few points for the unknowns.
-        assert_eq!(fit_guide(&sampled(&truth, 5), false), None);
+        assert_eq!(
+            fit_guide(&sampled(&truth, 5), false, Parameters::Fitted),
+            None
+        );
+    }
+
+    #[test]
+    fn a_noisy_boundary_is_fitted_at_chord_lengths_without_loops() {
+        // A scan's boundary traced through its outermost points (the held-out moulding's,
+        // seed 4): fitted with its points' parameters, the guide's second control point
+        // came behind the first (0.055 against 0.159 along), a loop every θ folded.
+        let section = [
+            (0.0, 0.0),
+            (0.060, -0.003),
+            (0.107, -0.003),
+            (0.138, -0.018),
+            (0.192, -0.038),
+            (0.249, -0.062),
+            (0.283, -0.088),
+            (0.330, -0.117),
+            (0.350, -0.153),
+            (0.422, -0.251),
+            (0.432, -0.282),
+        ];
+        let p = fit_guide(&section, false, Parameters::ChordLength).unwrap();
+        // Each leg of the polygon ahead of the last (no cusp, no loop).
+        for k in 0..CONTROL_POINTS - 2 {
+            let (a, b) = (
+                (p[k + 1].0 - p[k].0, p[k + 1].1 - p[k].1),
+                (p[k + 2].0 - p[k + 1].0, p[k + 2].1 - p[k + 1].1),
+            );
+            assert!(a.0 * b.0 + a.1 * b.1 > 0.0, "{p:?}");
+        }
+        // The points near the curve: within the zigzag of the scan's outermost points.
+        let curve = sampled(&p, 2001);
+        for q in section {
+            let d = curve
+                .iter()
+                .map(|c| (q.0 - c.0).hypot(q.1 - c.1))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < 0.02, "{q:?} {d}");
+        }
     }
 
     #[test]
