@@ -5,6 +5,8 @@
 use glam::DVec3;
 
 use crate::bspline;
+use crate::design::Design;
+use crate::guide::{Guide, GuideName};
 
 /// Number of control points of each fitted guide (a cubic B-spline).
 pub(super) const CONTROL_POINTS: usize = 5;
@@ -282,6 +284,27 @@ pub(super) fn refine_guide(free: &[f64]) -> Vec<f64> {
     let mut out = vec![points[1].0];
     out.extend(points[2..].iter().flat_map(|(s, w)| [*s, *w]));
     out
+}
+
+/// Whether a guide of `design` turns back between two of its samples (by more than
+/// 90°): a cusp or a hook that a coarser sampling of the same guide steps over, and
+/// which folds the whole row or column of faces along it (or a guide that cannot be
+/// sampled).
+pub(super) fn hooked(design: &Design) -> bool {
+    [
+        (&design.guide_u, GuideName::U),
+        (&design.guide_v, GuideName::V),
+    ]
+    .into_iter()
+    .any(
+        |(spec, name)| match Guide::from_spec(spec, name, &Default::default()) {
+            Ok(guide) => guide
+                .points
+                .windows(3)
+                .any(|w| (w[1] - w[0]).dot(w[2] - w[1]) <= 0.0),
+            Err(_) => true,
+        },
+    )
 }
 
 #[cfg(test)]
