@@ -23,7 +23,10 @@
 //!    traced through the points (gift wrapping), a plane is fitted to each, a B-spline to
 //!    each in its plane (Levenberg–Marquardt over the control points and the points'
 //!    parameters), and their start tangents, made orthogonal, give the frame: a target
-//!    cut along its curvature lines is started from its own guides. A third follows the
+//!    cut along its curvature lines is started from its own guides; and again with
+//!    each B-spline at its points' chord lengths and each tangent the slope of the cubic
+//!    nearest to the whole curve, which a scan's zigzag boundary does not tie into
+//!    loops. A third follows the
 //!    target's curvature lines (each step on the quadric of the nearest target points):
 //!    from the centre to the boundary and along it to the corner, then the two lines
 //!    leaving the corner are the curves of the boundary start's construction, their

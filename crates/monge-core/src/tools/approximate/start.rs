@@ -410,12 +410,11 @@ fn curves_start(
         principal_axes_about(path_u, corner).2,
         principal_axes_about(path_v, corner).2,
     );
-    // Each curve's own start tangent: along a boundary (traced through a scan's
-    // outermost points, which zigzag by about a spacing) the slope of the cubic nearest
-    // to the whole curve ([`start_slope`]), whose guide's plane and bends then follow it
-    // (the slope of a free-tangent guide, from its first few points, missed a scan's
-    // sides by 20 to 30° and the guides folded at every θ); along a curvature line a
-    // guide fitted in its plane, tangent free.
+    // Each curve's own start tangent: at chord lengths (a boundary traced through a
+    // scan's outermost points, which zigzag by about a spacing) the slope of the cubic
+    // nearest to the whole curve ([`start_slope`]), whose guide's plane and bends then
+    // follow it (the slope of a free-tangent guide, from its first few points, missed
+    // a scan's sides by 20 to 30°); else a guide fitted in its plane, tangent free.
     let tangent = |m: DVec3, path: &[DVec3]| -> Option<DVec3> {
         let chord = path[path.len() - 1] - corner;
         let e1 = (chord - chord.dot(m) * m).normalize_or_zero();
@@ -546,6 +545,29 @@ fn trace_boundary(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_zigzag_curves_start_slope_is_its_whole_curves() {
+        // The curve w = 0.3 s + 0.5 s² from the corner through 20 points that zigzag
+        // across it by ±0.01 (a scan's outermost points): its first leg alone slopes at
+        // 0.525.
+        let section: Vec<(f64, f64)> = (0..=20)
+            .map(|k| {
+                let s = k as f64 / 20.0;
+                let zigzag = match k {
+                    0 => 0.0,
+                    _ if k % 2 == 1 => 0.01,
+                    _ => -0.01,
+                };
+                (s, 0.3 * s + 0.5 * s * s + zigzag)
+            })
+            .collect();
+        let first_leg = section[1].1 / section[1].0;
+        assert!((first_leg - 0.3).abs() > 0.2, "{first_leg}");
+        let slope = start_slope(&section).unwrap();
+        assert!((slope - 0.3).abs() < 0.05, "{slope}");
+        assert_eq!(start_slope(&[(0.0, 0.0)]), None);
+    }
 
     #[test]
     fn the_boundary_start_is_at_a_corner_when_a_side_bulges_out() {
