@@ -412,9 +412,10 @@ fn curves_start(
     );
     // Each curve's own start tangent: at chord lengths (a boundary traced through a
     // scan's outermost points, which zigzag by about a spacing) the slope of the cubic
-    // nearest to the whole curve ([`start_slope`]), whose guide's plane and bends then
-    // follow it (the slope of a free-tangent guide, from its first few points, missed
-    // a scan's sides by 20 to 30°); else a guide fitted in its plane, tangent free.
+    // nearest to the whole curve ([`start_slope`]), which their first few points do not
+    // turn (with a free-tangent guide's instead, a held-out sine moulding's scan still
+    // fell off the target, 7.5e-2 of its size); else a guide fitted in its plane,
+    // tangent free.
     let tangent = |m: DVec3, path: &[DVec3]| -> Option<DVec3> {
         let chord = path[path.len() - 1] - corner;
         let e1 = (chord - chord.dot(m) * m).normalize_or_zero();
