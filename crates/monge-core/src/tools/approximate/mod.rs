@@ -105,7 +105,7 @@ mod solve;
 mod start;
 mod tolerance;
 
-use start::{initial_guesses, Start};
+use start::{choose_starts, initial_guesses, Start};
 
 pub use distance::{point_triangle, Deviation};
 pub use error::{ApproxError, FLAT_CURVATURE, MIN_POINTS, UMBILIC_RATIO};
@@ -523,38 +523,6 @@ impl<'a> Search<'a> {
     }
 }
 
-/// The starts of the least squares from the θ scan (objective, start, φ), `wanted` of
-/// them: the best φ of each corner first (whichever of the corner's starts it is: they
-/// compete for its place), then the best φ of each other start, then further φ, each at
-/// least 15° from its start's others. Taking the best of each start first let two
-/// corners' curvature-line starts (the best of the scan) push the other two corners
-/// out, and with them the least squares that came nearest to the held-out hyperbolic
-/// paraboloid.
-fn choose_starts(
-    mut scan: Vec<(f64, usize, f64)>,
-    corners: &[usize],
-    wanted: usize,
-) -> Vec<(usize, f64)> {
-    scan.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut chosen: Vec<(usize, f64)> = Vec::new();
-    // Pass 0: a corner not chosen yet; 1: a start not chosen yet; 2: φ apart.
-    let allowed = |pass: usize, chosen: &[(usize, f64)], g: usize, phi: f64| {
-        chosen.iter().all(|(h, t)| match pass {
-            0 => corners[*h] != corners[g],
-            1 => *h != g,
-            _ => *h != g || (t - phi).abs() > 15.0,
-        })
-    };
-    for pass in 0..3 {
-        for (_, g, phi) in &scan {
-            if chosen.len() < wanted && allowed(pass, &chosen, *g, *phi) {
-                chosen.push((*g, *phi));
-            }
-        }
-    }
-    chosen
-}
-
 /// The start's own parameters: no move, φ given (see [`design_of`]), its guides'
 /// control points.
 fn start_parameters(start: &Start, phi: f64) -> Vec<f64> {
@@ -691,10 +659,18 @@ pub fn approximate_until(
         .into_iter()
         .flat_map(|(f, g, x)| {
             let x0 = start_parameters(&guesses[g], x[8]);
-            let back = BACK_OFF.map(|t| {
-                let x_t = x.iter().zip(&x0).map(|(a, b)| b + t * (a - b)).collect();
-                (f64::NAN, g, x_t)
-            });
+            // None where the result is its start (θ alone, with --keep-boundary).
+            let back: Vec<_> = if x0 == x {
+                Vec::new()
+            } else {
+                BACK_OFF
+                    .iter()
+                    .map(|t| {
+                        let x_t = x.iter().zip(&x0).map(|(a, b)| b + t * (a - b)).collect();
+                        (f64::NAN, g, x_t)
+                    })
+                    .collect()
+            };
             std::iter::once((f, g, x)).chain(back)
         })
         .collect();
@@ -772,34 +748,4 @@ pub fn approximate_until(
         starts,
         timed_out: search.timed_out,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::choose_starts;
-
-    #[test]
-    fn the_starts_take_the_best_of_each_corner_first() {
-        // Starts 0 and 1 at corner 0, 2 and 3 at corner 1, 4 at corner 2, 5 at corner 3;
-        // the scan (objective, start, φ) best at corners 0 and 1.
-        let corners = [0, 0, 1, 1, 2, 3];
-        let scan = vec![
-            (1.0, 0, 10.0),
-            (2.0, 1, 80.0),
-            (3.0, 2, 40.0),
-            (4.0, 3, 50.0),
-            (5.0, 0, 100.0),
-            (6.0, 4, 140.0),
-            (7.0, 0, 20.0),
-            (8.0, 5, 30.0),
-        ];
-        // Every corner once, each by its best start and φ.
-        let four = [(0, 10.0), (2, 40.0), (4, 140.0), (5, 30.0)];
-        assert_eq!(choose_starts(scan.clone(), &corners, 4), four);
-        // Then the best φ of each start not chosen yet, then further φ of a start, at
-        // least 15° from its others (φ 20° of start 0 is within 15° of its 10°).
-        let all = choose_starts(scan, &corners, 8);
-        assert_eq!(all[..4], four);
-        assert_eq!(all[4..], [(1, 80.0), (3, 50.0), (0, 100.0)]);
-    }
 }

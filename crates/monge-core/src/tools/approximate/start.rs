@@ -31,6 +31,38 @@ pub(super) struct Start {
     pub(super) at_corner: usize,
 }
 
+/// The starts of the least squares from the θ scan (objective, start, φ), `wanted` of
+/// them: the best φ of each corner first (whichever of the corner's starts it is: they
+/// compete for its place), then the best φ of each other start, then further φ, each at
+/// least 15° from its start's others. Taking the best of each start first let two
+/// corners' curvature-line starts (the best of the scan) push the other two corners
+/// out, and with them the least squares that came nearest to the held-out hyperbolic
+/// paraboloid.
+pub(super) fn choose_starts(
+    mut scan: Vec<(f64, usize, f64)>,
+    corners: &[usize],
+    wanted: usize,
+) -> Vec<(usize, f64)> {
+    scan.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut chosen: Vec<(usize, f64)> = Vec::new();
+    // Pass 0: a corner not chosen yet; 1: a start not chosen yet; 2: φ apart.
+    let allowed = |pass: usize, chosen: &[(usize, f64)], g: usize, phi: f64| {
+        chosen.iter().all(|(h, t)| match pass {
+            0 => corners[*h] != corners[g],
+            1 => *h != g,
+            _ => *h != g || (t - phi).abs() > 15.0,
+        })
+    };
+    for pass in 0..3 {
+        for (_, g, phi) in &scan {
+            if chosen.len() < wanted && allowed(pass, &chosen, *g, *phi) {
+                chosen.push((*g, *phi));
+            }
+        }
+    }
+    chosen
+}
+
 /// Corner, principal frame and guides fitted to the target's sections (step 1), at
 /// each of the target's four corners along the principal directions at its centre;
 /// there too the start along its boundary ([`boundary_start`]) and on its quadric
@@ -606,5 +638,30 @@ mod tests {
             t_u.dot(parallel) > 0.99 && t_v.dot(meridian) > 0.99,
             "{t_u} {t_v}"
         );
+    }
+
+    #[test]
+    fn the_starts_take_the_best_of_each_corner_first() {
+        // Starts 0 and 1 at corner 0, 2 and 3 at corner 1, 4 at corner 2, 5 at corner 3;
+        // the scan (objective, start, φ) best at corners 0 and 1.
+        let corners = [0, 0, 1, 1, 2, 3];
+        let scan = vec![
+            (1.0, 0, 10.0),
+            (2.0, 1, 80.0),
+            (3.0, 2, 40.0),
+            (4.0, 3, 50.0),
+            (5.0, 0, 100.0),
+            (6.0, 4, 140.0),
+            (7.0, 0, 20.0),
+            (8.0, 5, 30.0),
+        ];
+        // Every corner once, each by its best start and φ.
+        let four = [(0, 10.0), (2, 40.0), (4, 140.0), (5, 30.0)];
+        assert_eq!(choose_starts(scan.clone(), &corners, 4), four);
+        // Then the best φ of each start not chosen yet, then further φ of a start, at
+        // least 15° from its others (φ 20° of start 0 is within 15° of its 10°).
+        let all = choose_starts(scan, &corners, 8);
+        assert_eq!(all[..4], four);
+        assert_eq!(all[4..], [(1, 80.0), (3, 50.0), (0, 100.0)]);
     }
 }
