@@ -522,3 +522,107 @@ fn approximate_refuses_bad_tolerances_before_any_work() {
         &[&design],
     );
 }
+
+#[test]
+fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_curvature_lines() {
+    let dir = TempDir::new().unwrap();
+    let (fit, trimmed) = (dir.path().join("fit.json"), dir.path().join("trimmed.obj"));
+    let out = paraboloid(&fit, 8, 100)
+        .arg("--trim")
+        .arg(&trimmed)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success(), "{stdout}");
+    assert!(
+        stdout.contains("faces trimmed to the target's outline"),
+        "{stdout}"
+    );
+    // Read back by a third-party reader: polygons, each planar (its corners' distances to
+    // the plane of its first three, measured here), some cut (more than four corners or
+    // fewer).
+    let (models, _) = tobj::load_obj(&trimmed, &tobj::LoadOptions::default()).unwrap();
+    let mesh = &models[0].mesh;
+    let p = |k: u32| {
+        let k = 3 * k as usize;
+        [
+            mesh.positions[k],
+            mesh.positions[k + 1],
+            mesh.positions[k + 2],
+        ]
+    };
+    let mut start = 0;
+    let mut cut = 0;
+    for &arity in &mesh.face_arities {
+        let corners: Vec<[f64; 3]> = mesh.indices[start..start + arity as usize]
+            .iter()
+            .map(|k| p(*k))
+            .collect();
+        start += arity as usize;
+        cut += usize::from(arity != 4);
+        let (u, v) = (sub(corners[1], corners[0]), sub(corners[2], corners[0]));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let length = dot(n, n).sqrt();
+        for c in &corners[3..] {
+            let off = dot(sub(*c, corners[0]), n).abs() / length;
+            assert!(off < 1e-9 * 20.0, "a face off its plane by {off:e}");
+        }
+    }
+    assert!(cut > 0, "no face was cut");
+    // The trimmed mesh is closer to the paraboloid, by brute force both ways, than the
+    // untrimmed fit with the same settings (its boundary, a curvature line, cannot follow
+    // the paraboloid's square edges), and monge reads its distances as measured here.
+    let size = 19.8997;
+    let (to_target, to_mesh) = paraboloid_distances(&trimmed);
+    let untrimmed = dir.path().join("untrimmed.obj");
+    paraboloid(&fit, 8, 100).assert().success();
+    monge_to("generate", &fit, &untrimmed).assert().success();
+    let (a, b) = paraboloid_distances(&untrimmed);
+    assert!(
+        to_target.max(to_mesh) < 0.5 * a.max(b),
+        "{to_target} {to_mesh} against {a} {b}"
+    );
+    let read = number_after(&stdout, "result: mesh → target max") * size;
+    assert!(
+        (read - to_target).abs() < 0.05 * to_target,
+        "{read} {to_target}"
+    );
+}
+
+#[test]
+fn approximate_trim_refuses_patches_and_a_target_with_a_hole() {
+    let dir = TempDir::new().unwrap();
+    let fit = dir.path().join("fit.json");
+    paraboloid(&fit, 8, 100)
+        .arg("--trim")
+        .arg(dir.path().join("t.obj"))
+        .args(["--patches", "2"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("cannot be used with"));
+    // A ring: its inner edge is not on the outline.
+    let ring = dir.path().join("ring.obj");
+    let text: String = (0..2000)
+        .map(|k| {
+            let (r, a) = (2.0 + 2.0 * (k as f64 + 0.5) / 2000.0, k as f64 * 2.399963);
+            format!("v {} {} {}\n", r * a.cos(), r * a.sin(), 0.02 * r * r)
+        })
+        .collect();
+    fs::write(&ring, text).unwrap();
+    let trimmed = dir.path().join("t.obj");
+    refuses(
+        monge()
+            .arg("approximate")
+            .arg(&ring)
+            .arg("-o")
+            .arg(&fit)
+            .arg("--trim")
+            .arg(&trimmed),
+        &["the target's outline cannot be traced", "ring-shaped"],
+        &[&fit, &trimmed],
+    );
+}

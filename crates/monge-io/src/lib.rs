@@ -63,7 +63,7 @@ pub use mesh_read::{
 };
 pub use mesh_write::{
     write_mesh, write_mesh_at, write_mesh_json, write_mesh_to, write_obj, write_ply,
-    write_ply_binary, BASE_POINT, MESH_JSON_KEYS,
+    write_ply_binary, write_polygons_obj, BASE_POINT, MESH_JSON_KEYS,
 };
 pub use multipatch::{
     parse_multipatch, parse_planes, read_multipatch, read_planes, write_multipatch,

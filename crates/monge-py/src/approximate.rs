@@ -34,7 +34,11 @@ use crate::target::{points_array, points_of};
 /// target closer than one; `tolerance` (as `--tolerance`: a number relative to the
 /// target's size, `5e-3`, or a length, `"0.05m"`, `"5cm"`, `"50mm"`) fits one
 /// patch, then 2 × 1, 2 × 2, 3 × 2, … patches up to `max_patches` (default 6) until
-/// the mesh is within it both ways.
+/// the mesh is within it both ways. `trim=True` (as `--trim`, one patch) fits a
+/// mesh that covers the target and trims it to the target's outline: `trimmed` is
+/// then a dict of its `vertices` (n, 3), `faces` (lists of vertex indices, planar
+/// polygons) and `cut` (per face, whether the outline cut it), and `after` measures
+/// it; otherwise None.
 ///
 /// Returns the `design` found (a `Design`, or a `PatchesDesign` of several patches:
 /// `design.to_file(path)` writes it as the command does), the `initial` guess (a
@@ -63,8 +67,8 @@ use crate::target::{points_array, points_of};
 /// points nearest to it) and their `max` and `rms` distance to the mesh (relative).
 #[pyfunction]
 #[pyo3(
-    signature = (target, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false, patches = None, tolerance = None, max_patches = None, angle_tol_deg = None),
-    text_signature = "(target, grid=(40, 40), kind='circular', starts=4, max_evaluations=1500, time_limit=None, keep_boundary=False, patches=None, tolerance=None, max_patches=None, angle_tol_deg=None)"
+    signature = (target, grid = (40, 40), kind = "circular", starts = 4, max_evaluations = 1500, time_limit = None, keep_boundary = false, trim = false, patches = None, tolerance = None, max_patches = None, angle_tol_deg = None),
+    text_signature = "(target, grid=(40, 40), kind='circular', starts=4, max_evaluations=1500, time_limit=None, keep_boundary=False, trim=False, patches=None, tolerance=None, max_patches=None, angle_tol_deg=None)"
 )]
 #[allow(clippy::too_many_arguments)]
 pub fn approximate<'py>(
@@ -76,6 +80,7 @@ pub fn approximate<'py>(
     #[pyo3(from_py_with = args::approximate_evaluations)] max_evaluations: usize,
     time_limit: Option<f64>,
     keep_boundary: bool,
+    trim: bool,
     #[pyo3(from_py_with = args::patches)] patches: Option<PatchLayout>,
     #[pyo3(from_py_with = args::tolerance)] tolerance: Option<Tolerance>,
     #[pyo3(from_py_with = args::max_patches)] max_patches: Option<usize>,
@@ -85,6 +90,12 @@ pub fn approximate<'py>(
         return Err(OptimiseError::new_err(
             "patches and tolerance: give one (tolerance chooses the patches itself), as the \
              command's --patches and --tolerance",
+        ));
+    }
+    if trim && (patches.is_some() || tolerance.is_some() || keep_boundary) {
+        return Err(OptimiseError::new_err(
+            "trim fits one patch that covers the target: give it without patches, tolerance \
+             and keep_boundary, as the command's --trim",
         ));
     }
     if max_patches.is_some() && tolerance.is_none() {
@@ -123,6 +134,7 @@ pub fn approximate<'py>(
         max_evaluations,
         deadline,
         keep_boundary,
+        trim,
     };
     let error = |e: &dyn std::fmt::Display| OptimiseError::new_err(e.to_string());
     let fit = py.detach(|| -> PyResult<Fit> {
@@ -215,6 +227,20 @@ pub fn approximate<'py>(
         Fit::Single(r) => {
             d.set_item("evaluations", r.evaluations)?;
             d.set_item("timed_out", r.timed_out)?;
+            let trimmed = match &r.trimmed {
+                Some(t) => {
+                    let dict = PyDict::new(py);
+                    dict.set_item(
+                        "vertices",
+                        points_array(py, &t.vertices, &[t.vertices.len()])?,
+                    )?;
+                    dict.set_item("faces", t.faces.clone())?;
+                    dict.set_item("cut", t.cut.clone())?;
+                    Some(dict)
+                }
+                None => None,
+            };
+            d.set_item("trimmed", trimmed)?;
         }
         Fit::Patches(b) => {
             let (r, p) = &**b;

@@ -124,6 +124,11 @@ def test_approximate_tolerance_and_patches_refuse_what_the_command_refuses(cli_e
         monge.approximate(points, tolerance=5e-3, max_patches=0)
     with pytest.raises(monge.OptimiseError, match="angle_tol_deg = -1"):
         monge.approximate(points, angle_tol_deg=-1)
+    with pytest.raises(monge.OptimiseError, match="trim fits one patch"):
+        monge.approximate(points, trim=True, patches=2)
+    assert "cannot be used with" in cli_error(
+        "approximate", PARABOLOID, "-o", "x.json", "--trim", "x.obj", "--patches", "2"
+    )
 
 
 def angles(vertices, normals):
@@ -174,3 +179,31 @@ def test_approximate_node_types_group_nodes_within_the_designers_tolerance(cli, 
     text = cli("approximate", target, "-o", tmp_path / "fit.json", *SEARCH_ARGS, "--tolerance", "0.5",
                "--angle-tol", "1e-4").stdout
     assert f"distinct node types {exact['node_types']} (beam angles within 0.0001°" in text
+
+
+def test_approximate_trim_equals_the_command_and_its_panels_are_planar(cli, tmp_path):
+    """trim=True gives the command's design and trimmed mesh (--trim), and the trimmed
+    panels, measured with numpy, are planar and lie over the target: within its
+    outline, near the paraboloid z = 0.04 x² + 0.1 y² over [0, 10]²."""
+    out, mesh = tmp_path / "cli.json", tmp_path / "cli.obj"
+    cli("approximate", PARABOLOID, "-o", out, *SEARCH_ARGS, "--trim", mesh)
+    r = monge.approximate(paraboloid_points(), **SEARCH, trim=True)
+    mine = tmp_path / "py.json"
+    r["design"].to_file(mine)
+    assert mine.read_bytes() == out.read_bytes()
+    t = r["trimmed"]
+    lines = mesh.read_text().splitlines()
+    vertices = np.array([[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")])
+    faces = [[int(x) - 1 for x in l.split()[1:]] for l in lines if l.startswith("f ")]
+    assert np.array_equal(vertices, t["vertices"]) and faces == t["faces"]
+    assert 0 < sum(t["cut"]) < len(faces)
+    size = np.linalg.norm(paraboloid_points().max(0) - paraboloid_points().min(0))
+    for f in faces:
+        p = vertices[f] - vertices[f].mean(0)
+        assert np.linalg.svd(p, compute_uv=False)[-1] <= 1e-12 * size
+    # Each vertex's distance to the surface, by brute force on a fine sampling of it.
+    u = np.linspace(0.0, 10.0, 401)
+    x, y = np.meshgrid(u, u)
+    surface = np.stack([x.ravel(), y.ravel(), (0.04 * x * x + 0.1 * y * y).ravel()], 1)
+    far = max(np.min(np.linalg.norm(surface - v, axis=1)) for v in vertices)
+    assert far <= 0.05 * size, far / size

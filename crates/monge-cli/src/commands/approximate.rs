@@ -16,7 +16,10 @@ use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::measure::{conical_error, measure};
 use monge_core::multipatch::{build, MultiPatch, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
-use monge_io::{check_output, read_points, write_design_into, write_multipatch_into, Outputs};
+use monge_io::{
+    check_output, read_points, write_design_into, write_multipatch_into, write_polygons_obj,
+    Outputs,
+};
 use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 
 use crate::shared::args::{parse_non_negative, Named, KINDS};
@@ -75,6 +78,18 @@ pub struct ApproximateArgs {
     /// corner (traced through its points and fitted), and only θ is searched.
     #[arg(long)]
     pub keep_boundary: bool,
+    /// Fit a mesh that covers the target, not one whose boundary follows its edges, and
+    /// write it trimmed to the target's outline (seen along its normal) to TRIMMED
+    /// (`.obj`, faces as polygons): for a target whose edges are not curvature lines (a
+    /// roof over a rectangle whose curvature lines run askew). The panels cut by the
+    /// outline stay planar, no longer circular; the distances printed are the trimmed
+    /// mesh's. DESIGN is the untrimmed design. One patch, and no --picture yet.
+    #[arg(
+        long,
+        value_name = "TRIMMED",
+        conflicts_with_all = ["patches", "tolerance", "keep_boundary", "picture"]
+    )]
+    pub trim: Option<PathBuf>,
     /// Also draw the target's points coloured by their distance to the result, and the
     /// initial guess and the result coloured by their distance to the target, side by
     /// side (`.png` or `.svg`), on one scale (white 0, dark red from the initial guess's
@@ -283,6 +298,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         max_evaluations: args.max_evaluations,
         deadline,
         keep_boundary: args.keep_boundary,
+        trim: args.trim.is_some(),
     };
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
@@ -354,6 +370,20 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             (&r.grid, r.after)
         }
     };
+    if let (Some(path), Some(trimmed)) = (&args.trim, &r.trimmed) {
+        out.write(path, |w| {
+            write_polygons_obj(
+                &trimmed.vertices,
+                &trimmed.faces,
+                &format!(
+                    "monge approximate: {} faces trimmed to the outline of {}",
+                    trimmed.faces.len(),
+                    file
+                ),
+                w,
+            )
+        })?;
+    }
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
         let boundaries = match better {
@@ -405,6 +435,14 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         ))?;
     }
     print(&format!("wrote {}\n", args.output.display()))?;
+    if let (Some(path), Some(trimmed)) = (&args.trim, &r.trimmed) {
+        print(&format!(
+            "wrote {} ({} faces trimmed to the target's outline, {} of them cut)\n",
+            path.display(),
+            trimmed.faces.len(),
+            trimmed.cut.iter().filter(|c| **c).count()
+        ))?;
+    }
     if let Some(path) = &args.picture {
         print(&format!(
             "wrote {} (the target coloured by its distance to the result; the initial guess and the result coloured by their distance to the target)\n",

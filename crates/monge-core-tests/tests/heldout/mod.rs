@@ -11,6 +11,7 @@
 #![allow(dead_code)]
 
 use glam::{DQuat, DVec3};
+use monge_core::approximate::TrimmedMesh;
 use monge_core::QuadGrid;
 
 use crate::common::triangle_distance;
@@ -395,6 +396,39 @@ pub fn max_both_ways(target: &Target, grid: &QuadGrid) -> (f64, f64) {
         .map(|v| fine.distance(*v))
         .fold(0.0, f64::max);
     let mesh = Triangles::of_grid(grid);
+    let to_result = target
+        .grid(61)
+        .iter()
+        .map(|p| mesh.distance(*p))
+        .fold(0.0, f64::max);
+    (to_target / target.size, to_result / target.size)
+}
+
+/// Largest distances both ways between a result mesh trimmed to the target's outline
+/// and the target, relative to the target's size: (result → target, from every vertex
+/// of the trimmed mesh, its cuts too; target → result, to its polygons, each cut into
+/// a fan of triangles).
+pub fn max_both_ways_trimmed(target: &Target, trimmed: &TrimmedMesh) -> (f64, f64) {
+    let fine = Triangles::new(target.triangles(121));
+    let to_target = trimmed
+        .vertices
+        .iter()
+        .map(|v| fine.distance(*v))
+        .fold(0.0, f64::max);
+    let fans = trimmed
+        .faces
+        .iter()
+        .flat_map(|f| {
+            (1..f.len() - 1).map(|k| {
+                [
+                    trimmed.vertices[f[0]],
+                    trimmed.vertices[f[k]],
+                    trimmed.vertices[f[k + 1]],
+                ]
+            })
+        })
+        .collect();
+    let mesh = Triangles::new(fans);
     let to_result = target
         .grid(61)
         .iter()

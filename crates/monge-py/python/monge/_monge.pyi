@@ -229,6 +229,7 @@ def approximate(
     max_evaluations: int = 1500,
     time_limit: Optional[float] = None,
     keep_boundary: bool = False,
+    trim: bool = False,
     patches: Union[str, int, Tuple[int, int], None] = None,
     tolerance: Union[float, str, None] = None,
     max_patches: Optional[int] = None,
@@ -242,6 +243,9 @@ def approximate(
     ``node_types`` group nodes whose angles agree within ``angle_tol_deg`` degrees (default 0.5);
     it is None, and ``node_types_why_not`` says why, when fabrication refuses the mesh found.
     ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches.
+    ``trim=True`` (one patch, as ``--trim``) fits a mesh that covers the target and cuts it
+    by the target's outline: ``trimmed`` holds its ``vertices``, ``faces`` (planar polygons)
+    and ``cut`` (per face, whether the outline cut it); otherwise it is None.
     """
 
 def target_points(target: Union[npt.ArrayLike, _PathLike, Any]) -> _Array:

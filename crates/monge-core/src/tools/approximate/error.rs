@@ -54,6 +54,23 @@ pub enum ApproxError {
         /// [`crate::grid::MAX_SIZE`].
         max: f64,
     },
+    /// The target's outline, seen along its normal, cannot be traced as a polygon
+    /// around its centre ([`Outline::of`](super::Outline::of)).
+    #[error(
+        "the target's outline cannot be traced: {outside} of its {points} points lie outside \
+         the polygon of its boundary points seen along its normal from its centre, and \
+         {hidden} of its boundary points lie well inside it (an L-shaped, ring-shaped or \
+         closed target): trim only a target whose outline is star-shaped around its centre, \
+         or split it"
+    )]
+    NoOutline {
+        /// Target points outside the outline traced.
+        outside: usize,
+        /// Boundary points well inside it.
+        hidden: usize,
+        /// Target points.
+        points: usize,
+    },
     /// The grid asked for is too small.
     #[error(
         "a grid of {0} × {1} faces is too small: give at least 4 × 4 faces (e.g. --grid 40x40)"

@@ -35,7 +35,7 @@ impl Search<'_> {
                 xk[k] += sign * FD_STEP * scale[k];
                 evaluations += 1;
                 if let Some(grid) = self.mesh(start, &xk, faces) {
-                    let rk = self.target.residuals(&grid, matches);
+                    let rk = self.residuals_against(&grid, matches);
                     let column = rk.iter().zip(r).map(|(a, b)| sign * (a - b) / FD_STEP);
                     return (column.collect(), evaluations, false);
                 }

@@ -1,0 +1,660 @@
+//! A mesh trimmed to the target's outline (monge's extension of §4.7): where the
+//! target's edges are not curvature lines (a roof over a rectangle whose curvature
+//! lines run askew), no grid of curvature lines ends on them; the grid is fitted to
+//! cover the target instead, and each face is cut by the target's outline, seen along
+//! the target's normal ([`Outline`], [`trim`]). A cut face keeps the plane of its face:
+//! its new corners are lifted onto it, so the panels stay planar; a panel cut by the
+//! edge is no longer circular (its corners inside still are).
+
+use std::collections::HashMap;
+
+use glam::{DVec2, DVec3};
+
+use crate::grid::QuadGrid;
+
+use super::distance::Deviation;
+use super::error::ApproxError;
+use super::index::TargetCloud;
+
+/// The target's outline: its boundary points, seen along the normal of the plane
+/// fitted to all its points, as a polygon around their centroid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outline {
+    /// The centroid of the target's points: the origin of the outline's plane.
+    origin: DVec3,
+    /// The outline's plane's axes.
+    axes: [DVec3; 2],
+    /// The direction along which the target is seen (the normal of its plane).
+    up: DVec3,
+    /// The polygon, counter-clockwise in the outline's plane.
+    polygon: Vec<DVec2>,
+}
+
+/// Target points allowed outside the outline by more than this many mean spacings:
+/// none.
+const OUTSIDE_SPACINGS: f64 = 2.0;
+
+/// A boundary point farther inside the outline than this many mean spacings is not on
+/// it (a random sampling's boundary test marks points up to about two spacings inside).
+const HIDDEN_SPACINGS: f64 = 4.0;
+
+/// Share of the boundary points allowed farther inside the outline than
+/// [`HIDDEN_SPACINGS`] (a few stray ones of a scan): more, and the target has a hole or
+/// an edge the outline does not follow.
+const HIDDEN_SHARE: f64 = 0.02;
+
+impl Outline {
+    /// The outline of `target` (see the type): its boundary points in angular sectors
+    /// around the centroid of its points, seen along its normal, the farthest of each
+    /// sector (about two boundary points per sector). A target whose outline is not
+    /// star-shaped around its centroid (an L-shaped or ring-shaped roof), or seen
+    /// edge-on (a dome closed round its axis), is refused.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::{Outline, TargetCloud};
+    /// // A 21 × 21 sampling of a dome over the square [0, 10]².
+    /// let points: Vec<DVec3> = (0..441)
+    ///     .map(|k| {
+    ///         let (x, y) = ((k % 21) as f64 * 0.5, (k / 21) as f64 * 0.5);
+    ///         DVec3::new(x, y, 3.0 - 0.02 * ((x - 5.0).powi(2) + (y - 5.0).powi(2)))
+    ///     })
+    ///     .collect();
+    /// let outline = Outline::of(&TargetCloud::new(&points).unwrap()).unwrap();
+    /// // Its area is the square's, its corners on it.
+    /// assert!((outline.area() - 100.0).abs() < 1e-6);
+    /// ```
+    pub fn of(target: &TargetCloud) -> Result<Self, ApproxError> {
+        let points = &target.points;
+        let origin = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+        let up = target.up;
+        let x = up.any_orthonormal_vector();
+        let axes = [x, up.cross(x)];
+        let flat = |p: DVec3| DVec2::new((p - origin).dot(axes[0]), (p - origin).dot(axes[1]));
+        let boundary: Vec<DVec2> = points
+            .iter()
+            .zip(&target.outward)
+            .filter(|(_, o)| **o != DVec3::ZERO)
+            .map(|(p, _)| flat(*p))
+            .collect();
+        let sectors = (boundary.len() / 2).max(8);
+        let mut farthest: Vec<Option<DVec2>> = vec![None; sectors];
+        for q in &boundary {
+            let angle = q.y.atan2(q.x).rem_euclid(std::f64::consts::TAU);
+            let k = ((angle / std::f64::consts::TAU * sectors as f64) as usize).min(sectors - 1);
+            if farthest[k].is_none_or(|f| q.length() > f.length()) {
+                farthest[k] = Some(*q);
+            }
+        }
+        let polygon: Vec<DVec2> = farthest.into_iter().flatten().collect();
+        let outline = Outline {
+            origin,
+            axes,
+            up,
+            polygon,
+        };
+        let reach = OUTSIDE_SPACINGS * target.spacing;
+        let outside = points
+            .iter()
+            .map(|p| flat(*p))
+            .filter(|q| !outline.contains_flat(*q) && outline.distance_flat(*q) > reach)
+            .count();
+        // Boundary points far inside the outline: a hole's edge, or an edge that the
+        // outline's sectors do not see (an L-shaped target's inner corner).
+        let hidden = boundary
+            .iter()
+            .filter(|q| outline.distance_flat(**q) > HIDDEN_SPACINGS * target.spacing)
+            .count();
+        if outline.polygon.len() < 3
+            || outside > 0
+            || hidden as f64 > HIDDEN_SHARE * boundary.len() as f64
+            || outline.area() <= 0.0
+        {
+            return Err(ApproxError::NoOutline {
+                outside,
+                hidden,
+                points: points.len(),
+            });
+        }
+        Ok(outline)
+    }
+
+    /// The area the outline encloses (model units squared).
+    pub fn area(&self) -> f64 {
+        0.5 * self
+            .polygon
+            .iter()
+            .zip(self.polygon.iter().cycle().skip(1))
+            .map(|(a, b)| a.perp_dot(*b))
+            .sum::<f64>()
+    }
+
+    /// The outline's corners in space: its polygon's points on the target.
+    pub fn polygon(&self) -> Vec<DVec3> {
+        self.polygon.iter().map(|q| self.lift(*q)).collect()
+    }
+
+    /// A point of the outline's plane in space.
+    fn lift(&self, q: DVec2) -> DVec3 {
+        self.origin + q.x * self.axes[0] + q.y * self.axes[1]
+    }
+
+    /// `p` seen along the outline's direction, in its plane.
+    fn flat(&self, p: DVec3) -> DVec2 {
+        let d = p - self.origin;
+        DVec2::new(d.dot(self.axes[0]), d.dot(self.axes[1]))
+    }
+
+    /// Whether `p`, seen along the outline's direction, lies inside it.
+    pub fn contains(&self, p: DVec3) -> bool {
+        self.contains_flat(self.flat(p))
+    }
+
+    /// Whether `q` lies inside the polygon (even–odd rule).
+    fn contains_flat(&self, q: DVec2) -> bool {
+        let mut inside = false;
+        for (a, b) in self.polygon.iter().zip(self.polygon.iter().cycle().skip(1)) {
+            if (a.y > q.y) != (b.y > q.y) {
+                let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if q.x < x {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
+    }
+
+    /// Distance from `q` to the polygon's sides.
+    fn distance_flat(&self, q: DVec2) -> f64 {
+        self.polygon
+            .iter()
+            .zip(self.polygon.iter().cycle().skip(1))
+            .map(|(a, b)| {
+                let ab = *b - *a;
+                let t =
+                    ((q - *a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                q.distance(*a + t * ab)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// A mesh of planar polygons: a grid trimmed to an outline ([`trim`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TrimmedMesh {
+    /// Its vertices: the grid's inside the outline, then the cuts'.
+    pub vertices: Vec<DVec3>,
+    /// Its faces, each a polygon of vertex indices, counter-clockwise as the grid's
+    /// faces run.
+    pub faces: Vec<Vec<usize>>,
+    /// Of each face, the grid's face `(i, j)` it was cut from.
+    pub from: Vec<(usize, usize)>,
+    /// Of each face, whether the outline cut it (else it is its grid face whole).
+    pub cut: Vec<bool>,
+}
+
+/// `grid` trimmed to `outline` (see the module documentation): the faces inside it
+/// whole, the faces across it cut by it (each cut face in the plane of its face: its
+/// corners inside the outline are the grid's own vertices, its cuts of the grid's
+/// edges lie on those edges, shared with the neighbouring face, and the outline's
+/// corners within it are lifted onto its plane along the outline's direction), the
+/// faces outside it dropped.
+///
+/// ```
+/// use glam::DVec3;
+/// use monge_core::approximate::{trim, Outline, TargetCloud};
+/// use monge_core::QuadGrid;
+/// // A target over the disc of radius 4, and a flat grid over the square [−5, 5]².
+/// let points: Vec<DVec3> = (0..2000)
+///     .map(|k| {
+///         let (r, a) = (4.0 * ((k as f64 + 0.5) / 2000.0).sqrt(), k as f64 * 2.399963);
+///         let (x, y) = (r * a.cos(), r * a.sin());
+///         DVec3::new(x, y, 0.05 * (x * x - 0.5 * y * y))
+///     })
+///     .collect();
+/// let outline = Outline::of(&TargetCloud::new(&points).unwrap()).unwrap();
+/// let vertices: Vec<DVec3> = (0..121)
+///     .map(|k| DVec3::new((k / 11) as f64 - 5.0, (k % 11) as f64 - 5.0, 0.0))
+///     .collect();
+/// let grid = QuadGrid::new(11, 11, vertices, vec![]);
+/// let trimmed = trim(&grid, &outline);
+/// // Fewer faces than the grid's 100, every one inside the disc (with its cut points).
+/// assert!(trimmed.faces.len() < 100 && trimmed.faces.len() > 40);
+/// assert!(trimmed.vertices.iter().all(|v| v.truncate().length() < 4.0 + 1e-9));
+/// ```
+pub fn trim(grid: &QuadGrid, outline: &Outline) -> TrimmedMesh {
+    let size = grid.bbox_diagonal().max(f64::MIN_POSITIVE);
+    let eps = TRIM_EPS * size;
+    let flat: Vec<DVec2> = grid.vertices.iter().map(|v| outline.flat(*v)).collect();
+    let inside: Vec<bool> = flat.iter().map(|q| outline.contains_flat(*q)).collect();
+    let mut out = TrimmedMesh::default();
+    let mut kept: HashMap<usize, usize> = HashMap::new();
+    let mut cuts: HashMap<(usize, usize, i64), usize> = HashMap::new();
+    let n = outline.polygon.len();
+    for i in 0..grid.rows.saturating_sub(1) {
+        for j in 0..grid.cols.saturating_sub(1) {
+            let corners = [
+                grid.index(i, j),
+                grid.index(i + 1, j),
+                grid.index(i + 1, j + 1),
+                grid.index(i, j + 1),
+            ];
+            let quad = corners.map(|c| flat[c]);
+            let (lo, hi) = quad
+                .iter()
+                .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), q| {
+                    (lo.min(*q), hi.max(*q))
+                });
+            let crossing = (0..n).any(|k| {
+                let (a, b) = (outline.polygon[k], outline.polygon[(k + 1) % n]);
+                a.min(b).cmple(hi + eps).all() && a.max(b).cmpge(lo - eps).all()
+            });
+            let all_inside = corners.iter().all(|c| inside[*c]);
+            let pieces: Vec<Vec<DVec2>> = if !crossing {
+                if !all_inside {
+                    continue;
+                }
+                vec![quad.to_vec()]
+            } else {
+                // A face seen along the outline's direction is a convex quad, or (where
+                // the mesh reaches beyond the target, twisted) is clipped as the two
+                // triangles either side of a diagonal.
+                convex_pieces(&quad)
+                    .iter()
+                    .map(|window| clip(&outline.polygon, window))
+                    .collect()
+            };
+            let p = corners.map(|c| grid.vertices[c]);
+            let normal = (p[2] - p[0]).cross(p[3] - p[1]);
+            for polygon in pieces {
+                if polygon.len() < 3 || polygon_area(&polygon).abs() <= eps * eps {
+                    continue;
+                }
+                let mut face = Vec::with_capacity(polygon.len());
+                let mut cut = false;
+                for q in &polygon {
+                    let index = if let Some(k) = (0..4).find(|k| q.distance(quad[*k]) <= eps) {
+                        *kept.entry(corners[k]).or_insert_with(|| {
+                            out.vertices.push(p[k]);
+                            out.vertices.len() - 1
+                        })
+                    } else if let Some((a, b, t)) = on_edge(*q, &quad, eps) {
+                        cut = true;
+                        // On the grid's edge between corners a and b: the same point for
+                        // both faces that share it.
+                        let (a, b, t) = if corners[a] < corners[b] {
+                            (a, b, t)
+                        } else {
+                            (b, a, 1.0 - t)
+                        };
+                        let key = (corners[a], corners[b], (t / TRIM_EPS).round() as i64);
+                        *cuts.entry(key).or_insert_with(|| {
+                            out.vertices.push(p[a] + t * (p[b] - p[a]));
+                            out.vertices.len() - 1
+                        })
+                    } else {
+                        // The outline's corner within the face, lifted onto its plane.
+                        cut = true;
+                        let at = outline.lift(*q);
+                        let h = normal.dot(p[0] - at) / normal.dot(outline.up);
+                        out.vertices.push(if h.is_finite() {
+                            at + h * outline.up
+                        } else {
+                            at
+                        });
+                        out.vertices.len() - 1
+                    };
+                    if face.last() != Some(&index) && face.first() != Some(&index) {
+                        face.push(index);
+                    }
+                }
+                if face.len() >= 3 {
+                    out.faces.push(face);
+                    out.from.push((i, j));
+                    out.cut.push(cut);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Distances both ways between `grid` trimmed to the target's outline (`trimmed`,
+/// [`trim`]) and `target`, relative to the target's size: from every vertex of the
+/// trimmed mesh (its cuts too) to the target, and from every target point to the grid's
+/// faces (those over the target are the trimmed mesh's).
+pub(super) fn trimmed_deviation(
+    target: &TargetCloud,
+    grid: &QuadGrid,
+    trimmed: &TrimmedMesh,
+) -> Deviation {
+    let distances: Vec<f64> = trimmed
+        .vertices
+        .iter()
+        .map(|v| target.distance_from(*v))
+        .collect();
+    target.deviation_given(grid, &distances, 1)
+}
+
+/// Tolerance of [`trim`], relative to the grid's size: a cut this near a face's corner
+/// is that corner, this near its edge is on it.
+const TRIM_EPS: f64 = 1e-10;
+
+/// Signed area of a polygon (positive counter-clockwise).
+fn polygon_area(polygon: &[DVec2]) -> f64 {
+    0.5 * polygon
+        .iter()
+        .zip(polygon.iter().cycle().skip(1))
+        .map(|(a, b)| a.perp_dot(*b))
+        .sum::<f64>()
+}
+
+/// Where `q` lies on a side of `quad`: its corners `(a, b)` and the share `t` of the
+/// way from `a` to `b`.
+fn on_edge(q: DVec2, quad: &[DVec2; 4], eps: f64) -> Option<(usize, usize, f64)> {
+    (0..4).find_map(|a| {
+        let b = (a + 1) % 4;
+        let ab = quad[b] - quad[a];
+        let t = (q - quad[a]).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE);
+        ((-1e-9..=1.0 + 1e-9).contains(&t) && q.distance(quad[a] + t * ab) <= eps).then_some((
+            a,
+            b,
+            t.clamp(0.0, 1.0),
+        ))
+    })
+}
+
+/// `quad` as convex pieces: itself if convex, else the two triangles either side of
+/// the diagonal through its reflex corner.
+fn convex_pieces(quad: &[DVec2; 4]) -> Vec<Vec<DVec2>> {
+    let turn = polygon_area(quad).signum();
+    let reflex = (0..4).find(|k| {
+        let (a, b, c) = (quad[(k + 3) % 4], quad[*k], quad[(k + 1) % 4]);
+        turn * (b - a).perp_dot(c - b) < 0.0
+    });
+    match reflex {
+        None => vec![quad.to_vec()],
+        Some(k) => {
+            let (a, b, c, d) = (
+                quad[k],
+                quad[(k + 1) % 4],
+                quad[(k + 2) % 4],
+                quad[(k + 3) % 4],
+            );
+            vec![vec![a, b, c], vec![a, c, d]]
+        }
+    }
+}
+
+/// The part of `subject` (any simple polygon) inside the convex `window`
+/// (Sutherland–Hodgman, against each side of the window in turn), in the window's
+/// orientation.
+fn clip(subject: &[DVec2], window: &[DVec2]) -> Vec<DVec2> {
+    let turn = polygon_area(window).signum();
+    let mut polygon: Vec<DVec2> = if polygon_area(subject).signum() == turn {
+        subject.to_vec()
+    } else {
+        subject.iter().rev().copied().collect()
+    };
+    let sides = window.len();
+    for k in 0..sides {
+        let (a, b) = (window[k], window[(k + 1) % sides]);
+        let side = |p: DVec2| turn * (b - a).perp_dot(p - a);
+        let input = std::mem::take(&mut polygon);
+        for (p, q) in input.iter().zip(input.iter().cycle().skip(1)) {
+            let (sp, sq) = (side(*p), side(*q));
+            if sp >= 0.0 {
+                polygon.push(*p);
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                // Where pq crosses the side's line, computed along it, so that a point
+                // that ends on the side lies on the grid's edge.
+                let d = q - p;
+                let s = (a - *p).perp_dot(d);
+                let e = b - a;
+                let u = s / d.perp_dot(e);
+                polygon.push(if u.is_finite() { a + u * e } else { *p });
+            }
+        }
+        if polygon.is_empty() {
+            break;
+        }
+    }
+    without_spikes(polygon)
+}
+
+/// `polygon` without its repeated points and spikes: where the part of a non-convex
+/// subject outside a window comes back along the window's side, Sutherland–Hodgman
+/// leaves an edge out and the same edge back (a window's corner outside the subject).
+fn without_spikes(mut polygon: Vec<DVec2>) -> Vec<DVec2> {
+    let scale = polygon
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
+        .max(f64::MIN_POSITIVE);
+    let tiny = 1e-12 * scale;
+    loop {
+        let n = polygon.len();
+        if n < 3 {
+            return polygon;
+        }
+        let spike = (0..n).find(|k| {
+            let (a, b, c) = (polygon[(k + n - 1) % n], polygon[*k], polygon[(k + 1) % n]);
+            let (ab, bc) = (b - a, c - b);
+            ab.length() <= tiny
+                || (ab.perp_dot(bc).abs() <= tiny * (ab.length() + bc.length()) && ab.dot(bc) < 0.0)
+        });
+        match spike {
+            Some(k) => {
+                polygon.remove(k);
+            }
+            None => return polygon,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::approximate::TargetCloud;
+
+    /// Whether `q` is inside `polygon`, by its winding number (not the even–odd rule
+    /// of the code).
+    fn winds(polygon: &[DVec2], q: DVec2) -> bool {
+        let turn: f64 = polygon
+            .iter()
+            .zip(polygon.iter().cycle().skip(1))
+            .map(|(a, b)| (*a - q).angle_to(*b - q))
+            .sum();
+        turn.abs() > std::f64::consts::PI
+    }
+
+    /// A concave star of `n` points around the origin.
+    fn star(rng: &mut fastrand::Rng, n: usize) -> Vec<DVec2> {
+        (0..n)
+            .map(|k| {
+                let angle = k as f64 / n as f64 * std::f64::consts::TAU;
+                let r = 2.0 + rng.f64();
+                r * DVec2::new(angle.cos(), angle.sin())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_concave_outline_clipped_by_convex_windows_keeps_their_common_area() {
+        let mut rng = fastrand::Rng::with_seed(5);
+        let mut worst = 0.0f64;
+        for _ in 0..100 {
+            let subject = star(&mut rng, 40);
+            // A convex quad near the star's edge (a parallelogram, skewed).
+            let centre = (1.5 + 1.5 * rng.f64()) * DVec2::from_angle(rng.f64() * 6.3);
+            let (a, b) = (
+                DVec2::new(0.3 + 0.5 * rng.f64(), 0.2 * rng.f64()),
+                DVec2::new(0.2 * rng.f64(), 0.3 + 0.5 * rng.f64()),
+            );
+            let window = [
+                centre - a - b,
+                centre + a - b,
+                centre + a + b,
+                centre - a + b,
+            ];
+            let part = clip(&subject, &window);
+            // The common area by counting a fine grid's points in both.
+            let (lo, hi) = window
+                .iter()
+                .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), p| {
+                    (l.min(*p), h.max(*p))
+                });
+            let n = 150;
+            let cell = (hi - lo) / n as f64;
+            let mut inside = 0usize;
+            for i in 0..n {
+                for j in 0..n {
+                    let q = lo + DVec2::new(i as f64 + 0.5, j as f64 + 0.5) * cell;
+                    inside += usize::from(winds(&window, q) && winds(&subject, q));
+                }
+            }
+            let counted = inside as f64 * cell.x * cell.y;
+            let area = if part.len() < 3 {
+                0.0
+            } else {
+                polygon_area(&part).abs()
+            };
+            let window_area = polygon_area(&window).abs();
+            worst = worst.max((area - counted).abs() / window_area);
+            // No corner of the part outside the window or the outline (a clipped
+            // corner moved onto a side's line beyond its ends was one); an empty part
+            // may be left as points on the window's sides, of no area ([`trim`] drops
+            // it).
+            if area < 1e-12 {
+                continue;
+            }
+            for q in &part {
+                let near = |polygon: &[DVec2]| {
+                    polygon
+                        .iter()
+                        .zip(polygon.iter().cycle().skip(1))
+                        .any(|(a, b)| {
+                            let t = ((*q - *a).dot(*b - *a) / (*b - *a).length_squared())
+                                .clamp(0.0, 1.0);
+                            q.distance(*a + t * (*b - *a)) < 1e-9
+                        })
+                };
+                assert!(
+                    winds(&window, *q) || near(&window),
+                    "{q:?} outside {window:?}"
+                );
+                assert!(
+                    winds(&subject, *q) || near(&subject),
+                    "{q:?} outside the outline: window {window:?} part {part:?}"
+                );
+            }
+        }
+        // The grid's count is exact to about half a cell along the sides.
+        assert!(worst < 0.02, "{worst}");
+    }
+
+    #[test]
+    fn a_square_cut_by_a_triangle_keeps_the_triangles_part() {
+        let window = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(0.0, 1.0),
+        ];
+        let triangle = [
+            DVec2::new(-1.0, -1.0),
+            DVec2::new(3.0, -1.0),
+            DVec2::new(-1.0, 3.0),
+        ];
+        // x + y ≤ 2 within the unit square: all of it; shifted to x + y ≤ 1, half.
+        let shifted: Vec<DVec2> = triangle.iter().map(|p| *p - DVec2::splat(0.5)).collect();
+        let part = clip(&shifted, &window);
+        assert!((polygon_area(&part) - 0.5).abs() < 1e-12, "{part:?}");
+        assert_eq!(clip(&triangle, &window).len(), 4);
+    }
+
+    #[test]
+    fn a_grid_trimmed_to_a_disc_has_planar_panels_and_no_cracks() {
+        // A parabolic cylinder (planar quads) sampled over a disc of radius 4, and a
+        // grid of it over [−5, 5]².
+        let z = |x: f64| 0.03 * x * x;
+        let points: Vec<DVec3> = (0..3000)
+            .map(|k| {
+                let (r, a) = (
+                    4.0 * ((k as f64 + 0.5) / 3000.0).sqrt(),
+                    k as f64 * 2.399963,
+                );
+                DVec3::new(r * a.cos(), r * a.sin(), z(r * a.cos()))
+            })
+            .collect();
+        let outline = Outline::of(&TargetCloud::new(&points).unwrap()).unwrap();
+        let n = 21;
+        let vertices: Vec<DVec3> = (0..n * n)
+            .map(|k| {
+                let (x, y) = (
+                    -5.0 + 10.0 * (k / n) as f64 / (n - 1) as f64,
+                    -5.0 + 10.0 * (k % n) as f64 / (n - 1) as f64,
+                );
+                DVec3::new(x, y, z(x))
+            })
+            .collect();
+        let grid = QuadGrid::new(n, n, vertices, vec![]);
+        let trimmed = trim(&grid, &outline);
+        assert!(trimmed.cut.iter().any(|c| *c) && trimmed.cut.iter().any(|c| !*c));
+        // Planar: each face's smallest singular value about its centroid (SVD).
+        let mut area = 0.0;
+        for f in &trimmed.faces {
+            let p: Vec<DVec3> = f.iter().map(|k| trimmed.vertices[*k]).collect();
+            let c = p.iter().copied().sum::<DVec3>() / p.len() as f64;
+            let m = nalgebra::DMatrix::from_fn(p.len(), 3, |i, j| (p[i] - c)[j]);
+            let flat = m.singular_values().min();
+            assert!(flat < 1e-12, "{flat:e}");
+            for k in 1..p.len() - 1 {
+                area += 0.5 * (p[k] - p[0]).cross(p[k + 1] - p[0]).length();
+            }
+        }
+        // Within the disc (seen along z, the target's normal), and covering it: the
+        // cylinder's area over the disc is ∫∫ √(1 + (0.06 x)²) ≈ 16π + 0.0018 · π 4⁴ / 4,
+        // less a strip of about half a spacing of the points (0.04) inside the outermost
+        // points and the outline's chords between them (measured 1.2 % less).
+        assert!(trimmed
+            .vertices
+            .iter()
+            .all(|v| v.truncate().length() < 4.0 + 1e-9));
+        let pi = std::f64::consts::PI;
+        let expected = 16.0 * pi + 0.0018 * pi * 256.0 / 4.0;
+        assert!(
+            area < expected && area > 0.98 * expected,
+            "{area} {expected}"
+        );
+        // No cracks: every edge in one face or two, and the edges in one form closed
+        // loops (each of their vertices in exactly two).
+        let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
+        for f in &trimmed.faces {
+            for (a, b) in f.iter().zip(f.iter().cycle().skip(1)) {
+                *edges.entry(((*a).min(*b), (*a).max(*b))).or_default() += 1;
+            }
+        }
+        assert!(edges.values().all(|c| *c <= 2));
+        let mut degree: HashMap<usize, usize> = HashMap::new();
+        for ((a, b), _) in edges.iter().filter(|(_, c)| **c == 1) {
+            *degree.entry(*a).or_default() += 1;
+            *degree.entry(*b).or_default() += 1;
+        }
+        assert!(degree.values().all(|d| *d == 2), "{degree:?}");
+    }
+
+    #[test]
+    fn a_ring_shaped_target_has_no_outline() {
+        // An annulus: its centre is outside it, its inner boundary points are outside
+        // the polygon of the outer ones' sectors.
+        let points: Vec<DVec3> = (0..2000)
+            .map(|k| {
+                let (r, a) = (2.0 + 2.0 * ((k as f64 + 0.5) / 2000.0), k as f64 * 2.399963);
+                DVec3::new(r * a.cos(), r * a.sin(), 0.02 * r * r)
+            })
+            .collect();
+        let error = Outline::of(&TargetCloud::new(&points).unwrap()).unwrap_err();
+        assert!(matches!(error, ApproxError::NoOutline { .. }), "{error}");
+    }
+}
