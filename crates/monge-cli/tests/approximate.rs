@@ -421,19 +421,26 @@ fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
     let best = number_after(&stdout, "the nearest design found is");
     assert!(best <= one, "{stdout}");
     assert!(best > 0.001);
-    let command = if stdout.contains("result: 2 patches") {
-        "patches"
+    // The result: the design's mesh, or the trimmed mesh written beside it.
+    let mesh = if stdout.contains("result: 1 patch covering the target, trimmed") {
+        assert!(stdout.contains("fit.trimmed.obj (the result: "), "{stdout}");
+        dir.path().join("fit.trimmed.obj")
     } else {
-        "generate"
+        let command = if stdout.contains("result: 2 patches") {
+            "patches"
+        } else {
+            "generate"
+        };
+        let mesh = dir.path().join("fit.obj");
+        monge()
+            .arg(command)
+            .arg(&design)
+            .arg("-o")
+            .arg(&mesh)
+            .assert()
+            .success();
+        mesh
     };
-    let mesh = dir.path().join("fit.obj");
-    monge()
-        .arg(command)
-        .arg(&design)
-        .arg("-o")
-        .arg(&mesh)
-        .assert()
-        .success();
     let (m, t) = paraboloid_distances(&mesh);
     assert!((m.max(t) - best).abs() < 0.05 * best, "{m} {t} {best}");
     let svg = fs::read_to_string(&picture).unwrap();

@@ -6,6 +6,7 @@ use monge_core::approximate::{
     approximate as core_approximate, approximate_patches, approximate_to_tolerance, deadline_after,
     fit_report, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, FitReport,
     PatchApproximation, PatchLayout, Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
+    TrimmedMesh,
 };
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::multipatch::{build, MultiPatchDesign};
@@ -58,8 +59,10 @@ use crate::target::{points_array, points_of};
 /// `design` returned). With `tolerance`, the command's report: `tolerance` (model
 /// units) and `tolerance_relative`, `met`, `stop` (`"met"`, `"max_patches"`,
 /// `"time_limit"` or `"refused"`) and `why` (None when met), `chosen`
-/// (`"initial_guess"`, `"one_patch"` or `"patches"`), `steps`, each fit tried
-/// (`patches`, its `deviation` or the `error` that kept it from being fitted);
+/// (`"initial_guess"`, `"one_patch"`, `"trimmed"`: one patch covering the target, trimmed
+/// to its outline, tried after one patch, its mesh in `trimmed`; or `"patches"`), `steps`, each fit tried
+/// (`patches`, `trimmed`, its `deviation` or the `error` that kept it from being
+/// fitted);
 /// `node_types`, nodes whose beam angles and angles to the node axis agree within
 /// `node_angle_tol_deg` (`angle_tol_deg`, default 0.5°, a designer's fabrication
 /// tolerance) being one type, as `fabricate(angle_tol_deg=...)` groups them; and
@@ -170,7 +173,7 @@ pub fn approximate<'py>(
             _ => None,
         };
         let max_error = match &design {
-            FitDesign::Single(_) => measurements(mesh_grid, kind, None).1,
+            FitDesign::Single(_) | FitDesign::Trimmed(..) => measurements(mesh_grid, kind, None).1,
             FitDesign::Patches(d) => patches_max_error(d)?,
         };
         Ok((report, max_error))
@@ -199,8 +202,18 @@ pub fn approximate<'py>(
     d.set_item("target_points", points.len())?;
     d.set_item("starts", single.starts)?;
     d.set_item("initial", Bound::new(py, plain(single.initial.clone()))?)?;
+    let trimmed = match (&design, &fit) {
+        (FitDesign::Trimmed(_, mesh), _) => Some(trimmed_dict(py, mesh)?),
+        (_, Fit::Single(r)) => r
+            .trimmed
+            .as_ref()
+            .map(|m| trimmed_dict(py, m))
+            .transpose()?,
+        _ => None,
+    };
+    d.set_item("trimmed", trimmed)?;
     match &design {
-        FitDesign::Single(inner) => {
+        FitDesign::Single(inner) | FitDesign::Trimmed(inner, _) => {
             let found = plain(inner.clone());
             // The mesh as `generate` makes it: the same vertices as the grid, with its report.
             let mesh =
@@ -227,20 +240,6 @@ pub fn approximate<'py>(
         Fit::Single(r) => {
             d.set_item("evaluations", r.evaluations)?;
             d.set_item("timed_out", r.timed_out)?;
-            let trimmed = match &r.trimmed {
-                Some(t) => {
-                    let dict = PyDict::new(py);
-                    dict.set_item(
-                        "vertices",
-                        points_array(py, &t.vertices, &[t.vertices.len()])?,
-                    )?;
-                    dict.set_item("faces", t.faces.clone())?;
-                    dict.set_item("cut", t.cut.clone())?;
-                    Some(dict)
-                }
-                None => None,
-            };
-            d.set_item("trimmed", trimmed)?;
         }
         Fit::Patches(b) => {
             let (r, p) = &**b;
@@ -280,6 +279,19 @@ pub fn approximate<'py>(
         }
     }
     Ok(d)
+}
+
+/// A trimmed mesh as a dict: its `vertices` (n, 3), `faces` (lists of vertex indices)
+/// and `cut` (per face, whether the outline cut it).
+fn trimmed_dict<'py>(py: Python<'py>, mesh: &TrimmedMesh) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item(
+        "vertices",
+        points_array(py, &mesh.vertices, &[mesh.vertices.len()])?,
+    )?;
+    dict.set_item("faces", mesh.faces.clone())?;
+    dict.set_item("cut", mesh.cut.clone())?;
+    Ok(dict)
 }
 
 /// What `approximate` found: one patch; one patch and the fit of patches
@@ -357,6 +369,7 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
         match fit.chosen {
             Chosen::InitialGuess => "initial_guess",
             Chosen::OnePatch => "one_patch",
+            Chosen::Trimmed => "trimmed",
             Chosen::Patches(_) => "patches",
         },
     )?;
@@ -364,6 +377,7 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
     for step in &fit.steps {
         let s = PyDict::new(py);
         s.set_item("patches", step.patches)?;
+        s.set_item("trimmed", step.trimmed)?;
         match &step.outcome {
             Ok(deviation) => {
                 s.set_item("deviation", pythonize(py, deviation)?)?;

@@ -50,7 +50,10 @@ def test_approximate_tolerance_equals_the_command(cli, tmp_path):
     assert "2 patches tried (max_patches=2)" in r["why"]
     assert "2 patches tried (--max-patches 2)" in text
     assert [s["patches"] for s in r["steps"]] == [
-        int(m) for m in re.findall(r"^(\d+) patch(?:es \(§4\.7\))?: largest", text, re.M)
+        int(m)
+        for m in re.findall(
+            r"^(\d+) patch(?:es \(§4\.7\))?(?:, trimmed to the target's outline)?: largest", text, re.M
+        )
     ]
     chosen = re.search(r"^result: (.*)$", text, re.M).group(1)
     assert chosen == {"one_patch": "1 patch", "patches": f"{r['patches']} patches (§4.7)"}.get(
@@ -59,7 +62,10 @@ def test_approximate_tolerance_equals_the_command(cli, tmp_path):
     panels, types, tol = re.search(
         r"panels (\d+), distinct node types (\d+) \(beam angles within ([0-9.e-]+)°", text
     ).groups()
-    assert (r["panels"], r["node_types"]) == (int(panels), int(types))
+    # A trimmed result's panels are its polygons (`panels` counts the grid's faces).
+    trimmed = len(r["trimmed"]["faces"]) if r["trimmed"] is not None else r["panels"]
+    assert (r["chosen"] == "trimmed") == (r["trimmed"] is not None)
+    assert (trimmed, r["node_types"]) == (int(panels), int(types))
     assert r["node_angle_tol_deg"] == float(tol) == 0.5
     lines = re.findall(r"^patch (\d+) \(block (\d+) × (\d+)\): θ ([-0-9.e]+)°.*\((RMS [0-9.e-]+, )?(\d+) points\)",
                        text, re.M)

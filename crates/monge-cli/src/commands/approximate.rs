@@ -1,7 +1,7 @@
 //! `monge approximate`: the design whose exact mesh is nearest to a target mesh or
 //! point cloud (monge's extension of the method; related to the fitting of §4.7, §4.8).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::Context;
@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
     approximate, approximate_patches, approximate_to_tolerance, deadline_after, fit_report,
     target_distances, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, PatchLayout,
-    Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
+    Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions, TrimmedMesh,
 };
 use monge_core::conical::conical_dual;
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
@@ -83,11 +83,13 @@ pub struct ApproximateArgs {
     /// (`.obj`, faces as polygons): for a target whose edges are not curvature lines (a
     /// roof over a rectangle whose curvature lines run askew). The panels cut by the
     /// outline stay planar, no longer circular; the distances printed are the trimmed
-    /// mesh's. DESIGN is the untrimmed design. One patch, and no --picture yet.
+    /// mesh's; --picture draws the mesh before trimming. DESIGN is the untrimmed design.
+    /// One patch. With --tolerance, where that fit chooses a trimmed mesh (it tries one
+    /// after one patch), it goes to TRIMMED (by default beside DESIGN: `x.trimmed.obj`).
     #[arg(
         long,
         value_name = "TRIMMED",
-        conflicts_with_all = ["patches", "tolerance", "keep_boundary", "picture"]
+        conflicts_with_all = ["patches", "keep_boundary"]
     )]
     pub trim: Option<PathBuf>,
     /// Also draw the target's points coloured by their distance to the result, and the
@@ -208,7 +210,9 @@ fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
 /// The picture: the target's points coloured by their distance to the result, then the
 /// initial guess and the result coloured by their distance to the target, all on one
 /// scale (dark red from `tolerance` if given, in model units, else from the initial
-/// guess's 95th percentile); the patch boundaries drawn on the result.
+/// guess's 95th percentile); the patch boundaries drawn on the result, labelled as
+/// before trimming where `trimmed`.
+#[allow(clippy::too_many_arguments)] // the picture's parts, each its own
 fn picture_bytes(
     r: &Approximation,
     result: &QuadGrid,
@@ -217,6 +221,7 @@ fn picture_bytes(
     target: &TargetCloud,
     tolerance: Option<f64>,
     format: Picture,
+    trimmed: bool,
 ) -> anyhow::Result<Vec<u8>> {
     let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
         let g = generate(design, &GenerateOptions::default())?;
@@ -233,7 +238,12 @@ fn picture_bytes(
     );
     let mut scene = Scene::new(result.clone());
     scene.highlights.extend(boundaries);
-    let (after, _, _) = distance_panel(scene, target, "result", Some(scale));
+    let label = if trimmed {
+        "result before trimming"
+    } else {
+        "result"
+    };
+    let (after, _, _) = distance_panel(scene, target, label, Some(scale));
     let distances = target_distances(target, result);
     let largest = distances.iter().copied().fold(0.0, f64::max);
     let dots = points
@@ -298,7 +308,8 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         max_evaluations: args.max_evaluations,
         deadline,
         keep_boundary: args.keep_boundary,
-        trim: args.trim.is_some(),
+        // With --tolerance, --trim only says where a trimmed mesh goes: the fit tries one.
+        trim: args.trim.is_some() && args.tolerance.is_none(),
     };
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
@@ -371,18 +382,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         }
     };
     if let (Some(path), Some(trimmed)) = (&args.trim, &r.trimmed) {
-        out.write(path, |w| {
-            write_polygons_obj(
-                &trimmed.vertices,
-                &trimmed.faces,
-                &format!(
-                    "monge approximate: {} faces trimmed to the outline of {}",
-                    trimmed.faces.len(),
-                    file
-                ),
-                w,
-            )
-        })?;
+        write_trimmed_into(trimmed, path, &file, &mut out)?;
     }
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
@@ -390,7 +390,10 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             Some(p) => patch_boundaries(&build(&p.design, &GenerateOptions::default())?),
             None => Vec::new(),
         };
-        let bytes = picture_bytes(&r, grid, boundaries, &points, &target, None, format)?;
+        let trimmed = r.trimmed.is_some();
+        let bytes = picture_bytes(
+            &r, grid, boundaries, &points, &target, None, format, trimmed,
+        )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
     out.commit()?;
@@ -437,10 +440,9 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     print(&format!("wrote {}\n", args.output.display()))?;
     if let (Some(path), Some(trimmed)) = (&args.trim, &r.trimmed) {
         print(&format!(
-            "wrote {} ({} faces trimmed to the target's outline, {} of them cut)\n",
+            "wrote {} ({})\n",
             path.display(),
-            trimmed.faces.len(),
-            trimmed.cut.iter().filter(|c| **c).count()
+            trimmed_faces(trimmed)
         ))?;
     }
     if let Some(path) = &args.picture {
@@ -475,11 +477,50 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
+/// Where the trimmed mesh goes: `--trim`'s path, or beside DESIGN (`x.json` →
+/// `x.trimmed.obj`) when `--tolerance` chooses a trimmed mesh without it.
+fn trimmed_path(args: &ApproximateArgs) -> PathBuf {
+    args.trim
+        .clone()
+        .unwrap_or_else(|| args.output.with_extension("trimmed.obj"))
+}
+
+/// Queues the trimmed mesh `mesh` of the target `file` for `path` (OBJ, faces as
+/// polygons).
+fn write_trimmed_into(
+    mesh: &TrimmedMesh,
+    path: &Path,
+    file: &str,
+    out: &mut Outputs,
+) -> anyhow::Result<()> {
+    out.write(path, |w| {
+        write_polygons_obj(
+            &mesh.vertices,
+            &mesh.faces,
+            &format!(
+                "monge approximate: {} faces trimmed to the outline of {file}",
+                mesh.faces.len()
+            ),
+            w,
+        )
+    })?;
+    Ok(())
+}
+
+/// `N faces trimmed to the target's outline, M of them cut`.
+fn trimmed_faces(mesh: &TrimmedMesh) -> String {
+    format!(
+        "{} faces trimmed to the target's outline, {} of them cut",
+        mesh.faces.len(),
+        mesh.cut.iter().filter(|c| **c).count()
+    )
+}
+
 /// The exactness of `design` measured as by `monge check`: its mesh, or each patch on
 /// its own grid.
 fn exactness(design: &FitDesign) -> anyhow::Result<f64> {
     Ok(match design {
-        FitDesign::Single(d) => {
+        FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
             let g = generate(d, &GenerateOptions::default())?.grid;
             let m = measure(&g);
             match d.mesh {
@@ -513,9 +554,15 @@ fn finish_tolerance(
     let report = fit_report(&target, &fit.design, args.angle_tol.to_radians())
         .with_context(|| file.clone())?;
     let mut out = Outputs::new();
+    let trimmed_path = trimmed_path(args);
     let boundaries = match &fit.design {
         FitDesign::Single(d) => {
             write_design_into(d, &args.output, &mut out)?;
+            Vec::new()
+        }
+        FitDesign::Trimmed(d, mesh) => {
+            write_design_into(d, &args.output, &mut out)?;
+            write_trimmed_into(mesh, &trimmed_path, &file, &mut out)?;
             Vec::new()
         }
         FitDesign::Patches(d) => {
@@ -533,6 +580,7 @@ fn finish_tolerance(
             &target,
             tolerance,
             format,
+            matches!(fit.design, FitDesign::Trimmed(..)),
         )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
@@ -546,9 +594,10 @@ fn finish_tolerance(
         num(fit.limit)
     );
     for step in &fit.steps {
-        let name = match step.patches {
-            1 => "1 patch".to_owned(),
-            k => format!("{k} patches (§4.7)"),
+        let name = match (step.patches, step.trimmed) {
+            (1, true) => "1 patch, trimmed to the target's outline".to_owned(),
+            (1, false) => "1 patch".to_owned(),
+            (k, _) => format!("{k} patches (§4.7)"),
         };
         match &step.outcome {
             Ok(d) => text.push_str(&format!(
@@ -567,6 +616,7 @@ fn finish_tolerance(
             Chosen::InitialGuess =>
                 "the initial guess of one patch (nearer than every fit)".to_owned(),
             Chosen::OnePatch => "1 patch".to_owned(),
+            Chosen::Trimmed => "1 patch covering the target, trimmed to its outline".to_owned(),
             Chosen::Patches(k) => format!("{k} patches (§4.7)"),
         },
         both(d.mesh_to_target_max, size),
@@ -601,8 +651,13 @@ fn finish_tolerance(
         fit.evaluations,
         args.output.display(),
         match fit.design {
-            FitDesign::Single(_) => "",
-            FitDesign::Patches(_) => " (a multi-patch design: `monge patches` reads it)",
+            FitDesign::Single(_) => String::new(),
+            FitDesign::Trimmed(_, ref mesh) => format!(
+                " (the design before trimming)\nwrote {} (the result: {})",
+                trimmed_path.display(),
+                trimmed_faces(mesh)
+            ),
+            FitDesign::Patches(_) => " (a multi-patch design: `monge patches` reads it)".to_owned(),
         }
     ));
     if let Some(path) = &args.picture {

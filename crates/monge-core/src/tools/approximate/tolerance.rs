@@ -24,6 +24,7 @@ use crate::multipatch::{build, MultiPatchDesign, MultiPatchError};
 
 use super::distance::MeshFaces;
 use super::patches::per_patch;
+use super::trim::{trimmed_deviation, TrimmedMesh};
 use super::{
     approximate, approximate_patches, fair_mesh, ApproxError, ApproxOptions, Approximation,
     Deviation, PatchFit, PatchLayout, Progress, TargetCloud,
@@ -218,6 +219,8 @@ pub enum Stop {
 pub struct Step {
     /// Patches of the fit.
     pub patches: usize,
+    /// Whether its mesh covers the target and is trimmed to its outline.
+    pub trimmed: bool,
     /// Its deviation, or why it could not be fitted.
     pub outcome: Result<Deviation, ApproxError>,
 }
@@ -229,13 +232,16 @@ pub enum FitDesign {
     Single(Design),
     /// A multi-patch design (`monge patches` reads it).
     Patches(MultiPatchDesign),
+    /// One design whose mesh covers the target, and that mesh trimmed to the target's
+    /// outline ([`ApproxOptions::trim`]): the trimmed mesh is the result.
+    Trimmed(Design, TrimmedMesh),
 }
 
 impl FitDesign {
     /// Its patches.
     pub fn patches(&self) -> usize {
         match self {
-            FitDesign::Single(_) => 1,
+            FitDesign::Single(_) | FitDesign::Trimmed(..) => 1,
             FitDesign::Patches(d) => d.patches.len(),
         }
     }
@@ -248,6 +254,8 @@ pub enum Chosen {
     InitialGuess,
     /// The one-patch fit.
     OnePatch,
+    /// The one-patch fit that covers the target, trimmed to its outline.
+    Trimmed,
     /// The fit of this many patches.
     Patches(usize),
 }
@@ -326,7 +334,9 @@ struct Seen {
 }
 
 /// The design nearest to a target within `options.tolerance` both ways: one patch
-/// ([`super::approximate`]), then the layouts of [`refinements`] of up to
+/// ([`super::approximate`]), then (where the target's outline can be traced) one patch
+/// that covers it, trimmed to its outline ([`ApproxOptions::trim`]: a target whose
+/// edges are not curvature lines), then the layouts of [`refinements`] of up to
 /// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`]: the one-patch
 /// result cut into blocks from its middle, every free guide and θ free, §4.7), until
 /// one is within the tolerance. The
@@ -376,6 +386,7 @@ pub fn approximate_to_tolerance(
     let limit = options.tolerance.relative_to(single.after.size);
     let mut steps = vec![Step {
         patches: 1,
+        trimmed: false,
         outcome: Ok(single.after),
     }];
     let mut best = Seen {
@@ -396,10 +407,50 @@ pub fn approximate_to_tolerance(
     }
     best_max = best.deviation.max();
     let past_deadline = || options.approx.deadline.is_some_and(|d| Instant::now() >= d);
+    // One patch covering the target, trimmed to its outline, where one patch does not
+    // meet the tolerance and the outline can be traced.
+    if best_max > limit && !single.timed_out && !options.approx.trim {
+        let trim = ApproxOptions {
+            trim: true,
+            ..options.approx
+        };
+        let fit = approximate(points, &trim, &mut |p| {
+            progress(&ToleranceProgress {
+                patches: 1,
+                evaluations: done + p.evaluations,
+                search: *p,
+                best_max,
+            });
+        });
+        match fit {
+            Ok(t) => {
+                done += t.evaluations;
+                steps.push(Step {
+                    patches: 1,
+                    trimmed: true,
+                    outcome: Ok(t.after),
+                });
+                if let (true, Some(mesh)) = (t.after.closer_than(&best.deviation), t.trimmed) {
+                    best_max = t.after.max();
+                    best = Seen {
+                        design: FitDesign::Trimmed(t.design, mesh),
+                        grid: t.grid,
+                        deviation: t.after,
+                        chosen: Chosen::Trimmed,
+                    };
+                }
+            }
+            Err(error) => steps.push(Step {
+                patches: 1,
+                trimmed: true,
+                outcome: Err(error),
+            }),
+        }
+    }
     let mut stop = Stop::MaxPatches(options.max_patches);
     if best_max <= limit {
         stop = Stop::Met;
-    } else if single.timed_out {
+    } else if single.timed_out || past_deadline() {
         stop = Stop::TimeLimit;
     } else {
         for layout in refinements(options.max_patches) {
@@ -421,6 +472,7 @@ pub fn approximate_to_tolerance(
                     done += evaluations;
                     steps.push(Step {
                         patches,
+                        trimmed: false,
                         outcome: Ok(deviation),
                     });
                     if deviation.closer_than(&best.deviation) {
@@ -446,6 +498,7 @@ pub fn approximate_to_tolerance(
                 }
                 Err(error) => steps.push(Step {
                     patches,
+                    trimmed: false,
                     outcome: Err(error),
                 }),
             }
@@ -467,7 +520,7 @@ pub fn approximate_to_tolerance(
 /// What a designer looks at (§6's counts and the deviation).
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitReport {
-    /// Panels (faces of the mesh).
+    /// Panels (faces of the mesh; of a trimmed mesh, its polygons).
     pub panels: usize,
     /// Distinct node types, as [`fabricate`] groups them at `node_angle_tol`; or why
     /// the nodes could not be grouped: fabrication's refusal of the mesh found (an
@@ -484,8 +537,9 @@ pub struct FitReport {
 
 /// The report of the fit `design` of `target`: panels, node types (nodes whose beam
 /// and axis angles agree within `angle_tol` radians are one type, as [`fabricate`]
-/// groups them; [`crate::fabrication::DESIGN_ANGLE_TOL_DEG`] is a designer's),
-/// deviation, and per patch its θ and deviation.
+/// groups them; [`crate::fabrication::DESIGN_ANGLE_TOL_DEG`] is a designer's; of a
+/// trimmed mesh, the untrimmed grid's nodes), deviation, and per patch its θ and
+/// deviation.
 ///
 /// ```
 /// use glam::DVec3;
@@ -528,14 +582,21 @@ pub fn fit_report(
         })
     };
     match design {
-        FitDesign::Single(d) => {
+        FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
             let circular = generate(d, &GenerateOptions::default())?.grid;
             let dual = (d.mesh == MeshKind::Conical).then(|| conical_dual(&circular));
             let (grid, base) = match &dual {
                 Some(c) => (&c.grid, BaseMesh::Conical(c)),
                 None => (&circular, BaseMesh::Circular(&circular)),
             };
-            let deviation = target.deviation(grid);
+            let trimmed = match design {
+                FitDesign::Trimmed(_, mesh) => Some(mesh),
+                _ => None,
+            };
+            let deviation = match trimmed {
+                Some(mesh) => trimmed_deviation(target, grid, mesh),
+                None => target.deviation(grid),
+            };
             let one = PatchFit {
                 block: (0, 0),
                 theta_deg: d.theta_deg,
@@ -543,7 +604,11 @@ pub fn fit_report(
                 max: deviation.target_to_mesh_max,
                 rms: deviation.target_to_mesh_rms,
             };
-            report(base, deviation, vec![one])
+            let mut r = report(base, deviation, vec![one])?;
+            if let Some(mesh) = trimmed {
+                r.panels = mesh.faces.len();
+            }
+            Ok(r)
         }
         FitDesign::Patches(d) => {
             let mp = build(d, &GenerateOptions::default())?;
