@@ -203,3 +203,50 @@ fn roofs_whose_edges_are_not_curvature_lines_are_met_once_trimmed() {
         assert!(untrimmed > 1e-2, "{name}: {untrimmed:e}");
     }
 }
+
+/// The free-form held-out meshes (41 × 41 vertices) fitted to 5e-3 of their size
+/// (`--tolerance 5e-3`, default settings otherwise): what the fit chose and its largest
+/// distances both ways, brute force (the trimmed mesh where it chose one):
+/// `cargo test -p monge-core-tests --test integration approximate_heldout:: --
+/// --ignored --nocapture` (`HELDOUT=Bézier` measures only the targets whose name
+/// contains it).
+#[test]
+#[ignore = "a measurement (ten minutes or more); prints the table"]
+fn measure_free_form_to_a_tolerance() {
+    use monge_core::approximate::{
+        approximate_to_tolerance, FitDesign, Tolerance, ToleranceOptions,
+    };
+    use monge_core::multipatch::build;
+    println!("| target | chosen | result → target | target → result | read by monge | within 5e-3 | time s |");
+    println!("|---|---|---|---|---|---|---|");
+    let only = std::env::var("HELDOUT").unwrap_or_default();
+    for target in targets()
+        .into_iter()
+        .filter(|t| !t.pcl && t.name.contains(&only))
+    {
+        let clock = Instant::now();
+        let options = ToleranceOptions {
+            tolerance: Tolerance::Relative(5e-3),
+            ..Default::default()
+        };
+        let fit = approximate_to_tolerance(&target.grid(41), &options, &mut |_| {}).unwrap();
+        let seconds = clock.elapsed().as_secs_f64();
+        let (chosen, (a, b)) = match &fit.design {
+            FitDesign::Trimmed(_, mesh) => {
+                ("1 patch, trimmed", max_both_ways_trimmed(&target, mesh))
+            }
+            FitDesign::Single(_) => ("1 patch", max_both_ways(&target, &fit.grid)),
+            FitDesign::Patches(d) => {
+                let mp = build(d, &Default::default()).unwrap();
+                ("patches", max_both_ways(&target, &mp.grid))
+            }
+        };
+        println!(
+            "| {} | {chosen} ({}) | {a:.1e} | {b:.1e} | {:.1e} | {} | {seconds:.0} |",
+            target.name,
+            fit.design.patches(),
+            fit.deviation.max(),
+            if a.max(b) <= 5e-3 { "yes" } else { "no" },
+        );
+    }
+}

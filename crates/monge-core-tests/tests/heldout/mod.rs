@@ -389,19 +389,7 @@ impl Triangles {
 /// Largest distances both ways between a result mesh and the target, relative to the
 /// target's size: (result → target, target → result).
 pub fn max_both_ways(target: &Target, grid: &QuadGrid) -> (f64, f64) {
-    let fine = Triangles::new(target.triangles(121));
-    let to_target = grid
-        .vertices
-        .iter()
-        .map(|v| fine.distance(*v))
-        .fold(0.0, f64::max);
-    let mesh = Triangles::of_grid(grid);
-    let to_result = target
-        .grid(61)
-        .iter()
-        .map(|p| mesh.distance(*p))
-        .fold(0.0, f64::max);
-    (to_target / target.size, to_result / target.size)
+    both_ways(target, &grid.vertices, Triangles::of_grid(grid))
 }
 
 /// Largest distances both ways between a result mesh trimmed to the target's outline
@@ -409,12 +397,6 @@ pub fn max_both_ways(target: &Target, grid: &QuadGrid) -> (f64, f64) {
 /// of the trimmed mesh, its cuts too; target → result, to its polygons, each cut into
 /// a fan of triangles).
 pub fn max_both_ways_trimmed(target: &Target, trimmed: &TrimmedMesh) -> (f64, f64) {
-    let fine = Triangles::new(target.triangles(121));
-    let to_target = trimmed
-        .vertices
-        .iter()
-        .map(|v| fine.distance(*v))
-        .fold(0.0, f64::max);
     let fans = trimmed
         .faces
         .iter()
@@ -428,7 +410,17 @@ pub fn max_both_ways_trimmed(target: &Target, trimmed: &TrimmedMesh) -> (f64, f6
             })
         })
         .collect();
-    let mesh = Triangles::new(fans);
+    both_ways(target, &trimmed.vertices, Triangles::new(fans))
+}
+
+/// Largest distances, relative to the target's size, from `vertices` to the target (its
+/// fine triangulation) and from the target (a 61 × 61 sampling) to `mesh`.
+fn both_ways(target: &Target, vertices: &[DVec3], mesh: Triangles) -> (f64, f64) {
+    let fine = Triangles::new(target.triangles(121));
+    let to_target = vertices
+        .iter()
+        .map(|v| fine.distance(*v))
+        .fold(0.0, f64::max);
     let to_result = target
         .grid(61)
         .iter()
