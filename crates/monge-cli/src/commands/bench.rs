@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use glam::DVec3;
-use monge_core::approximate::{fit_report, FitDesign, TargetCloud};
+use monge_core::approximate::{fit_report, FitDesign, TargetCloud, TrimmedMesh};
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
 use monge_io::{read_design, read_multipatch, read_points};
@@ -227,11 +227,16 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
     let points = read_points(&target)?;
     let text = std::fs::read_to_string(&design)
         .with_context(|| format!("cannot read `{}`", design.display()))?;
+    // The result: the multi-patch design, the trimmed mesh written beside the design,
+    // or the design.
+    let trimmed = design.with_extension("trimmed.obj");
     let fit = if serde_json::from_str::<serde_json::Value>(&text)?
         .get("patches")
         .is_some()
     {
         FitDesign::Patches(read_multipatch(&design)?)
+    } else if trimmed.exists() {
+        FitDesign::Trimmed(read_design(&design)?, read_trimmed(&trimmed)?)
     } else {
         FitDesign::Single(read_design(&design)?)
     };
@@ -251,6 +256,40 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
         run.status == 0,
     ))?;
     Ok(())
+}
+
+/// A trimmed mesh as `monge approximate` writes it (OBJ, `v` and `f` lines): its
+/// vertices and polygons (each read as not cut: the bench measures its distances).
+fn read_trimmed(path: &std::path::Path) -> anyhow::Result<TrimmedMesh> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read `{}`", path.display()))?;
+    let mut mesh = TrimmedMesh::default();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let x: Vec<f64> = words.map(str::parse).collect::<Result<_, _>>()?;
+                anyhow::ensure!(x.len() == 3, "`{line}` in `{}`", path.display());
+                mesh.vertices.push(glam::DVec3::new(x[0], x[1], x[2]));
+            }
+            Some("f") => {
+                let face = words
+                    .map(|w| {
+                        w.parse::<usize>()
+                            .ok()
+                            .and_then(|k| k.checked_sub(1))
+                            .filter(|k| *k < mesh.vertices.len())
+                            .with_context(|| format!("`{line}` in `{}`", path.display()))
+                    })
+                    .collect::<anyhow::Result<Vec<_>>>()?;
+                mesh.faces.push(face);
+                mesh.from.push((0, 0));
+                mesh.cut.push(false);
+            }
+            _ => {}
+        }
+    }
+    Ok(mesh)
 }
 
 /// `monge bench --all`: every command of [`COMMANDS`] on the bundled design at
