@@ -105,12 +105,14 @@ pub struct ApproximateArgs {
     /// written only if it follows the target more closely.
     #[arg(long, value_name = "UxV")]
     pub patches: Option<PatchLayout>,
-    /// Fit one patch, then 2x1, 2x2, 3x2, … patches (as --patches) until the mesh is within TOL of
-    /// the target both ways (the largest distances): a number is relative to the target's
-    /// size (`5e-3`), a number and a unit a length (`0.05m`, `5cm`, `50mm`, the target's
-    /// coordinates taken as metres). DESIGN is the nearest design found, within TOL or
-    /// not (then exit status 1, and why: the patch budget, --time-limit, patches that
-    /// cannot be fitted).
+    /// Fit one patch, then one patch that covers the target trimmed to its outline (as
+    /// --trim, where the outline can be traced), then 2x1, 2x2, 3x2, … patches (as
+    /// --patches) until the mesh is within TOL of the target both ways (the largest
+    /// distances): a number is relative to the target's size (`5e-3`), a number and a
+    /// unit a length (`0.05m`, `5cm`, `50mm`, the target's coordinates taken as metres).
+    /// DESIGN is the nearest design found, within TOL or not (then exit status 1, and why:
+    /// the patch budget, --time-limit, patches that cannot be fitted); a trimmed mesh
+    /// found nearest goes to --trim's path, or beside DESIGN (`x.trimmed.obj`).
     #[arg(
         long,
         value_name = "TOL",
