@@ -270,6 +270,18 @@ impl QuadGrid {
     }
 }
 
+/// Distance from `p` to the segment `ab`.
+pub(crate) fn point_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let e = b - a;
+    let l2 = e.length_squared();
+    let t = if l2 > 0.0 {
+        ((p - a).dot(e) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + t * e)
+}
+
 /// Area of a quad `[A, B, C, D]` given in cyclic order (§4.8, panel areas):
 /// `½ |(C − A) × (D − B)|`, half the length of the cross product of its diagonals.
 ///

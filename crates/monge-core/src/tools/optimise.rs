@@ -23,6 +23,7 @@ use serde::Serialize;
 
 use crate::design::{GuideSpec, Xyz};
 use crate::generate::{GenerateOptions, SINGULAR_WINDOW_DEG};
+use crate::grid::point_segment;
 use crate::multipatch::{build, MultiPatch, MultiPatchDesign, MultiPatchError};
 
 pub use crate::multipatch::{BoundaryRef, FitSpec, FreeParameter, GuideKey, Target};
@@ -313,18 +314,6 @@ fn distance(mesh: &MultiPatch, spec: &FitSpec, target: &CheckedTarget, scale: f6
         rms,
         relative: max / if size > 0.0 { size } else { scale },
     }
-}
-
-/// Distance from `p` to the segment `ab`.
-fn point_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let e = b - a;
-    let l2 = e.length_squared();
-    let t = if l2 > 0.0 {
-        ((p - a).dot(e) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + t * e)
 }
 
 /// The guide spec a control-point parameter refers to, if the patch has it.

@@ -5,7 +5,7 @@
 use glam::{DVec2, DVec3};
 use rstar::RTree;
 
-use crate::grid::{bbox_diagonal, QuadGrid, MAX_SIZE, MIN_SIZE};
+use crate::grid::{bbox_diagonal, point_segment, QuadGrid, MAX_SIZE, MIN_SIZE};
 
 use super::distance::{triangle_offsets, Deviation, Indexed, MeshFaces, Triangle};
 use super::edge::{beyond_edge, edge_residuals, edge_windows, side_windows, EDGE_NEIGHBOURS};
@@ -204,7 +204,7 @@ impl TargetCloud {
             .nearest_neighbor_iter(*b.geom())
             .skip(1)
             .take(2)
-            .map(|n| segment_distance(v, b0, DVec3::from_array(*n.geom())))
+            .map(|n| point_segment(v, b0, DVec3::from_array(*n.geom())))
             .fold(v.distance(b0), f64::min)
     }
 
@@ -462,13 +462,6 @@ fn regular_edge(boundary: &RTree<Indexed>) -> bool {
 /// Largest coefficient of variation of the boundary points' spacing of a target whose
 /// boundary points lie on its edge ([`regular_edge`]).
 const REGULAR_EDGE: f64 = 0.25;
-
-/// Distance from `p` to the segment `ab`.
-fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-    p.distance(a + t * ab)
-}
 
 /// A vertex is measured against the target's edge when a boundary point is within this
 /// many mean spacings of as near to it as its nearest target point: a random sampling's

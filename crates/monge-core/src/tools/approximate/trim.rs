@@ -69,13 +69,17 @@ impl Outline {
         let origin = points.iter().copied().sum::<DVec3>() / points.len() as f64;
         let up = target.up;
         let x = up.any_orthonormal_vector();
-        let axes = [x, up.cross(x)];
-        let flat = |p: DVec3| DVec2::new((p - origin).dot(axes[0]), (p - origin).dot(axes[1]));
+        let mut outline = Outline {
+            origin,
+            axes: [x, up.cross(x)],
+            up,
+            polygon: Vec::new(),
+        };
         let boundary: Vec<DVec2> = points
             .iter()
             .zip(&target.outward)
             .filter(|(_, o)| **o != DVec3::ZERO)
-            .map(|(p, _)| flat(*p))
+            .map(|(p, _)| outline.flat(*p))
             .collect();
         let sectors = (boundary.len() / 2).max(8);
         let mut farthest: Vec<Option<DVec2>> = vec![None; sectors];
@@ -86,17 +90,11 @@ impl Outline {
                 farthest[k] = Some(*q);
             }
         }
-        let polygon: Vec<DVec2> = farthest.into_iter().flatten().collect();
-        let outline = Outline {
-            origin,
-            axes,
-            up,
-            polygon,
-        };
+        outline.polygon = farthest.into_iter().flatten().collect();
         let reach = OUTSIDE_SPACINGS * target.spacing;
         let outside = points
             .iter()
-            .map(|p| flat(*p))
+            .map(|p| outline.flat(*p))
             .filter(|q| !outline.contains_flat(*q) && outline.distance_flat(*q) > reach)
             .count();
         // Boundary points far inside the outline: a hole's edge, or an edge that the
@@ -121,12 +119,7 @@ impl Outline {
 
     /// The area the outline encloses (model units squared).
     pub fn area(&self) -> f64 {
-        0.5 * self
-            .polygon
-            .iter()
-            .zip(self.polygon.iter().cycle().skip(1))
-            .map(|(a, b)| a.perp_dot(*b))
-            .sum::<f64>()
+        polygon_area(&self.polygon)
     }
 
     /// The outline's corners in space: its polygon's points on the target.
