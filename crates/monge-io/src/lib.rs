@@ -60,6 +60,7 @@ pub use gltf::{write_glb, write_grid_glb, write_quads_glb};
 pub use iges::{read_iges_surfaces, write_iges, IgesSurface, NurbsColumn, NurbsColumns};
 pub use mesh_read::{
     read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from,
+    read_polygons_obj,
 };
 pub use mesh_write::{
     write_mesh, write_mesh_at, write_mesh_json, write_mesh_to, write_obj, write_ply,

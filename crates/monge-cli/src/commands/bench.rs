@@ -9,7 +9,7 @@ use glam::DVec3;
 use monge_core::approximate::{fit_report, FitDesign, TargetCloud, TrimmedMesh};
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
-use monge_io::{read_design, read_multipatch, read_points};
+use monge_io::{read_design, read_multipatch, read_points, read_polygons_obj};
 
 use crate::shared::help::EXIT;
 use crate::shared::output::print;
@@ -236,7 +236,15 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
     {
         FitDesign::Patches(read_multipatch(&design)?)
     } else if trimmed.exists() {
-        FitDesign::Trimmed(read_design(&design)?, read_trimmed(&trimmed)?)
+        // Its polygons read as not cut: the bench measures their distances.
+        let (vertices, faces) = read_polygons_obj(&trimmed)?;
+        let mesh = TrimmedMesh {
+            from: vec![(0, 0); faces.len()],
+            cut: vec![false; faces.len()],
+            vertices,
+            faces,
+        };
+        FitDesign::Trimmed(read_design(&design)?, mesh)
     } else {
         FitDesign::Single(read_design(&design)?)
     };
@@ -256,40 +264,6 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
         run.status == 0,
     ))?;
     Ok(())
-}
-
-/// A trimmed mesh as `monge approximate` writes it (OBJ, `v` and `f` lines): its
-/// vertices and polygons (each read as not cut: the bench measures its distances).
-fn read_trimmed(path: &std::path::Path) -> anyhow::Result<TrimmedMesh> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read `{}`", path.display()))?;
-    let mut mesh = TrimmedMesh::default();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let x: Vec<f64> = words.map(str::parse).collect::<Result<_, _>>()?;
-                anyhow::ensure!(x.len() == 3, "`{line}` in `{}`", path.display());
-                mesh.vertices.push(glam::DVec3::new(x[0], x[1], x[2]));
-            }
-            Some("f") => {
-                let face = words
-                    .map(|w| {
-                        w.parse::<usize>()
-                            .ok()
-                            .and_then(|k| k.checked_sub(1))
-                            .filter(|k| *k < mesh.vertices.len())
-                            .with_context(|| format!("`{line}` in `{}`", path.display()))
-                    })
-                    .collect::<anyhow::Result<Vec<_>>>()?;
-                mesh.faces.push(face);
-                mesh.from.push((0, 0));
-                mesh.cut.push(false);
-            }
-            _ => {}
-        }
-    }
-    Ok(mesh)
 }
 
 /// `monge bench --all`: every command of [`COMMANDS`] on the bundled design at

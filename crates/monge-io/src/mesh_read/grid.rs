@@ -56,6 +56,8 @@ pub(super) struct RawMesh {
     pub(super) normals: Vec<DVec3>,
     /// 0-based corners.
     pub(super) faces: Vec<[usize; 4]>,
+    /// 0-based corners of faces of any number of corners ([`Keep::Polygons`]).
+    pub(super) polygons: Vec<Vec<usize>>,
 }
 
 impl RawMesh {
@@ -193,6 +195,8 @@ pub(super) enum Keep {
     Grid,
     /// The points only (`monge approximate`'s targets): faces of any shape are read past.
     Points,
+    /// The vertices and faces of any number of corners (a trimmed mesh), OBJ only.
+    Polygons,
 }
 
 #[cfg(test)]

@@ -16,4 +16,6 @@ mod read;
 
 pub use json::read_face_normals;
 pub(crate) use read::read_vertices;
-pub use read::{read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from};
+pub use read::{
+    read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from, read_polygons_obj,
+};

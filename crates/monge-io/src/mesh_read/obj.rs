@@ -66,6 +66,20 @@ pub(super) fn parse_obj(reader: impl BufRead, file: &str, keep: Keep) -> Result<
                 }
                 raw.faces.push(face);
             }
+            Some("f") if keep == Keep::Polygons => {
+                let face = tokens
+                    .map(|corner| obj_corner(corner, raw.vertices.len()))
+                    .collect::<Result<Vec<usize>, String>>()
+                    .map_err(syntax)?;
+                if face.len() < 3 || face.iter().any(|k| *k >= raw.vertices.len()) {
+                    return Err(syntax(format!(
+                        "a face with corners {:?} (0-based), not three or more of the {} vertices so far",
+                        face,
+                        raw.vertices.len()
+                    )));
+                }
+                raw.polygons.push(face);
+            }
             _ => {}
         }
     }

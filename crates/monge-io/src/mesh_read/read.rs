@@ -79,6 +79,28 @@ pub(crate) fn read_vertices(path: &Path, format: MeshFormat) -> Result<Vec<DVec3
     Ok(raw.vertices)
 }
 
+/// The vertices and polygons of an OBJ file of faces of any number of corners (0-based
+/// corners), as [`crate::write_polygons_obj`] writes a trimmed mesh.
+///
+/// ```
+/// # use glam::DVec3;
+/// let dir = std::env::temp_dir().join(format!("monge-polygons-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("pentagon.obj");
+/// let vertices = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.5, 1.5, 0.0), DVec3::ONE];
+/// let faces = vec![vec![0, 1, 4, 3, 2]];
+/// let mut text = Vec::new();
+/// monge_io::write_polygons_obj(&vertices, &faces, "a pentagon", &mut text).unwrap();
+/// std::fs::write(&path, text).unwrap();
+/// assert_eq!(monge_io::read_polygons_obj(&path).unwrap(), (vertices.to_vec(), faces));
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// ```
+pub fn read_polygons_obj(path: &Path) -> Result<(Vec<DVec3>, Vec<Vec<usize>>), IoError> {
+    let (reader, _) = open(path)?;
+    let raw = parse_obj(reader, &path_name(path), Keep::Polygons)?;
+    Ok((raw.vertices, raw.polygons))
+}
+
 /// Reads a quad grid in `format` from a reader such as standard input (see [`read_mesh`]).
 ///
 /// Errors name the input `<stdin>`.
