@@ -275,12 +275,7 @@ impl TargetCloud {
                         .data
                 })
                 .collect(),
-            points: self
-                .points
-                .iter()
-                .step_by(stride)
-                .map(|p| faces.nearest(*p).0)
-                .collect(),
+            points: strided(&self.points, stride, |p| faces.nearest(p).0),
             stride,
         }
     }
@@ -365,12 +360,7 @@ impl TargetCloud {
     ) -> Deviation {
         let (m_max, m_rms) = max_rms(distances.iter().copied());
         let faces = MeshFaces::new(grid);
-        let nearest: Vec<(f64, f64)> = self
-            .points
-            .iter()
-            .step_by(stride)
-            .map(|p| faces.distance_from(*p))
-            .collect();
+        let nearest = strided(&self.points, stride, |p| faces.distance_from(p));
         let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
         let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
         Deviation {
@@ -437,6 +427,25 @@ impl TargetCloud {
         (distances, deviation)
     }
 }
+
+/// `f` of every `stride`-th point of `points`, in order, blocks of them side by side
+/// ([`crate::tasks`]): a mesh's nearest faces to a target's points.
+fn strided<T: Send>(
+    points: &[DVec3],
+    stride: usize,
+    f: impl Fn(DVec3) -> T + Sync + Send,
+) -> Vec<T> {
+    let count = points.len().div_ceil(stride.max(1));
+    crate::tasks::ranges(count, STRIDED_BLOCK, |r| {
+        r.map(|k| f(points[k * stride])).collect::<Vec<T>>()
+    })
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// Points per task of [`strided`]: a few tenths of a millisecond of nearest faces.
+const STRIDED_BLOCK: usize = 256;
 
 /// Whether the boundary points of a target are evenly spaced along its edge, as a
 /// mesh's boundary vertices are: the distances from each to its nearest boundary point

@@ -428,6 +428,43 @@ impl Search<'_> {
         Some(r)
     }
 
+    /// The θ scan of the starts (§4.3): the objective on a grid of `faces` at every 10°
+    /// from each start in `guesses` (but 90°, where the guides' planes coincide), the
+    /// meshes in parallel; the feasible ones as (objective, start, θ), in the starts'
+    /// order.
+    fn scan_theta(&mut self, guesses: &[Start], faces: (usize, usize)) -> Vec<(f64, usize, f64)> {
+        let trials: Vec<(usize, f64)> = (0..guesses.len())
+            .flat_map(|g| {
+                (-17..=18)
+                    .filter(|k| *k != 9)
+                    .map(move |k| (g, 10.0 * f64::from(k)))
+            })
+            .collect();
+        // The objective, NaN when infeasible, `None` once stopped.
+        let values = crate::tasks::map(trials.len(), |k| {
+            let (g, theta) = trials[k];
+            let start = &guesses[g];
+            (!(self.stop)()).then(|| {
+                self.sum_of_squares_at(start, &start_parameters(start, theta), faces)
+                    .unwrap_or(f64::NAN)
+            })
+        });
+        let mut scan = Vec::with_capacity(trials.len());
+        for ((g, theta), f) in trials.into_iter().zip(values) {
+            match f {
+                Some(f) => {
+                    self.evaluations += 1;
+                    if f.is_finite() {
+                        self.best = self.best.min(f);
+                        scan.push((f, g, theta));
+                    }
+                }
+                None => self.timed_out = true,
+            }
+        }
+        scan
+    }
+
     /// Objective at `x` (real units) from `start` on a grid of `faces`: the sum of
     /// squares of [`Search::residuals`], or NaN when infeasible (or once stopped).
     fn objective(&mut self, start: &Start, x: &[f64], faces: (usize, usize)) -> f64 {
@@ -632,16 +669,7 @@ pub fn approximate_until(
         timed_out: false,
     };
     // θ from a scan every 10° (§4.3) at each corner; the best few as starts.
-    let mut scan: Vec<(f64, usize, f64)> = Vec::new();
-    for (g, start) in guesses.iter().enumerate() {
-        for k in (-17..=18).filter(|k| *k != 9) {
-            let theta = 10.0 * f64::from(k);
-            let f = search.objective(start, &start_parameters(start, theta), coarse);
-            if f.is_finite() {
-                scan.push((f, g, theta));
-            }
-        }
-    }
+    let scan = search.scan_theta(&guesses, coarse);
     let corners: Vec<usize> = guesses.iter().map(|g| g.at_corner).collect();
     let chosen = choose_starts(scan, &corners, starts_wanted);
     let (first, initial_phi) = *chosen.first().ok_or(if search.timed_out {
