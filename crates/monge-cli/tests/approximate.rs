@@ -416,6 +416,26 @@ fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
         stdout.contains("2 patches tried (--max-patches 2)"),
         "{stdout}"
     );
+    // Where the patches came no nearer than a tenth of one patch's largest distance (the
+    // steps printed), it says so rather than asking for more.
+    let step = |line: &str| {
+        let (_, rest) = line.split_once("largest distance ")?;
+        rest.split_whitespace().next()?.parse::<f64>().ok()
+    };
+    let nearest = |several: bool| {
+        stdout
+            .lines()
+            .filter(|l| l.starts_with("1 patch") != several && l.contains(": largest distance"))
+            .filter_map(step)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let stalled = nearest(true) >= 0.9 * nearest(false);
+    assert_eq!(
+        stdout.contains("none 10% nearer than one patch"),
+        stalled,
+        "{stdout}"
+    );
+    assert_eq!(stdout.contains("allow more patches"), !stalled, "{stdout}");
     // Never farther than the one-patch fit; the design and the picture are written.
     let one = number_after(&stdout, "1 patch: largest distance");
     let best = number_after(&stdout, "the nearest design found is");

@@ -6,7 +6,7 @@ use monge_core::approximate::{
     approximate as core_approximate, approximate_patches, approximate_to_tolerance, deadline_after,
     fit_report, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, FitReport,
     PatchApproximation, PatchLayout, Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
-    TrimmedMesh,
+    TrimmedMesh, PATCHES_GAIN,
 };
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::multipatch::{build, MultiPatchDesign};
@@ -347,11 +347,20 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
         Stop::Met => ("met", None),
         Stop::MaxPatches(n) => (
             "max_patches",
-            Some(format!(
-                "{n} patch{} tried (max_patches={n}); allow more patches, give a finer grid or \
-                 a larger tolerance",
-                if *n == 1 { "" } else { "es" }
-            )),
+            Some(if fit.patches_helped() == Some(false) {
+                format!(
+                    "up to {n} patches tried (max_patches={n}), none {}% nearer than one patch \
+                     (steps): more patches are unlikely to reach it; split the target into \
+                     parts and approximate each, or give a larger tolerance",
+                    100.0 * PATCHES_GAIN
+                )
+            } else {
+                format!(
+                    "{n} patch{} tried (max_patches={n}); allow more patches, give a finer grid \
+                     or a larger tolerance",
+                    if *n == 1 { "" } else { "es" }
+                )
+            }),
         ),
         Stop::TimeLimit => (
             "time_limit",

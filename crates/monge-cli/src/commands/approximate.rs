@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
     approximate, approximate_patches, approximate_to_tolerance, deadline_after, fit_report,
     target_distances, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, PatchLayout,
-    Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions, TrimmedMesh,
+    Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions, TrimmedMesh, PATCHES_GAIN,
 };
 use monge_core::conical::conical_dual;
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
@@ -466,9 +466,10 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             num(rms),
             num(ONE_PATCH_RMS),
             if args.patches.is_none() {
-                "a single surface with planar curvature lines cannot follow it closer: fit \
-                 several patches with piecewise planar curvature lines (§4.7, e.g. --patches 3), \
-                 or split the target and approximate each part"
+                "a single surface with planar curvature lines cannot follow it closer: where the \
+                 target's edges are not curvature lines, cover it and trim the mesh to its \
+                 outline (--trim); else fit several patches with piecewise planar curvature \
+                 lines (§4.7, e.g. --patches 3); --tolerance tries both"
             } else {
                 "try more patches, or split the target and approximate each part"
             },
@@ -673,6 +674,12 @@ fn finish_tolerance(
     let tolerance = format!("{} model units", num(fit.limit * size));
     let why = match &fit.stop {
         Stop::Met => None,
+        Stop::MaxPatches(n) if fit.patches_helped() == Some(false) => Some(format!(
+            "up to {n} patches tried (--max-patches {n}), none {}% nearer than one patch (the \
+             distances above): more patches are unlikely to reach it; split the target into \
+             parts and approximate each, or give a larger --tolerance",
+            num(100.0 * PATCHES_GAIN)
+        )),
         Stop::MaxPatches(n) => Some(format!(
             "{n} patch{} tried (--max-patches {n}); allow more patches, give a finer --grid or \
              a larger --tolerance",
