@@ -47,7 +47,8 @@ use crate::target::{points_array, points_of};
 /// `monge.compas.to_mesh`, `monge.blender.add_mesh`; None for several patches), its
 /// `kind`, `vertices` (rows, cols, 3), `normals` (its node axes, (rows, cols, 3);
 /// None for `kind="conical"`, whose mesh is the conical dual, §2.3) and `faces`
-/// (as `Mesh.faces`), `panels` (its number of faces), its `max_error` as `check`
+/// (as `Mesh.faces`), `panels` (its number of faces; of a trimmed mesh, its polygons),
+/// its `max_error` as `check`
 /// measures it (each patch on its own grid: the exactness the command prints), the
 /// deviation `before` and `after` (dicts of distances relative to the target's
 /// `size`), `deviation` (`after` in model units) and `max_deviation` (the larger of
@@ -192,7 +193,7 @@ pub fn approximate<'py>(
     d.set_item("normals", normals)?;
     d.set_item("faces", faces_array(py, g)?)?;
     d.set_item("kind", kind_name(kind))?;
-    d.set_item("panels", g.face_count())?;
+
     d.set_item("max_error", max_error)?;
     d.set_item("before", pythonize(py, &single.before)?)?;
     d.set_item("after", pythonize(py, &after)?)?;
@@ -203,14 +204,13 @@ pub fn approximate<'py>(
     d.set_item("starts", single.starts)?;
     d.set_item("initial", Bound::new(py, plain(single.initial.clone()))?)?;
     let trimmed = match (&design, &fit) {
-        (FitDesign::Trimmed(_, mesh), _) => Some(trimmed_dict(py, mesh)?),
-        (_, Fit::Single(r)) => r
-            .trimmed
-            .as_ref()
-            .map(|m| trimmed_dict(py, m))
-            .transpose()?,
+        (FitDesign::Trimmed(_, mesh), _) => Some(mesh),
+        (_, Fit::Single(r)) => r.trimmed.as_ref(),
         _ => None,
     };
+    // A trimmed result's panels are its polygons, as the command counts them.
+    d.set_item("panels", trimmed.map_or(g.face_count(), |m| m.faces.len()))?;
+    let trimmed = trimmed.map(|m| trimmed_dict(py, m)).transpose()?;
     d.set_item("trimmed", trimmed)?;
     match &design {
         FitDesign::Single(inner) | FitDesign::Trimmed(inner, _) => {
@@ -291,6 +291,8 @@ fn trimmed_dict<'py>(py: Python<'py>, mesh: &TrimmedMesh) -> PyResult<Bound<'py,
     )?;
     dict.set_item("faces", mesh.faces.clone())?;
     dict.set_item("cut", mesh.cut.clone())?;
+    dict.set_item("from", mesh.from.clone())?;
+    dict.set_item("mesh_faces", mesh.mesh_faces())?;
     Ok(dict)
 }
 

@@ -70,10 +70,11 @@ def test_approximate_tolerance_equals_the_command(cli, tmp_path):
     panels, types, tol = re.search(
         r"panels (\d+), distinct node types (\d+) \(beam angles within ([0-9.e-]+)°", text
     ).groups()
-    # A trimmed result's panels are its polygons (`panels` counts the grid's faces).
-    trimmed = len(r["trimmed"]["faces"]) if r["trimmed"] is not None else r["panels"]
+    # A trimmed result's panels are its polygons, as the command counts them.
+    if r["trimmed"] is not None:
+        assert r["panels"] == len(r["trimmed"]["faces"])
     assert (r["chosen"] == "trimmed") == (r["trimmed"] is not None)
-    assert (trimmed, r["node_types"]) == (int(panels), int(types))
+    assert (r["panels"], r["node_types"]) == (int(panels), int(types))
     assert r["node_angle_tol_deg"] == float(tol) == 0.5
     lines = re.findall(r"^patch (\d+) \(block (\d+) × (\d+)\): θ ([-0-9.e]+)°.*\((RMS [0-9.e-]+, )?(\d+) points\)",
                        text, re.M)
@@ -88,8 +89,11 @@ def test_approximate_tolerance_equals_the_command(cli, tmp_path):
     assert number(text, r"exactness of the result \(generated, measured\): ([0-9.e-]+)") == pytest.approx(
         r["max_error"], rel=1e-5
     )
-    # The merged mesh: its faces index its vertices, one face a panel.
-    assert r["faces"].shape == (r["panels"], 4) and r["faces"].max() < r["vertices"].shape[0] * r["vertices"].shape[1]
+    # The merged mesh: its faces index its vertices, one face a panel (a trimmed
+    # result's panels are its polygons, above).
+    rows, cols = r["vertices"].shape[:2]
+    assert r["faces"].shape == ((rows - 1) * (cols - 1), 4) and r["faces"].max() < rows * cols
+    assert r["trimmed"] is not None or r["panels"] == len(r["faces"])
 
 
 def test_approximate_patches_equals_the_command(cli, tmp_path):

@@ -158,3 +158,49 @@ def test_the_file_has_the_permissions_of_the_commands_files(tmp_path, cli, umask
     mode = os.stat(tmp_path / "m.3dm").st_mode & 0o777
     assert mode == os.stat(tmp_path / "m.obj").st_mode & 0o777 == 0o666 & ~umask
     assert sorted(os.listdir(tmp_path)) == ["m.3dm", "m.obj"]  # no temporary file left
+
+
+def polygon_area(points):
+    """Area of a planar polygon (n, 3), by the shoelace formula in the plane of its
+    corners (numpy's SVD)."""
+    p = np.asarray(points, dtype=float)
+    c = p - p.mean(0)
+    axes = np.linalg.svd(c)[2][:2]
+    x, y = c @ axes[0], c @ axes[1]
+    return 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def test_a_trimmed_result_is_written_and_given_to_grasshopper_as_its_panels(tmp_path):
+    """A mesh trimmed to a target's outline (approximate's trim=True): the .3dm's mesh
+    and Grasshopper's are the trimmed panels (each cut one as triangles covering it),
+    its panel curves the polygons themselves."""
+    import monge.grasshopper as mgh
+
+    points = np.array(
+        [[float(x) for x in line.split()[1:4]] for line in open(example("targets/paraboloid.obj")) if line.startswith("v ")]
+    )
+    out = mgh.approximate(points, grid=(8, 8), starts=1, max_evaluations=60, trim=True)
+    r, t = out["result"], out["result"]["trimmed"]
+    v = np.asarray(t["vertices"])
+    assert 0 < sum(t["cut"]) < len(t["faces"]) == r["panels"]
+    assert f"trimmed to the target's outline: {len(t['faces'])} planar panels, {sum(t['cut'])} of them cut" in out["metrics"]
+    assert np.array_equal(out["vertices"], v) and out["faces"] == t["mesh_faces"] and out["gauss"] is None
+    # The mesh's faces cover the polygons once: the same area, measured with numpy.
+    polygons = sum(polygon_area(v[f]) for f in t["faces"])
+    pieces = sum(polygon_area(v[f]) for f in t["mesh_faces"])
+    assert pieces == pytest.approx(polygons, rel=1e-9)
+    m = mgh.rhino_mesh(rhino3dm.Mesh, out["vertices"], out["faces"])
+    assert m.Faces.TriangleCount + m.Faces.QuadCount == len(t["mesh_faces"]) > len(t["faces"])
+
+    path = tmp_path / "trimmed.3dm"
+    layers = monge.rhino.write_3dm(path, r["mesh"], trimmed=t)
+    assert layers == ["monge mesh", "monge guides", "monge panels"]
+    model = rhino3dm.File3dm.Read(str(path))
+    (mesh,) = [o.Geometry for o in objects(model, "monge mesh")]
+    assert len(mesh.Vertices) == len(v) and mesh.Faces.TriangleCount + mesh.Faces.QuadCount == len(t["mesh_faces"])
+    panels = objects(model, "monge panels")
+    assert [o.Attributes.Name for o in panels] == [f"P{i}.{j}" for i, j in t["from"]]
+    for o, f in zip(panels, t["faces"]):
+        curve = o.Geometry
+        corners = np.array([[curve.Point(k).X, curve.Point(k).Y, curve.Point(k).Z] for k in range(curve.PointCount)])
+        assert np.allclose(corners[:-1], v[f], rtol=0, atol=1e-12) and np.array_equal(corners[0], corners[-1])

@@ -244,8 +244,11 @@ def approximate(
     it is None, and ``node_types_why_not`` says why, when fabrication refuses the mesh found.
     ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches.
     ``trim=True`` (one patch, as ``--trim``) fits a mesh that covers the target and cuts it
-    by the target's outline: ``trimmed`` holds its ``vertices``, ``faces`` (planar polygons)
-    and ``cut`` (per face, whether the outline cut it); otherwise it is None.
+    by the target's outline: ``trimmed`` holds its ``vertices``, ``faces`` (planar polygons),
+    ``cut`` (per face, whether the outline cut it), ``from`` (per face, the grid's face
+    ``(i, j)`` it was cut from) and ``mesh_faces`` (the faces as
+    triangles and quads: each cut polygon split in its plane, for Rhino, Grasshopper and
+    glTF); otherwise it is None. ``panels`` then counts its polygons.
     """
 
 def target_points(target: Union[npt.ArrayLike, _PathLike, Any]) -> _Array:

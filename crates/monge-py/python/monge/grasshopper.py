@@ -60,14 +60,15 @@ def metrics_text(mesh, design):
 
 
 def rhino_mesh(mesh_type, vertices, faces, normals=None):
-    """A quad mesh of ``mesh_type`` (``Rhino.Geometry.Mesh`` in Rhino,
-    ``rhino3dm.Mesh`` elsewhere) with the ``vertices``, ``faces`` and optional
-    vertex ``normals`` that ``solve`` and ``approximate`` output."""
+    """A mesh of ``mesh_type`` (``Rhino.Geometry.Mesh`` in Rhino,
+    ``rhino3dm.Mesh`` elsewhere) with the ``vertices``, ``faces`` (of four or three
+    corners) and optional vertex ``normals`` that ``solve`` and ``approximate``
+    output."""
     m = mesh_type()
     for x, y, z in vertices:
         m.Vertices.Add(x, y, z)
-    for a, b, c, d in faces:
-        m.Faces.AddFace(a, b, c, d)
+    for face in faces:
+        m.Faces.AddFace(*face)
     for x, y, z in normals or []:
         m.Normals.Add(x, y, z)
     return m
@@ -124,6 +125,12 @@ def approximation_text(result):
                 f"patch {k + 1}: θ = {p['theta_deg']:g}°, largest deviation target → mesh "
                 f"{p['max'] * size:.3g} model units ({p['target_points']} points)"
             )
+    trimmed = result.get("trimmed")
+    if trimmed is not None:
+        lines.append(
+            f"trimmed to the target's outline: {len(trimmed['faces'])} planar panels, "
+            f"{sum(trimmed['cut'])} of them cut"
+        )
     if "met" in result:
         tolerance = f"{result['tolerance']:.3g} model units"
         lines.append(
@@ -139,16 +146,27 @@ def approximate(geometry, **options):
     """Everything a component rationalising ``geometry`` outputs: ``geometry`` is
     what ``monge.approximate`` accepts (a Rhino mesh, point cloud, surface or
     Brep, points, ...), ``options`` its keywords (``grid``, ``kind``,
-    ``tolerance``, ``time_limit``, ...). Returns, as ``solve`` does, ``mesh`` (a
-    ``monge.Mesh``; None for several patches), ``vertices``, ``faces``, ``gauss``
+    ``tolerance``, ``trim``, ``time_limit``, ...). Returns, as ``solve`` does, ``mesh`` (a
+    ``monge.Mesh``; None for several patches), ``vertices``, ``faces`` (of a result
+    trimmed to the target's outline, its mesh's, ``gauss`` None), ``gauss``
     and ``metrics`` (the deviation, ``approximation_text``, then for one patch the
     mesh's metrics, ``metrics_text``), with the ``design`` found
     (``design.to_file(path)`` saves it) and ``result``, ``monge.approximate``'s
     whole answer."""
     result = _approximate(geometry, **options)
-    mesh, design = result["mesh"], result["design"]
+    mesh, design, trimmed = result["mesh"], result["design"], result.get("trimmed")
     metrics = approximation_text(result)
-    if mesh is not None:
+    if trimmed is not None:
+        # The result is the mesh trimmed to the target's outline: its panels as
+        # triangles and quads (each cut one split in its plane); `mesh` is the design's.
+        outputs = {
+            "mesh": mesh,
+            "vertices": trimmed["vertices"].tolist(),
+            "faces": trimmed["mesh_faces"],
+            "gauss": None,
+            "metrics": metrics + metrics_text(mesh, design),
+        }
+    elif mesh is not None:
         outputs = _outputs(mesh, metrics + metrics_text(mesh, design))
     else:
         # Several patches: their merged mesh (each patch is exact on its own grid,

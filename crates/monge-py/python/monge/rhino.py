@@ -6,7 +6,11 @@
   vertex normals (circular meshes);
 * ``monge guides``: guide_u (the first column, red) and guide_v (the first row,
   blue) through the guide samples, as degree-1 NURBS curves;
-* ``monge panels``: every face as a closed planar polyline;
+* ``monge panels``: every face as a closed planar polyline, named ``P<i>.<j>``
+  after its face of the grid;
+* with ``trimmed`` (a mesh trimmed to a target's outline, ``monge.approximate``'s
+  ``trimmed``), the mesh and panels are the trimmed ones: the mesh's cut panels as
+  triangles in their planes, the panels each a whole polygon;
 * with ``smooth`` (the result of ``monge.smooth``): ``monge cyclidic net``, the
   smooth C¹ surface (§4.4) as one exact rational degree-2 NURBS surface, and
   ``monge beams``, every curvature line as its chain of circular arcs (named
@@ -64,14 +68,14 @@ def _attributes(layer, name, colour=None):
 
 def quad_mesh(vertices, faces, normals=None):
     """A ``rhino3dm.Mesh`` with double-precision ``vertices`` (rows, cols, 3),
-    quad ``faces`` (indices into the flattened vertices) and optional vertex
-    ``normals`` (rows, cols, 3)."""
+    ``faces`` of four or three corners (indices into the flattened vertices) and
+    optional vertex ``normals`` (rows, cols, 3)."""
     m = rhino3dm.Mesh()
     m.Vertices.UseDoublePrecisionVertices = True
     for p in np.asarray(vertices, dtype=float).reshape(-1, 3).tolist():
         m.Vertices.AddPoint3d(*p)
-    for a, b, c, d in np.asarray(faces).tolist():
-        m.Faces.AddFace(a, b, c, d)
+    for face in faces.tolist() if isinstance(faces, np.ndarray) else faces:
+        m.Faces.AddFace(*face)
     if normals is not None:
         for n in np.asarray(normals, dtype=float).reshape(-1, 3).tolist():
             m.Normals.Add(*n)
@@ -140,10 +144,13 @@ def _new_file_beside(path):
             continue  # another writer's name: draw again
 
 
-def write_3dm(path, mesh, smooth=None, panels=True, units="Meters"):
+def write_3dm(path, mesh, smooth=None, panels=True, units="Meters", trimmed=None):
     """Writes ``mesh`` (a ``monge.Mesh``), and the cyclidic net and beams of
     ``smooth`` (``monge.smooth``'s result) if given, to the Rhino file ``path``
-    (openNURBS version 8), each on a named layer; returns the layer names."""
+    (openNURBS version 8), each on a named layer; returns the layer names. With
+    ``trimmed`` (``monge.approximate``'s ``trimmed``: ``mesh`` trimmed to a target's
+    outline), the mesh and panels written are the trimmed ones (the cut panels as
+    triangles in the mesh, whole in the panels), the guides ``mesh``'s."""
     if not isinstance(mesh, Mesh):
         raise MeshError(f"write_3dm needs a monge.Mesh, got {type(mesh).__name__}")
     try:
@@ -171,14 +178,21 @@ def write_3dm(path, mesh, smooth=None, panels=True, units="Meters"):
             a.SetUserString(BASE_POINT_KEY, base)
         return a
 
-    model.Objects.AddMesh(rhino_mesh(mesh), attributes("mesh", f"monge {mesh.kind} mesh"))
     v = mesh.vertices
+    if trimmed is None:
+        model.Objects.AddMesh(rhino_mesh(mesh), attributes("mesh", f"monge {mesh.kind} mesh"))
+        flat = v.reshape(-1, 3)
+        faces = [(divmod(k, mesh.cols - 1), face) for k, face in enumerate(mesh.faces.tolist())]
+    else:
+        flat = np.asarray(trimmed["vertices"], dtype=float)
+        model.Objects.AddMesh(
+            quad_mesh(flat, trimmed["mesh_faces"]), attributes("mesh", f"monge {mesh.kind} mesh, trimmed")
+        )
+        faces = list(zip(trimmed["from"], trimmed["faces"]))
     for name, points in (("guide_u", v[:, 0]), ("guide_v", v[0, :])):
         model.Objects.AddCurve(polyline_nurbs(points), attributes("guides", name, GUIDE_COLOURS[name]))
     if panels:
-        flat = v.reshape(-1, 3)
-        for k, face in enumerate(mesh.faces.tolist()):
-            i, j = divmod(k, mesh.cols - 1)
+        for (i, j), face in faces:
             outline = rhino3dm.PolylineCurve([_point(flat[c]) for c in face + face[:1]])
             model.Objects.AddCurve(outline, attributes("panels", f"P{i}.{j}"))
     if smooth is not None:

@@ -186,6 +186,71 @@ pub struct TrimmedMesh {
     pub cut: Vec<bool>,
 }
 
+impl TrimmedMesh {
+    /// Its faces as a mesh of triangles and quads, what Rhino, Grasshopper and glTF
+    /// take: each face the outline did not cut as it is (a face of the grid), each cut
+    /// face split into triangles in its plane (ear clipping), turned as its polygon.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::{trim, Outline, TargetCloud};
+    /// use monge_core::QuadGrid;
+    /// let points: Vec<DVec3> = (0..2000)
+    ///     .map(|k| {
+    ///         let (r, a) = (4.0 * ((k as f64 + 0.5) / 2000.0).sqrt(), k as f64 * 2.399963);
+    ///         DVec3::new(r * a.cos(), r * a.sin(), 0.0)
+    ///     })
+    ///     .collect();
+    /// let outline = Outline::of(&TargetCloud::new(&points).unwrap()).unwrap();
+    /// let vertices: Vec<DVec3> = (0..121)
+    ///     .map(|k| DVec3::new((k / 11) as f64 - 5.0, (k % 11) as f64 - 5.0, 0.0))
+    ///     .collect();
+    /// let trimmed = trim(&QuadGrid::new(11, 11, vertices, vec![]), &outline);
+    /// let faces = trimmed.mesh_faces();
+    /// // The uncut faces' quads, and at least one triangle per cut face.
+    /// let quads = faces.iter().filter(|f| f.len() == 4).count();
+    /// assert_eq!(quads, trimmed.cut.iter().filter(|c| !**c).count());
+    /// assert!(faces.len() - quads >= trimmed.cut.iter().filter(|c| **c).count());
+    /// ```
+    pub fn mesh_faces(&self) -> Vec<Vec<usize>> {
+        let mut earcut = earcut::Earcut::new();
+        let (mut flat, mut triangles) = (Vec::new(), Vec::<usize>::new());
+        let mut out = Vec::with_capacity(self.faces.len());
+        for (face, cut) in self.faces.iter().zip(&self.cut) {
+            if !cut {
+                out.push(face.clone());
+                continue;
+            }
+            let corners: Vec<[f64; 3]> =
+                face.iter().map(|&v| self.vertices[v].to_array()).collect();
+            if !earcut::utils3d::project3d_to_2d(&corners, corners.len(), &mut flat) {
+                continue; // no area: nothing to show
+            }
+            earcut.earcut(flat.iter().copied(), &[], &mut triangles);
+            let normal = newell(face.iter().map(|&v| self.vertices[v]));
+            for t in triangles.chunks_exact(3) {
+                let [a, b, c] = [face[t[0]], face[t[1]], face[t[2]]];
+                let [p, q, r] = [a, b, c].map(|v| self.vertices[v]);
+                out.push(if (q - p).cross(r - p).dot(normal) < 0.0 {
+                    vec![a, c, b]
+                } else {
+                    vec![a, b, c]
+                });
+            }
+        }
+        out
+    }
+}
+
+/// Newell's normal of a polygon (not normalised): its area vector, twice its area long.
+fn newell(corners: impl Iterator<Item = DVec3> + Clone) -> DVec3 {
+    corners
+        .clone()
+        .zip(corners.cycle().skip(1))
+        .map(|(p, q)| p.cross(q))
+        .sum()
+}
+
 /// `grid` trimmed to `outline` (see the module documentation): the faces inside it
 /// whole, the faces across it cut by it (each cut face in the plane of its face: its
 /// corners inside the outline are the grid's own vertices, its cuts of the grid's
@@ -635,6 +700,72 @@ mod tests {
             *degree.entry(*b).or_default() += 1;
         }
         assert!(degree.values().all(|d| *d == 2), "{degree:?}");
+    }
+
+    #[test]
+    fn a_trimmed_mesh_as_triangles_and_quads_covers_its_polygons_once() {
+        // A parabolic cylinder (planar quads) sampled over a five-pointed star, whose
+        // reflex corners cut faces into polygons that are not convex.
+        let z = |x: f64| 0.05 * x * x;
+        let points: Vec<DVec3> = (0..4000)
+            .map(|k| {
+                let a = k as f64 * 2.399963;
+                let r = (3.0 + 1.2 * (5.0 * a).cos()) * ((k as f64 + 0.5) / 4000.0).sqrt();
+                DVec3::new(r * a.cos(), r * a.sin(), z(r * a.cos()))
+            })
+            .collect();
+        let outline = Outline::of(&TargetCloud::new(&points).unwrap()).unwrap();
+        let n = 13;
+        let vertices: Vec<DVec3> = (0..n * n)
+            .map(|k| {
+                let (x, y) = (
+                    -4.5 + 9.0 * (k / n) as f64 / (n - 1) as f64,
+                    -4.5 + 9.0 * (k % n) as f64 / (n - 1) as f64,
+                );
+                DVec3::new(x, y, z(x))
+            })
+            .collect();
+        let trimmed = trim(&QuadGrid::new(n, n, vertices, vec![]), &outline);
+        // Signed area seen along z (the shoelace formula), of a polygon and of a face.
+        let shoelace = |f: &[usize]| {
+            let p: Vec<DVec3> = f.iter().map(|k| trimmed.vertices[*k]).collect();
+            0.5 * (0..p.len())
+                .map(|k| p[k].truncate().perp_dot(p[(k + 1) % p.len()].truncate()))
+                .sum::<f64>()
+        };
+        let faces = trimmed.mesh_faces();
+        assert!(faces.iter().all(|f| f.len() == 3 || f.len() == 4));
+        let polygons: f64 = trimmed.faces.iter().map(|f| shoelace(f)).sum();
+        let pieces: f64 = faces.iter().map(|f| shoelace(f)).sum();
+        assert!(
+            (pieces - polygons).abs() < 1e-9 * polygons.abs(),
+            "{pieces} {polygons}"
+        );
+        // Every triangle turned as the polygons (no flipped one, whose area would be
+        // taken back), and in the plane of a polygon it shares a vertex with.
+        let sign = polygons.signum();
+        let mut concave = 0;
+        for f in &trimmed.faces {
+            let q: Vec<DVec2> = f.iter().map(|k| trimmed.vertices[*k].truncate()).collect();
+            let m = q.len();
+            concave += usize::from((0..m).any(|k| {
+                (q[(k + 1) % m] - q[k]).perp_dot(q[(k + 2) % m] - q[(k + 1) % m]) * sign < -1e-12
+            }));
+        }
+        assert!(concave > 0, "the star cuts no polygon that is not convex");
+        for f in faces.iter().filter(|f| f.len() == 3) {
+            assert!(shoelace(f) * sign > 0.0, "{f:?}");
+            let owner = trimmed
+                .faces
+                .iter()
+                .find(|p| f.iter().all(|v| p.contains(v)))
+                .expect("a triangle of one polygon");
+            let p: Vec<DVec3> = owner.iter().map(|k| trimmed.vertices[*k]).collect();
+            let normal = newell(p.iter().copied()).normalize();
+            for v in f {
+                assert!((trimmed.vertices[*v] - p[0]).dot(normal).abs() < 1e-12);
+            }
+        }
     }
 
     #[test]
