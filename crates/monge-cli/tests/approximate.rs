@@ -554,9 +554,12 @@ fn approximate_refuses_bad_tolerances_before_any_work() {
 fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_curvature_lines() {
     let dir = TempDir::new().unwrap();
     let (fit, trimmed) = (dir.path().join("fit.json"), dir.path().join("trimmed.obj"));
+    let picture = dir.path().join("fit.svg");
     let out = paraboloid(&fit, 8, 100)
         .arg("--trim")
         .arg(&trimmed)
+        .arg("--picture")
+        .arg(&picture)
         .output()
         .unwrap();
     let stdout = String::from_utf8(out.stdout).unwrap();
@@ -565,6 +568,22 @@ fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_
         stdout.contains("faces trimmed to the target's outline"),
         "{stdout}"
     );
+    // The picture draws the cut, the trimmed mesh's edges, in black on the result: one
+    // closed loop (the edges of the trimmed mesh, each in one panel, form one).
+    let svg = std::fs::read_to_string(&picture).unwrap();
+    assert!(svg.contains("trimmed along the black line"));
+    let cuts: Vec<&str> = svg
+        .lines()
+        .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#000000\""))
+        .collect();
+    assert_eq!(cuts.len(), 1, "{cuts:?}");
+    let ends: Vec<&str> = cuts[0]
+        .split('"')
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .collect();
+    assert!(ends.len() > 8 && ends.first() == ends.last(), "{ends:?}");
     // Read back by a third-party reader: polygons, each planar (its corners' distances to
     // the plane of its first three, measured here), some cut (more than four corners or
     // fewer).

@@ -83,7 +83,8 @@ pub struct ApproximateArgs {
     /// (`.obj`, faces as polygons): for a target whose edges are not curvature lines (a
     /// roof over a rectangle whose curvature lines run askew). The panels cut by the
     /// outline stay planar, no longer circular; the distances printed are the trimmed
-    /// mesh's; --picture draws the mesh before trimming. DESIGN is the untrimmed design.
+    /// mesh's; --picture draws the mesh before trimming with the cut on it. DESIGN is the
+    /// untrimmed design.
     /// One patch. With --tolerance, where that fit chooses a trimmed mesh (it tries one
     /// after one patch), it goes to TRIMMED (by default beside DESIGN: `x.trimmed.obj`).
     #[arg(
@@ -184,6 +185,10 @@ fn line(name: &str, d: &Deviation) -> String {
 /// Colour of the boundaries between patches on the result.
 const PATCH_BOUNDARY_COLOR: Rgb = Rgb::new(0, 150, 80);
 
+/// Colour of the edges of a mesh trimmed to the target's outline, on the mesh before
+/// trimming.
+const TRIM_COLOR: Rgb = Rgb::new(0, 0, 0);
+
 /// The lines where the patches of `mp` meet (§4.7), in the assembled grid: each
 /// patch's first row and first column where another patch lies before it.
 fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
@@ -212,8 +217,8 @@ fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
 /// The picture: the target's points coloured by their distance to the result, then the
 /// initial guess and the result coloured by their distance to the target, all on one
 /// scale (dark red from `tolerance` if given, in model units, else from the initial
-/// guess's 95th percentile); the patch boundaries drawn on the result, labelled as
-/// before trimming where `trimmed`.
+/// guess's 95th percentile); the patch boundaries drawn on the result, and, where it
+/// is trimmed, the edges of the `trimmed` mesh (the cut).
 #[allow(clippy::too_many_arguments)] // the picture's parts, each its own
 fn picture_bytes(
     r: &Approximation,
@@ -223,7 +228,7 @@ fn picture_bytes(
     target: &TargetCloud,
     tolerance: Option<f64>,
     format: Picture,
-    trimmed: bool,
+    trimmed: Option<&TrimmedMesh>,
 ) -> anyhow::Result<Vec<u8>> {
     let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
         let g = generate(design, &GenerateOptions::default())?;
@@ -240,8 +245,18 @@ fn picture_bytes(
     );
     let mut scene = Scene::new(result.clone());
     scene.highlights.extend(boundaries);
-    let label = if trimmed {
-        "result before trimming"
+    // A trimmed result: the mesh before trimming, the cut drawn on it.
+    scene.highlights.extend(
+        trimmed
+            .iter()
+            .flat_map(|t| t.edges())
+            .map(|points| Highlight {
+                points,
+                color: TRIM_COLOR,
+            }),
+    );
+    let label = if trimmed.is_some() {
+        "result, trimmed along the black line"
     } else {
         "result"
     };
@@ -392,9 +407,15 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             Some(p) => patch_boundaries(&build(&p.design, &GenerateOptions::default())?),
             None => Vec::new(),
         };
-        let trimmed = r.trimmed.is_some();
         let bytes = picture_bytes(
-            &r, grid, boundaries, &points, &target, None, format, trimmed,
+            &r,
+            grid,
+            boundaries,
+            &points,
+            &target,
+            None,
+            format,
+            r.trimmed.as_ref(),
         )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
@@ -583,7 +604,10 @@ fn finish_tolerance(
             &target,
             tolerance,
             format,
-            matches!(fit.design, FitDesign::Trimmed(..)),
+            match &fit.design {
+                FitDesign::Trimmed(_, mesh) => Some(mesh),
+                _ => None,
+            },
         )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }

@@ -240,6 +240,62 @@ impl TrimmedMesh {
         }
         out
     }
+
+    /// Its edges, each a closed polyline (the first point again at the end): the loops of
+    /// the edges in one face only, each run as the faces run (the outline's cuts, and
+    /// the grid's sides where it stops short of the outline).
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::TrimmedMesh;
+    /// // Two squares side by side: one loop of six edges round both.
+    /// let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    /// let mesh = TrimmedMesh {
+    ///     vertices: vec![v(0., 0.), v(1., 0.), v(2., 0.), v(0., 1.), v(1., 1.), v(2., 1.)],
+    ///     faces: vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]],
+    ///     from: vec![(0, 0), (0, 1)],
+    ///     cut: vec![false, false],
+    /// };
+    /// let loops = mesh.edges();
+    /// assert_eq!(loops.len(), 1);
+    /// assert_eq!(loops[0].len(), 7);
+    /// assert_eq!(loops[0].first(), loops[0].last());
+    /// ```
+    pub fn edges(&self) -> Vec<Vec<DVec3>> {
+        let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+        for f in &self.faces {
+            for (a, b) in f.iter().zip(f.iter().cycle().skip(1)) {
+                *count.entry(((*a).min(*b), (*a).max(*b))).or_default() += 1;
+            }
+        }
+        // Each free edge from its first vertex as its face runs.
+        let mut next: HashMap<usize, usize> = HashMap::new();
+        for f in &self.faces {
+            for (a, b) in f.iter().zip(f.iter().cycle().skip(1)) {
+                if count[&((*a).min(*b), (*a).max(*b))] == 1 {
+                    next.insert(*a, *b);
+                }
+            }
+        }
+        let mut starts: Vec<usize> = next.keys().copied().collect();
+        starts.sort_unstable();
+        let mut loops = Vec::new();
+        for start in starts {
+            let Some(mut at) = next.remove(&start) else {
+                continue; // already on a loop
+            };
+            let mut polyline = vec![self.vertices[start], self.vertices[at]];
+            while at != start {
+                let Some(b) = next.remove(&at) else {
+                    break; // an open chain: a mesh whose edges touch at a vertex
+                };
+                polyline.push(self.vertices[b]);
+                at = b;
+            }
+            loops.push(polyline);
+        }
+        loops
+    }
 }
 
 /// Newell's normal of a polygon (not normalised): its area vector, twice its area long.
@@ -700,6 +756,21 @@ mod tests {
             *degree.entry(*b).or_default() += 1;
         }
         assert!(degree.values().all(|d| *d == 2), "{degree:?}");
+        // Those edges as one closed loop round the disc, near its rim (the outline runs
+        // through the outermost points, a spacing or less inside it), as long as the rim.
+        let loops = trimmed.edges();
+        assert_eq!(loops.len(), 1);
+        let rim = &loops[0];
+        assert_eq!(rim.len(), degree.len() + 1);
+        assert!(rim
+            .iter()
+            .all(|p| (3.8..4.0 + 1e-9).contains(&p.truncate().length())));
+        let length: f64 = rim.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let circle = 2.0 * pi * 4.0;
+        assert!(
+            length > 0.97 * circle && length < 1.02 * circle,
+            "{length} {circle}"
+        );
     }
 
     #[test]
