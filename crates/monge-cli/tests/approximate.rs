@@ -442,7 +442,7 @@ fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
     assert!(best <= one, "{stdout}");
     assert!(best > 0.001);
     // The result: the design's mesh, or the trimmed mesh written beside it.
-    let mesh = if stdout.contains("result: 1 patch covering the target, trimmed") {
+    let mesh = if stdout.contains("covering the target, trimmed to its outline\n") {
         assert!(stdout.contains("fit.trimmed.obj (the result: "), "{stdout}");
         dir.path().join("fit.trimmed.obj")
     } else {
@@ -470,7 +470,12 @@ fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
         svg.matches("dark red from 0.001 (the tolerance)").count(),
         1
     );
-    assert_eq!(svg.matches("dark red from 0.001<").count(), 2);
+    // The result's panel of a trimmed result gives the trimmed mesh's figures.
+    assert_eq!(
+        svg.matches("dark red from 0.001<").count()
+            + svg.matches("dark red from 0.001; figures trimmed<").count(),
+        2
+    );
     // One dot per target point.
     assert!(
         svg.matches("<circle").count() >= 41 * 41,
@@ -571,7 +576,7 @@ fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_
     // The picture draws the cut, the trimmed mesh's edges, in black on the result: one
     // closed loop (the edges of the trimmed mesh, each in one panel, form one).
     let svg = std::fs::read_to_string(&picture).unwrap();
-    assert!(svg.contains("trimmed along the black line"));
+    assert!(svg.contains("trimmed along the black line") && svg.contains("figures trimmed"));
     let cuts: Vec<&str> = svg
         .lines()
         .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#000000\""))

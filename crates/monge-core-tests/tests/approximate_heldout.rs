@@ -240,6 +240,9 @@ fn measure_free_form_to_a_tolerance() {
                 let mp = build(d, &Default::default()).unwrap();
                 ("patches", max_both_ways(&target, &mp.grid))
             }
+            FitDesign::TrimmedPatches(_, mesh) => {
+                ("patches, trimmed", max_both_ways_trimmed(&target, mesh))
+            }
         };
         println!(
             "| {} | {chosen} ({}) | {a:.1e} | {b:.1e} | {:.1e} | {} | {seconds:.0} |",
@@ -249,4 +252,55 @@ fn measure_free_form_to_a_tolerance() {
             if a.max(b) <= 5e-3 { "yes" } else { "no" },
         );
     }
+}
+
+#[test]
+fn patches_from_a_trimmed_patch_are_trimmed_and_read_as_measured() {
+    // The held-out paraboloid, one patch covering it on a coarse grid and a short search,
+    // then two patches from it: they cover the target too, and are trimmed.
+    use monge_core::approximate::{approximate_patches, PatchLayout};
+    let target = targets()
+        .into_iter()
+        .find(|t| t.name == "paraboloid")
+        .unwrap();
+    let points = target.grid(41);
+    let options = ApproxOptions {
+        trim: true,
+        faces: (16, 16),
+        starts: 1,
+        max_evaluations: 200,
+        ..Default::default()
+    };
+    let single = approximate(&points, &options, &mut |_| {}).unwrap();
+    let two = PatchLayout { u: 2, v: 1 };
+    let p = approximate_patches(&points, &single, two, &options, &mut |_| {}).unwrap();
+    let mesh = p
+        .trimmed
+        .as_ref()
+        .expect("patches from a trimmed patch are trimmed");
+    // Brute force both ways, against the closed form: as monge reads them (within the
+    // sampling of the brute force, 5 %), and never farther than the single patch.
+    let (to_target, to_result) = max_both_ways_trimmed(&target, mesh);
+    let read = (p.after.mesh_to_target_max, p.after.target_to_mesh_max);
+    assert!(
+        (to_target - read.0).abs() <= 0.05 * read.0 && (to_result - read.1).abs() <= 0.05 * read.1,
+        "{to_target:e} {to_result:e} read {read:?}"
+    );
+    let (a, b) = max_both_ways_trimmed(&target, single.trimmed.as_ref().unwrap());
+    assert!(
+        to_target.max(to_result) <= 1.05 * a.max(b),
+        "{to_target:e} {to_result:e} {a:e} {b:e}"
+    );
+    // Each panel planar (the smallest singular value of its corners about their centroid).
+    for f in &mesh.faces {
+        let c = f.iter().map(|k| mesh.vertices[*k]).sum::<glam::DVec3>() / f.len() as f64;
+        let m = nalgebra::DMatrix::from_fn(f.len(), 3, |i, j| (mesh.vertices[f[i]] - c)[j]);
+        assert!(m.singular_values().min() < 1e-12 * target.size);
+    }
+    eprintln!(
+        "one patch {:.1e}, two {:.1e} (brute force), {} panels",
+        a.max(b),
+        to_target.max(to_result),
+        mesh.faces.len()
+    );
 }

@@ -61,7 +61,8 @@ use crate::target::{points_array, points_of};
 /// units) and `tolerance_relative`, `met`, `stop` (`"met"`, `"max_patches"`,
 /// `"time_limit"` or `"refused"`) and `why` (None when met), `chosen`
 /// (`"initial_guess"`, `"one_patch"`, `"trimmed"`: one patch covering the target, trimmed
-/// to its outline, tried after one patch, its mesh in `trimmed`; or `"patches"`), `steps`, each fit tried
+/// to its outline, tried after one patch, its mesh in `trimmed`; `"patches"`; or
+/// `"trimmed_patches"`: several patches refining that one, trimmed too), `steps`, each fit tried
 /// (`patches`, `trimmed`, its `deviation` or the `error` that kept it from being
 /// fitted);
 /// `node_types`, nodes whose beam angles and angles to the node axis agree within
@@ -175,7 +176,7 @@ pub fn approximate<'py>(
         };
         let max_error = match &design {
             FitDesign::Single(_) | FitDesign::Trimmed(..) => measurements(mesh_grid, kind, None).1,
-            FitDesign::Patches(d) => patches_max_error(d)?,
+            FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => patches_max_error(d)?,
         };
         Ok((report, max_error))
     })?;
@@ -203,10 +204,9 @@ pub fn approximate<'py>(
     d.set_item("target_points", points.len())?;
     d.set_item("starts", single.starts)?;
     d.set_item("initial", Bound::new(py, plain(single.initial.clone()))?)?;
-    let trimmed = match (&design, &fit) {
-        (FitDesign::Trimmed(_, mesh), _) => Some(mesh),
-        (_, Fit::Single(r)) => r.trimmed.as_ref(),
-        _ => None,
+    let trimmed = match &fit {
+        Fit::Single(r) => r.trimmed.as_ref(),
+        _ => design.trimmed(),
     };
     // A trimmed result's panels are its polygons, as the command counts them.
     d.set_item("panels", trimmed.map_or(g.face_count(), |m| m.faces.len()))?;
@@ -222,7 +222,7 @@ pub fn approximate<'py>(
             d.set_item("design", Bound::new(py, found)?)?;
             d.set_item("mesh", Bound::new(py, mesh)?)?;
         }
-        FitDesign::Patches(inner) => {
+        FitDesign::Patches(inner) | FitDesign::TrimmedPatches(inner, _) => {
             d.set_item("theta_deg", py.None())?;
             d.set_item(
                 "design",
@@ -382,6 +382,7 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
             Chosen::OnePatch => "one_patch",
             Chosen::Trimmed => "trimmed",
             Chosen::Patches(_) => "patches",
+            Chosen::TrimmedPatches(_) => "trimmed_patches",
         },
     )?;
     let steps = PyList::empty(py);

@@ -25,7 +25,7 @@ use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 use crate::shared::args::{parse_non_negative, Named, KINDS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{num, print};
-use crate::shared::picture::{distance_panel, sheet, Picture};
+use crate::shared::picture::{deviation_caption, distance_panel, sheet, Picture};
 use crate::shared::Outcome;
 use glam::DVec3;
 
@@ -228,7 +228,7 @@ fn picture_bytes(
     target: &TargetCloud,
     tolerance: Option<f64>,
     format: Picture,
-    trimmed: Option<&TrimmedMesh>,
+    trimmed: Option<(&TrimmedMesh, Deviation)>,
 ) -> anyhow::Result<Vec<u8>> {
     let mesh = |design: &Design| -> anyhow::Result<QuadGrid> {
         let g = generate(design, &GenerateOptions::default())?;
@@ -249,7 +249,7 @@ fn picture_bytes(
     scene.highlights.extend(
         trimmed
             .iter()
-            .flat_map(|t| t.edges())
+            .flat_map(|t| t.0.edges())
             .map(|points| Highlight {
                 points,
                 color: TRIM_COLOR,
@@ -260,7 +260,17 @@ fn picture_bytes(
     } else {
         "result"
     };
-    let (after, _, _) = distance_panel(scene, target, label, Some(scale));
+    let (mut after, _, _) = distance_panel(scene, target, label, Some(scale));
+    if let Some((_, d)) = trimmed {
+        // The figures of the result, the trimmed mesh (the colours: the mesh before).
+        after.caption = deviation_caption(
+            &format!(
+                "{label}\nwhite 0, dark red from {}; figures trimmed",
+                num(scale)
+            ),
+            &d,
+        );
+    }
     let distances = target_distances(target, result);
     let largest = distances.iter().copied().fold(0.0, f64::max);
     let dots = points
@@ -415,7 +425,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             &target,
             None,
             format,
-            r.trimmed.as_ref(),
+            r.trimmed.as_ref().map(|t| (t, r.after)),
         )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
@@ -552,7 +562,7 @@ fn exactness(design: &FitDesign) -> anyhow::Result<f64> {
                 MeshKind::Conical => m.max_error_conical(conical_error(&g)),
             }
         }
-        FitDesign::Patches(d) => patches_exactness(d)?,
+        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => patches_exactness(d)?,
     })
 }
 
@@ -580,20 +590,18 @@ fn finish_tolerance(
     let mut out = Outputs::new();
     let trimmed_path = trimmed_path(args);
     let boundaries = match &fit.design {
-        FitDesign::Single(d) => {
+        FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
             write_design_into(d, &args.output, &mut out)?;
             Vec::new()
         }
-        FitDesign::Trimmed(d, mesh) => {
-            write_design_into(d, &args.output, &mut out)?;
-            write_trimmed_into(mesh, &trimmed_path, &file, &mut out)?;
-            Vec::new()
-        }
-        FitDesign::Patches(d) => {
+        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => {
             write_multipatch_into(d, &args.output, &mut out)?;
             patch_boundaries(&build(d, &GenerateOptions::default())?)
         }
     };
+    if let Some(mesh) = fit.design.trimmed() {
+        write_trimmed_into(mesh, &trimmed_path, &file, &mut out)?;
+    }
     if let Some((path, format)) = picture {
         let tolerance = Some(fit.limit * fit.deviation.size);
         let bytes = picture_bytes(
@@ -604,10 +612,7 @@ fn finish_tolerance(
             &target,
             tolerance,
             format,
-            match &fit.design {
-                FitDesign::Trimmed(_, mesh) => Some(mesh),
-                _ => None,
-            },
+            fit.design.trimmed().map(|t| (t, fit.deviation)),
         )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
@@ -624,7 +629,8 @@ fn finish_tolerance(
         let name = match (step.patches, step.trimmed) {
             (1, true) => "1 patch, trimmed to the target's outline".to_owned(),
             (1, false) => "1 patch".to_owned(),
-            (k, _) => format!("{k} patches (§4.7)"),
+            (k, true) => format!("{k} patches (§4.7), trimmed to the target's outline"),
+            (k, false) => format!("{k} patches (§4.7)"),
         };
         match &step.outcome {
             Ok(d) => text.push_str(&format!(
@@ -645,6 +651,8 @@ fn finish_tolerance(
             Chosen::OnePatch => "1 patch".to_owned(),
             Chosen::Trimmed => "1 patch covering the target, trimmed to its outline".to_owned(),
             Chosen::Patches(k) => format!("{k} patches (§4.7)"),
+            Chosen::TrimmedPatches(k) =>
+                format!("{k} patches (§4.7) covering the target, trimmed to its outline"),
         },
         both(d.mesh_to_target_max, size),
         both(d.target_to_mesh_max, size),
@@ -685,6 +693,12 @@ fn finish_tolerance(
                 trimmed_faces(mesh)
             ),
             FitDesign::Patches(_) => " (a multi-patch design: `monge patches` reads it)".to_owned(),
+            FitDesign::TrimmedPatches(_, ref mesh) => format!(
+                " (the multi-patch design before trimming: `monge patches` reads it)\nwrote {} \
+                 (the result: {})",
+                trimmed_path.display(),
+                trimmed_faces(mesh)
+            ),
         }
     ));
     if let Some(path) = &args.picture {

@@ -230,12 +230,10 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
     // The result: the multi-patch design, the trimmed mesh written beside the design,
     // or the design.
     let trimmed = design.with_extension("trimmed.obj");
-    let fit = if serde_json::from_str::<serde_json::Value>(&text)?
+    let patches = serde_json::from_str::<serde_json::Value>(&text)?
         .get("patches")
-        .is_some()
-    {
-        FitDesign::Patches(read_multipatch(&design)?)
-    } else if trimmed.exists() {
+        .is_some();
+    let fit = if trimmed.exists() {
         // Its polygons read as not cut: the bench measures their distances.
         let (vertices, faces) = read_polygons_obj(&trimmed)?;
         let mesh = TrimmedMesh {
@@ -244,7 +242,13 @@ fn run_approximate(exe: &std::path::Path) -> anyhow::Result<()> {
             vertices,
             faces,
         };
-        FitDesign::Trimmed(read_design(&design)?, mesh)
+        if patches {
+            FitDesign::TrimmedPatches(read_multipatch(&design)?, mesh)
+        } else {
+            FitDesign::Trimmed(read_design(&design)?, mesh)
+        }
+    } else if patches {
+        FitDesign::Patches(read_multipatch(&design)?)
     } else {
         FitDesign::Single(read_design(&design)?)
     };

@@ -57,16 +57,9 @@ pub fn distance_panel(
         sorted[(sorted.len() - 1) * 95 / 100].max(1e-6 * target.size())
     });
     scene.vertex_colors = Some(distances.iter().map(|d| heat(d / scale)).collect());
-    let size = target.size();
-    // In the caption font's characters (capitals, digits, some punctuation).
-    let caption = format!(
-        "{title}\nwhite 0, dark red from {}{how}\n\
-         mesh to target: max {}, RMS {}\ntarget to mesh: max {}, RMS {}",
-        num(scale),
-        num(d.mesh_to_target_max * size),
-        num(d.mesh_to_target_rms * size),
-        num(d.target_to_mesh_max * size),
-        num(d.target_to_mesh_rms * size),
+    let caption = deviation_caption(
+        &format!("{title}\nwhite 0, dark red from {}{how}", num(scale)),
+        &d,
     );
     (
         Panel {
@@ -75,6 +68,19 @@ pub fn distance_panel(
         },
         scale,
         d,
+    )
+}
+
+/// A panel's caption: `head`, then the deviation `d` both ways in model units, in the
+/// caption font's characters (capitals, digits, some punctuation).
+pub fn deviation_caption(head: &str, d: &Deviation) -> String {
+    let size = d.size;
+    format!(
+        "{head}\nmesh to target: max {}, RMS {}\ntarget to mesh: max {}, RMS {}",
+        num(d.mesh_to_target_max * size),
+        num(d.mesh_to_target_rms * size),
+        num(d.target_to_mesh_max * size),
+        num(d.target_to_mesh_rms * size),
     )
 }
 

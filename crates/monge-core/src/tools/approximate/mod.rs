@@ -486,7 +486,7 @@ const RECOVERED: f64 = 1e-3;
 const BACK_OFF: [f64; 3] = [0.8, 0.6, 0.4];
 
 /// Sum of squares of residuals.
-fn sum_of_squares(r: &[f64]) -> f64 {
+pub(super) fn sum_of_squares(r: &[f64]) -> f64 {
     r.iter().map(|r| r * r).sum()
 }
 
@@ -787,7 +787,7 @@ pub fn approximate_until(
         Some(outline) => {
             let trimmed = trim(grid, outline);
             (
-                trim::trimmed_deviation(&target, grid, &trimmed),
+                trim::trimmed_deviation(&target, grid, &trimmed, 1),
                 Some(trimmed),
             )
         }

@@ -31,14 +31,20 @@
 //! number of folded faces, never as a result). The result is the design seen closest
 //! to the target by the largest distance both ways ([`Deviation::closer_than`]), the
 //! single patch included (then a design of one patch).
+//!
+//! From a single patch that covers the target to be trimmed ([`ApproxOptions::trim`]),
+//! the patches cover it too: the search's objective is the covering least squares
+//! ([`TargetCloud::cover_residuals`]), the distances those of the mesh trimmed to the
+//! target's outline, and the result is trimmed ([`PatchApproximation::trimmed`]).
 
 use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
 use super::distance::MeshFaces;
+use super::trim::{trim, trimmed_deviation, Outline, TrimmedMesh};
 use super::{
-    ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress, TargetCloud,
-    OBJECTIVE_POINTS,
+    sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
+    TargetCloud, OBJECTIVE_POINTS,
 };
 use crate::generate::GenerateOptions;
 use crate::grid::QuadGrid;
@@ -79,6 +85,10 @@ pub struct PatchApproximation {
     pub after: Deviation,
     /// Meshes generated in all.
     pub evaluations: usize,
+    /// Where `single` covers the target to be trimmed ([`ApproxOptions::trim`]), the
+    /// multi-patch mesh trimmed to the target's outline: then the result, and what
+    /// `after` measures.
+    pub trimmed: Option<TrimmedMesh>,
 }
 
 impl PatchApproximation {
@@ -193,6 +203,19 @@ pub fn approximate_patches(
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<PatchApproximation, ApproxError> {
     let target = TargetCloud::new(points)?;
+    // Patches from a mesh that covers the target cover it too, and are trimmed.
+    let outline = single
+        .trimmed
+        .is_some()
+        .then(|| Outline::of(&target))
+        .transpose()?;
+    let measured = |grid: &QuadGrid, stride: usize| match &outline {
+        Some(o) => {
+            let t = trim(grid, o);
+            (trimmed_deviation(&target, grid, &t, stride), Some(t))
+        }
+        None => (target.deviation_strided(grid, stride), None),
+    };
     let (setup, x0) = Pieces::cut(single, layout)?;
     let grid = &single.grid;
     let count = layout.count();
@@ -203,12 +226,20 @@ pub fn approximate_patches(
             .deadline
             .is_some_and(|d| std::time::Instant::now() >= d)
     };
-    let single_strided = target.deviation_strided(grid, stride);
+    let measure = |grid: &QuadGrid| {
+        let d = measured(grid, stride).0;
+        let f = match outline {
+            Some(_) => sum_of_squares(&target.cover_residuals(grid, &target.matches(grid, stride))),
+            None => d.objective(),
+        };
+        (d, f)
+    };
+    let (single_strided, single_objective) = measure(grid);
     let mut evaluations = 0;
     let budget = count * 359 + options.max_evaluations.max(2 * n + 2);
     // The best point seen by the search's objective, and the closest to the target
     // (largest distance both ways, on the objective's points).
-    let mut best: (f64, Option<Vec<f64>>) = (single_strided.objective(), None);
+    let mut best: (f64, Option<Vec<f64>>) = (single_objective, None);
     let mut closest: (Deviation, Option<Vec<f64>>) = (single_strided, None);
     // The folded faces at `x` (all when it cannot be built) and the objective, NaN when
     // it folds or the time is up.
@@ -220,11 +251,11 @@ pub fn approximate_patches(
         let (folded, f) = match setup.build(x, fit) {
             Some((_, mp)) => match folds(&mp.grid) {
                 0 => {
-                    let d = target.deviation_strided(&mp.grid, stride);
+                    let (d, f) = measure(&mp.grid);
                     if d.closer_than(&closest.0) {
                         closest = (d, Some(x.to_vec()));
                     }
-                    (0, d.objective())
+                    (0, f)
                 }
                 n => (n, f64::NAN),
             },
@@ -312,16 +343,16 @@ pub fn approximate_patches(
     }
     // The closer to the target of the two, by the largest distance both ways over all
     // its points, if closer than the single patch.
-    let mut kept: Option<(MultiPatchDesign, MultiPatch, Deviation)> = None;
+    let mut kept: Option<(MultiPatchDesign, MultiPatch, Deviation, Option<TrimmedMesh>)> = None;
     for x in [&best.1, &closest.1].into_iter().flatten() {
         let (design, mp) = setup.build(x, false).expect("the design was built");
-        let after = target.deviation(&mp.grid);
+        let (after, trimmed) = measured(&mp.grid, 1);
         if after.closer_than(kept.as_ref().map_or(&single.after, |k| &k.2)) {
-            kept = Some((design, mp, after));
+            kept = Some((design, mp, after, trimmed));
         }
     }
-    let (design, mp, after, out_layout) = match kept {
-        Some((design, mp, after)) => (design, mp, after, layout),
+    let (design, mp, after, trimmed, out_layout) = match kept {
+        Some((design, mp, after, trimmed)) => (design, mp, after, trimmed, layout),
         None => {
             // The single patch stays the best: a design of one patch.
             let design = MultiPatchDesign {
@@ -339,7 +370,13 @@ pub fn approximate_patches(
             };
             let mp = build(&design, &GenerateOptions::default())
                 .map_err(|_| ApproxError::NoPatchStart { patch: 0 })?;
-            (design, mp, single.after, PatchLayout { u: 1, v: 1 })
+            (
+                design,
+                mp,
+                single.after,
+                single.trimmed.clone(),
+                PatchLayout { u: 1, v: 1 },
+            )
         }
     };
     Ok(PatchApproximation {
@@ -350,5 +387,6 @@ pub fn approximate_patches(
         layout: out_layout,
         grid: mp.grid,
         evaluations,
+        trimmed,
     })
 }

@@ -235,6 +235,9 @@ pub enum FitDesign {
     /// One design whose mesh covers the target, and that mesh trimmed to the target's
     /// outline ([`ApproxOptions::trim`]): the trimmed mesh is the result.
     Trimmed(Design, TrimmedMesh),
+    /// A multi-patch design whose mesh covers the target, and that mesh trimmed to the
+    /// target's outline: the trimmed mesh is the result.
+    TrimmedPatches(MultiPatchDesign, TrimmedMesh),
 }
 
 impl FitDesign {
@@ -242,7 +245,15 @@ impl FitDesign {
     pub fn patches(&self) -> usize {
         match self {
             FitDesign::Single(_) | FitDesign::Trimmed(..) => 1,
-            FitDesign::Patches(d) => d.patches.len(),
+            FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => d.patches.len(),
+        }
+    }
+
+    /// Its mesh trimmed to the target's outline, the result, where it is trimmed.
+    pub fn trimmed(&self) -> Option<&TrimmedMesh> {
+        match self {
+            FitDesign::Trimmed(_, mesh) | FitDesign::TrimmedPatches(_, mesh) => Some(mesh),
+            FitDesign::Single(_) | FitDesign::Patches(_) => None,
         }
     }
 }
@@ -258,6 +269,8 @@ pub enum Chosen {
     Trimmed,
     /// The fit of this many patches.
     Patches(usize),
+    /// The fit of this many patches that cover the target, trimmed to its outline.
+    TrimmedPatches(usize),
 }
 
 /// The result of [`approximate_to_tolerance`].
@@ -347,7 +360,11 @@ fn fit_patches(
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<(FitDesign, QuadGrid, Deviation, usize), ApproxError> {
     let p = approximate_patches(points, single, layout, options, progress)?;
-    Ok((FitDesign::Patches(p.design), p.grid, p.after, p.evaluations))
+    let design = match p.trimmed {
+        Some(mesh) => FitDesign::TrimmedPatches(p.design, mesh),
+        None => FitDesign::Patches(p.design),
+    };
+    Ok((design, p.grid, p.after, p.evaluations))
 }
 
 /// A design seen, its mesh and deviation.
@@ -362,8 +379,9 @@ struct Seen {
 /// ([`super::approximate`]), then (where the target's outline can be traced) one patch
 /// that covers it, trimmed to its outline ([`ApproxOptions::trim`]: a target whose
 /// edges are not curvature lines), then the layouts of [`refinements`] of up to
-/// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`]: the one-patch
-/// result cut into blocks from its middle, every free guide and θ free, §4.7), until
+/// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`]: the nearer of
+/// the one-patch results cut into blocks from its middle, every free guide and θ free,
+/// §4.7; from the trimmed one, they cover the target and are trimmed too), until
 /// one is within the tolerance. The
 /// result is the nearest design seen (largest distance both ways; the initial guess
 /// included), whether or not within the tolerance ([`ToleranceFit::met`],
@@ -433,7 +451,9 @@ pub fn approximate_to_tolerance(
     best_max = best.deviation.max();
     let past_deadline = || options.approx.deadline.is_some_and(|d| Instant::now() >= d);
     // One patch covering the target, trimmed to its outline, where one patch does not
-    // meet the tolerance and the outline can be traced.
+    // meet the tolerance and the outline can be traced; the patches then refine the
+    // nearer of the two (and are trimmed where it is).
+    let mut nearer: Option<Approximation> = None;
     if best_max > limit && !single.timed_out && !options.approx.trim {
         let trim = ApproxOptions {
             trim: true,
@@ -455,14 +475,17 @@ pub fn approximate_to_tolerance(
                     trimmed: true,
                     outcome: Ok(t.after),
                 });
-                if let (true, Some(mesh)) = (t.after.closer_than(&best.deviation), t.trimmed) {
+                if let (true, Some(mesh)) = (t.after.closer_than(&best.deviation), &t.trimmed) {
                     best_max = t.after.max();
                     best = Seen {
-                        design: FitDesign::Trimmed(t.design, mesh),
-                        grid: t.grid,
+                        design: FitDesign::Trimmed(t.design.clone(), mesh.clone()),
+                        grid: t.grid.clone(),
                         deviation: t.after,
                         chosen: Chosen::Trimmed,
                     };
+                }
+                if t.after.closer_than(&single.after) {
+                    nearer = Some(t);
                 }
             }
             Err(error) => steps.push(Step {
@@ -484,7 +507,8 @@ pub fn approximate_to_tolerance(
                 stop = Stop::TimeLimit;
                 break;
             }
-            let fit = fit_patches(points, &single, layout, &options.approx, &mut |p| {
+            let from = nearer.as_ref().unwrap_or(&single);
+            let fit = fit_patches(points, from, layout, &options.approx, &mut |p| {
                 progress(&ToleranceProgress {
                     patches,
                     evaluations: done + p.evaluations,
@@ -495,18 +519,23 @@ pub fn approximate_to_tolerance(
             match fit {
                 Ok((design, grid, deviation, evaluations)) => {
                     done += evaluations;
+                    let trimmed = design.trimmed().is_some();
                     steps.push(Step {
                         patches,
-                        trimmed: false,
+                        trimmed,
                         outcome: Ok(deviation),
                     });
                     if deviation.closer_than(&best.deviation) {
                         best_max = deviation.max();
                         best = Seen {
+                            chosen: if trimmed {
+                                Chosen::TrimmedPatches(patches)
+                            } else {
+                                Chosen::Patches(patches)
+                            },
                             design,
                             grid,
                             deviation,
-                            chosen: Chosen::Patches(patches),
                         };
                     }
                     if best_max <= limit {
@@ -523,7 +552,7 @@ pub fn approximate_to_tolerance(
                 }
                 Err(error) => steps.push(Step {
                     patches,
-                    trimmed: false,
+                    trimmed: nearer.is_some(),
                     outcome: Err(error),
                 }),
             }
@@ -598,15 +627,21 @@ pub fn fit_report(
             BaseMesh::Circular(g) => g.face_count(),
             BaseMesh::Conical(c) => c.grid.face_count(),
         };
-        Ok(FitReport {
+        FitReport {
             panels,
             node_types: fabricate(base, &options).map(|f| f.summary.node_types),
             node_angle_tol: options.angle_tol,
             deviation,
             per_patch,
-        })
+        }
     };
-    match design {
+    // The deviation of a mesh, trimmed where the result is.
+    let trimmed = design.trimmed();
+    let deviation = |grid: &QuadGrid| match trimmed {
+        Some(mesh) => trimmed_deviation(target, grid, mesh, 1),
+        None => target.deviation(grid),
+    };
+    let mut r = match design {
         FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
             let circular = generate(d, &GenerateOptions::default())?.grid;
             let dual = (d.mesh == MeshKind::Conical).then(|| conical_dual(&circular));
@@ -614,14 +649,7 @@ pub fn fit_report(
                 Some(c) => (&c.grid, BaseMesh::Conical(c)),
                 None => (&circular, BaseMesh::Circular(&circular)),
             };
-            let trimmed = match design {
-                FitDesign::Trimmed(_, mesh) => Some(mesh),
-                _ => None,
-            };
-            let deviation = match trimmed {
-                Some(mesh) => trimmed_deviation(target, grid, mesh),
-                None => target.deviation(grid),
-            };
+            let deviation = deviation(grid);
             let one = PatchFit {
                 block: (0, 0),
                 theta_deg: d.theta_deg,
@@ -629,22 +657,19 @@ pub fn fit_report(
                 max: deviation.target_to_mesh_max,
                 rms: deviation.target_to_mesh_rms,
             };
-            let mut r = report(base, deviation, vec![one])?;
-            if let Some(mesh) = trimmed {
-                r.panels = mesh.faces.len();
-            }
-            Ok(r)
+            report(base, deviation, vec![one])
         }
-        FitDesign::Patches(d) => {
+        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => {
             let mp = build(d, &GenerateOptions::default())?;
             let patches = per_patch(target, &mp);
-            report(
-                BaseMesh::Circular(&mp.grid),
-                target.deviation(&mp.grid),
-                patches,
-            )
+            report(BaseMesh::Circular(&mp.grid), deviation(&mp.grid), patches)
         }
+    };
+    // A trimmed mesh's panels are its polygons.
+    if let Some(mesh) = trimmed {
+        r.panels = mesh.faces.len();
     }
+    Ok(r)
 }
 
 /// The distance from each target point to the mesh `grid` (model units), as

@@ -441,13 +441,14 @@ pub(super) fn trimmed_deviation(
     target: &TargetCloud,
     grid: &QuadGrid,
     trimmed: &TrimmedMesh,
+    stride: usize,
 ) -> Deviation {
     let distances: Vec<f64> = trimmed
         .vertices
         .iter()
         .map(|v| target.distance_from(*v))
         .collect();
-    target.deviation_given(grid, &distances, 1)
+    target.deviation_given(grid, &distances, stride)
 }
 
 /// Tolerance of [`trim`], relative to the grid's size: a cut this near a face's corner
