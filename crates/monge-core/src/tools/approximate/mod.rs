@@ -97,6 +97,7 @@ use crate::gauss_map::admissible_theta_at;
 use crate::generate::{generate, GenerateOptions};
 use crate::grid::QuadGrid;
 
+mod clip;
 mod cut;
 mod distance;
 mod edge;
@@ -426,43 +427,6 @@ impl Search<'_> {
         let r = self.residuals(start, x, faces)?;
         self.best = self.best.min(sum_of_squares(&r.0));
         Some(r)
-    }
-
-    /// The θ scan of the starts (§4.3): the objective on a grid of `faces` at every 10°
-    /// from each start in `guesses` (but 90°, where the guides' planes coincide), the
-    /// meshes in parallel; the feasible ones as (objective, start, θ), in the starts'
-    /// order.
-    fn scan_theta(&mut self, guesses: &[Start], faces: (usize, usize)) -> Vec<(f64, usize, f64)> {
-        let trials: Vec<(usize, f64)> = (0..guesses.len())
-            .flat_map(|g| {
-                (-17..=18)
-                    .filter(|k| *k != 9)
-                    .map(move |k| (g, 10.0 * f64::from(k)))
-            })
-            .collect();
-        // The objective, NaN when infeasible, `None` once stopped.
-        let values = crate::tasks::map(trials.len(), |k| {
-            let (g, theta) = trials[k];
-            let start = &guesses[g];
-            (!(self.stop)()).then(|| {
-                self.sum_of_squares_at(start, &start_parameters(start, theta), faces)
-                    .unwrap_or(f64::NAN)
-            })
-        });
-        let mut scan = Vec::with_capacity(trials.len());
-        for ((g, theta), f) in trials.into_iter().zip(values) {
-            match f {
-                Some(f) => {
-                    self.evaluations += 1;
-                    if f.is_finite() {
-                        self.best = self.best.min(f);
-                        scan.push((f, g, theta));
-                    }
-                }
-                None => self.timed_out = true,
-            }
-        }
-        scan
     }
 
     /// Objective at `x` (real units) from `start` on a grid of `faces`: the sum of

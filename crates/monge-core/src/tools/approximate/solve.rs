@@ -1,15 +1,56 @@
 //! The searches of [`approximate`](super::approximate) (monge's extension; BOBYQA as in
-//! §4.7): Levenberg–Marquardt on the residuals, with a finite-difference Jacobian,
-//! and BOBYQA where the least squares stall.
+//! §4.7): the θ scan of the starts, Levenberg–Marquardt on the residuals, with a
+//! finite-difference Jacobian, and BOBYQA where the least squares stall.
 
 use crate::gauss_map::admissible_theta_at;
 
 use super::{
-    design_of, fair_mesh, refine_guides, samples_for, sum_of_squares, Matches, Progress, Search,
-    Start, RECOVERED,
+    design_of, fair_mesh, refine_guides, samples_for, start_parameters, sum_of_squares, Matches,
+    Progress, Search, Start, RECOVERED,
 };
 
 impl Search<'_> {
+    /// The θ scan of the starts (§4.3): the objective on a grid of `faces` at every 10°
+    /// from each start in `guesses` (but 90°, where the guides' planes coincide), the
+    /// meshes in parallel; the feasible ones as (objective, start, θ), in the starts'
+    /// order.
+    pub(super) fn scan_theta(
+        &mut self,
+        guesses: &[Start],
+        faces: (usize, usize),
+    ) -> Vec<(f64, usize, f64)> {
+        let trials: Vec<(usize, f64)> = (0..guesses.len())
+            .flat_map(|g| {
+                (-17..=18)
+                    .filter(|k| *k != 9)
+                    .map(move |k| (g, 10.0 * f64::from(k)))
+            })
+            .collect();
+        // The objective, NaN when infeasible, `None` once stopped.
+        let values = crate::tasks::map(trials.len(), |k| {
+            let (g, theta) = trials[k];
+            let start = &guesses[g];
+            (!(self.stop)()).then(|| {
+                self.sum_of_squares_at(start, &start_parameters(start, theta), faces)
+                    .unwrap_or(f64::NAN)
+            })
+        });
+        let mut scan = Vec::with_capacity(trials.len());
+        for ((g, theta), f) in trials.into_iter().zip(values) {
+            match f {
+                Some(f) => {
+                    self.evaluations += 1;
+                    if f.is_finite() {
+                        self.best = self.best.min(f);
+                        scan.push((f, g, theta));
+                    }
+                }
+                None => self.timed_out = true,
+            }
+        }
+        scan
+    }
+
     /// The Jacobian of the residuals at `x` (real units), measured against the
     /// `matches` of `x`'s own mesh (no spatial search: the residuals are smooth there),
     /// by forward differences of [`FD_STEP`] of each parameter's scale, the columns in
