@@ -747,16 +747,7 @@ pub fn approximate_until(
     };
     let initial = design_of(&guesses[first], &initial_x, samples, options.kind);
     // Measured as trimmed, where trimmed.
-    let measure = |grid: &QuadGrid| match &outline {
-        Some(outline) => {
-            let trimmed = trim(grid, outline);
-            (
-                trim::trimmed_deviation(&target, grid, &trimmed, 1),
-                Some(trimmed),
-            )
-        }
-        None => (target.deviation(grid), None),
-    };
+    let measure = |grid: &QuadGrid| trim::measured(&target, grid, outline.as_ref(), 1);
     let before = fair_mesh(&initial).map(|g| measure(&g).0);
     let design = design_of(start, &fine, samples, options.kind);
     let grid = fair_mesh(&design).expect("the refined design was generated fair");

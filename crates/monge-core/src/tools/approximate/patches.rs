@@ -41,7 +41,7 @@ use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
 use super::distance::MeshFaces;
-use super::trim::{trim, trimmed_deviation, Outline, TrimmedMesh};
+use super::trim::{measured, Outline, TrimmedMesh};
 use super::{
     sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
     TargetCloud, OBJECTIVE_POINTS,
@@ -209,13 +209,6 @@ pub fn approximate_patches(
         .is_some()
         .then(|| Outline::of(&target))
         .transpose()?;
-    let measured = |grid: &QuadGrid, stride: usize| match &outline {
-        Some(o) => {
-            let t = trim(grid, o);
-            (trimmed_deviation(&target, grid, &t, stride), Some(t))
-        }
-        None => (target.deviation_strided(grid, stride), None),
-    };
     let (setup, x0) = Pieces::cut(single, layout)?;
     let grid = &single.grid;
     let count = layout.count();
@@ -227,7 +220,7 @@ pub fn approximate_patches(
             .is_some_and(|d| std::time::Instant::now() >= d)
     };
     let measure = |grid: &QuadGrid| {
-        let d = measured(grid, stride).0;
+        let d = measured(&target, grid, outline.as_ref(), stride).0;
         let f = match outline {
             Some(_) => sum_of_squares(&target.cover_residuals(grid, &target.matches(grid, stride))),
             None => d.objective(),
@@ -346,7 +339,7 @@ pub fn approximate_patches(
     let mut kept: Option<(MultiPatchDesign, MultiPatch, Deviation, Option<TrimmedMesh>)> = None;
     for x in [&best.1, &closest.1].into_iter().flatten() {
         let (design, mp) = setup.build(x, false).expect("the design was built");
-        let (after, trimmed) = measured(&mp.grid, 1);
+        let (after, trimmed) = measured(&target, &mp.grid, outline.as_ref(), 1);
         if after.closer_than(kept.as_ref().map_or(&single.after, |k| &k.2)) {
             kept = Some((design, mp, after, trimmed));
         }

@@ -452,6 +452,27 @@ pub(super) fn trimmed_deviation(
     target.deviation_given(grid, &distances, stride)
 }
 
+/// How a fit's mesh `grid` is measured against `target` (every `stride`-th point):
+/// trimmed to `outline` where there is one ([`trimmed_deviation`], with the trimmed
+/// mesh), else as it is.
+pub(super) fn measured(
+    target: &TargetCloud,
+    grid: &QuadGrid,
+    outline: Option<&Outline>,
+    stride: usize,
+) -> (Deviation, Option<TrimmedMesh>) {
+    match outline {
+        Some(outline) => {
+            let trimmed = trim(grid, outline);
+            (
+                trimmed_deviation(target, grid, &trimmed, stride),
+                Some(trimmed),
+            )
+        }
+        None => (target.deviation_strided(grid, stride), None),
+    }
+}
+
 /// Tolerance of [`trim`], relative to the grid's size: a cut this near a face's corner
 /// is that corner, this near its edge is on it.
 const TRIM_EPS: f64 = 1e-10;
