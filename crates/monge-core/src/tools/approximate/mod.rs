@@ -533,13 +533,7 @@ impl<'a> Search<'a> {
             let (f, x) = stage(&mut local, &guesses[*g], x);
             ((f, *g, x), local)
         };
-        #[cfg(feature = "parallel")]
-        let runs: Vec<_> = {
-            use rayon::prelude::*;
-            from.par_iter().map(one).collect()
-        };
-        #[cfg(not(feature = "parallel"))]
-        let runs: Vec<_> = from.iter().map(one).collect();
+        let runs = crate::tasks::map(from.len(), |k| one(&from[k]));
         let mut results = Vec::with_capacity(runs.len());
         let mut finished = 0;
         for (result, local) in runs {

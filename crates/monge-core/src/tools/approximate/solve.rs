@@ -83,13 +83,7 @@ impl Search<'_> {
             }
             (vec![0.0; r.len()], evaluations, false)
         };
-        #[cfg(feature = "parallel")]
-        let columns: Vec<(Vec<f64>, usize, bool)> = {
-            use rayon::prelude::*;
-            (0..x.len()).into_par_iter().map(column).collect()
-        };
-        #[cfg(not(feature = "parallel"))]
-        let columns: Vec<(Vec<f64>, usize, bool)> = (0..x.len()).map(column).collect();
+        let columns = crate::tasks::map(x.len(), column);
         self.evaluations += columns.iter().map(|c| c.1).sum::<usize>();
         if columns.iter().any(|c| c.2) {
             self.timed_out = true;
