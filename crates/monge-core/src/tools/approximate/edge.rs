@@ -93,12 +93,12 @@ fn sides(grid: &QuadGrid) -> [(Vec<usize>, Vec<usize>, Place); 4] {
 }
 
 /// The windows of each side of `grid` (`counts` of them: [`side_windows`]), with the
-/// offsets of the target points (every `stride`-th of `points`, each matched to one of
-/// `triangles`) matched to faces of their strip.
+/// offsets of the target points (those of `points` whose index is in `matched`, each
+/// with its triangle) matched to faces of their strip.
 pub(super) fn edge_windows(
     grid: &QuadGrid,
     points: &[DVec3],
-    (triangles, stride): (&[Triangle], usize),
+    matched: &[(usize, Triangle)],
     counts: [usize; 4],
 ) -> Vec<EdgeWindow> {
     let (rows, cols) = (grid.rows, grid.cols);
@@ -132,7 +132,8 @@ pub(super) fn edge_windows(
         for k in 0..m {
             these[window_of(k)].length += v(k).distance(v(k + 1));
         }
-        for (t, p) in triangles.iter().zip(points.iter().step_by(stride)) {
+        for (k, t) in matched {
+            let p = &points[*k];
             let (along, depth) = place(t.0, t.1, rows, cols);
             if depth >= EDGE_DEPTH {
                 continue;
@@ -335,12 +336,7 @@ pub(super) mod tests {
         let grid = unit_square();
         let target = TargetCloud::new(points).unwrap();
         let m = target.matches(&grid, 1);
-        edge_residuals(&edge_windows(
-            &grid,
-            &target.points,
-            (&m.points, m.stride),
-            m.windows,
-        ))
+        edge_residuals(&edge_windows(&grid, &target.points, &m.points, m.windows))
     }
 
     #[test]
@@ -368,7 +364,7 @@ pub(super) mod tests {
             let grid = unit_square();
             let target = TargetCloud::new(&points).unwrap();
             let m = target.matches(&grid, 1);
-            for w in edge_windows(&grid, &target.points, (&m.points, m.stride), m.windows) {
+            for w in edge_windows(&grid, &target.points, &m.points, m.windows) {
                 outermost += w.offsets.iter().copied().fold(f64::NEG_INFINITY, f64::max)
                     + 1.0 / (2000.0 * w.length);
             }
@@ -377,6 +373,33 @@ pub(super) mod tests {
         // Standard error of the mean: 1e-3 / √320 ≈ 6e-5.
         assert!(with_gap.abs() < 2e-4, "{with_gap:e}");
         assert!(outermost.abs() < 2e-4, "{outermost:e}");
+    }
+
+    #[test]
+    fn a_dense_scans_edges_are_read_from_every_point_near_them() {
+        // 20 000 random points, matched every fifth (as a fit reads a dense target): the
+        // windows' residuals are those of all the points, because every point near the
+        // target's edge is matched; every fifth alone leaves the edges about five times
+        // the gap inside.
+        let mut rng = fastrand::Rng::with_seed(5);
+        let points = square(&mut rng, 20_000);
+        let grid = unit_square();
+        let target = TargetCloud::new(&points).unwrap();
+        let residuals = |stride: usize| {
+            let m = target.matches(&grid, stride);
+            // Every point, or every fifth and those near the edge: fewer than half.
+            assert!(
+                stride == 1 || m.points.len() < points.len() / 2,
+                "{}",
+                m.points.len()
+            );
+            edge_residuals(&edge_windows(&grid, &target.points, &m.points, m.windows))
+        };
+        let (every, fifth) = (residuals(1), residuals(5));
+        assert_eq!(every.len(), fifth.len());
+        for (a, b) in every.iter().zip(&fifth) {
+            assert!((a - b).abs() < 1e-12, "{a:e} {b:e}");
+        }
     }
 
     #[test]
@@ -389,7 +412,7 @@ pub(super) mod tests {
         let count = |points: &[DVec3]| {
             let target = TargetCloud::new(points).unwrap();
             let m = target.matches(&grid, 1);
-            edge_windows(&grid, &target.points, (&m.points, m.stride), m.windows).len()
+            edge_windows(&grid, &target.points, &m.points, m.windows).len()
         };
         let mut rng = fastrand::Rng::with_seed(11);
         assert_eq!(count(&square(&mut rng, 2000)), 4 * 2);

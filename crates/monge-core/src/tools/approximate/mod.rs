@@ -71,7 +71,8 @@
 //!    guard against a vertex overhanging the target's boundary by several spacings),
 //!    plus that of the mesh's edges: each side of the mesh is fitted to the envelope of
 //!    the target points along it as a whole (its outermost point in each window: two a
-//!    side, more where the target's points are dense along it), plus
+//!    side, more where the target's points are dense along it; every point near the
+//!    target's edge counts, however many the target has), plus
 //!    the gap that a sampling leaves between its outermost points and the true edge,
 //!    estimated from the spacing of those outermost points (nil for a mesh's vertices,
 //!    about `A / (n·L)` for `n` random points over an area `A` along a length `L`), so
@@ -305,9 +306,9 @@ fn samples_for(faces: (usize, usize), kind: MeshKind) -> (usize, usize) {
 /// deviation uses them all.
 const OBJECTIVE_POINTS: usize = 1000;
 
-/// Largest target points whose offsets beyond the mesh's sides the least squares measure
-/// (every k-th beyond it): the edges' precision grows with the points measured
-/// ([`TargetCloud::residuals`]).
+/// Largest target points matched to the mesh at each step of the least squares (every
+/// k-th beyond it), besides every point near the target's edge, which set the sides
+/// ([`TargetCloud::matches`]): the edges' precision grows with the points measured.
 const EDGE_POINTS: usize = 4000;
 
 /// The search: objective, budget, best point.
