@@ -172,6 +172,27 @@ impl TargetCloud {
         })
     }
 
+    /// The target read from `count` of its points spread over it (a pseudo-random
+    /// choice, the same every time, whatever order the points come in: a scanner's rows
+    /// are not thinned to stripes), or `None` where it has no more, or where its points
+    /// are a mesh's vertices (evenly spaced along its edge), whose boundary lies on them.
+    pub(super) fn thinned(&self, count: usize) -> Option<TargetCloud> {
+        if self.points.len() <= count || self.edge_on_points {
+            return None;
+        }
+        // splitmix64 of each index: a pseudo-random order of the points.
+        let mix = |k: usize| {
+            let mut z = (k as u64).wrapping_add(0x9E37_79B9_7F4A_7C15);
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        };
+        let mut order: Vec<usize> = (0..self.points.len()).collect();
+        order.sort_by_key(|k| mix(*k));
+        let points: Vec<DVec3> = order[..count].iter().map(|k| self.points[*k]).collect();
+        TargetCloud::new(&points).ok()
+    }
+
     /// The `count` target points nearest to `p`, nearest first.
     pub(super) fn nearest(&self, p: DVec3, count: usize) -> Vec<DVec3> {
         self.tree
@@ -587,6 +608,38 @@ fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
 mod tests {
     use super::super::edge::tests::unit_square;
     use super::*;
+
+    #[test]
+    fn a_large_scan_is_thinned_evenly_and_a_mesh_not_at_all() {
+        // 5 000 random points of the unit square sorted by y, as a scanner's rows come:
+        // 2 000 of them spread over the whole square (each quarter holds about a
+        // quarter), the same every time.
+        let mut rng = fastrand::Rng::with_seed(3);
+        let mut scan: Vec<DVec3> = (0..5000)
+            .map(|_| DVec3::new(rng.f64(), rng.f64(), 0.0))
+            .collect();
+        scan.sort_by(|a, b| a.y.total_cmp(&b.y));
+        let target = TargetCloud::new(&scan).unwrap();
+        let sparse = target.thinned(2000).unwrap();
+        assert_eq!(sparse.points.len(), 2000);
+        assert_eq!(sparse.points, target.thinned(2000).unwrap().points);
+        for (x, y) in [(0.0, 0.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5)] {
+            let quarter = sparse
+                .points
+                .iter()
+                .filter(|p| (x..x + 0.5).contains(&p.x) && (y..y + 0.5).contains(&p.y))
+                .count();
+            assert!((400..=600).contains(&quarter), "{quarter}");
+        }
+        assert!(target.thinned(5000).is_none());
+        // A mesh's 70 × 70 vertices (its boundary evenly spaced on its edge): never
+        // thinned.
+        let rows: Vec<DVec3> = (0..4900)
+            .map(|k| DVec3::new((k % 70) as f64 / 69.0, (k / 70) as f64 / 69.0, 0.0))
+            .collect();
+        let mesh = TargetCloud::new(&rows).unwrap();
+        assert!(mesh.thinned(2000).is_none());
+    }
 
     /// The distance from a point of the plane z = 0 to the unit square (closed form).
     fn to_unit_square(p: DVec3) -> f64 {
