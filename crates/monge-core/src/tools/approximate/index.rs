@@ -175,7 +175,9 @@ impl TargetCloud {
     /// The target read from `count` of its points spread over it (a pseudo-random
     /// choice, the same every time, whatever order the points come in: a scanner's rows
     /// are not thinned to stripes), or `None` where it has no more, or where its points
-    /// are a mesh's vertices (evenly spaced along its edge), whose boundary lies on them.
+    /// are a mesh's vertices (evenly spaced along its edge), whose boundary lies on them,
+    /// or where the chosen points are not a target ([`TargetCloud::new`] refuses them):
+    /// then the whole target is read.
     pub(super) fn thinned(&self, count: usize) -> Option<TargetCloud> {
         if self.points.len() <= count || self.edge_on_points {
             return None;
