@@ -282,7 +282,8 @@ impl TargetCloud {
 
     /// [`TargetCloud::across`], and, where `i` is on the target's boundary, how far `v`
     /// lies beyond it by more than `allowance` along its outward direction (the least
-    /// squares' guard against a side swinging out).
+    /// squares' guard against a side swinging out; for a mesh to be trimmed, how much
+    /// less the vertex counts).
     fn offsets(&self, v: DVec3, i: usize, allowance: f64) -> (f64, f64) {
         let d = v - self.points[i];
         let along = d - d.dot(self.normals[i]) * self.normals[i];
