@@ -80,11 +80,58 @@ pub(super) type Triangle = (usize, usize, u8);
 /// triangle's plane (zero when `p` lies over the triangle).
 pub(super) fn triangle_offsets(grid: &QuadGrid, t: Triangle, p: DVec3) -> (f64, f64) {
     let [a, b, c, d] = grid.face(t.0, t.1);
-    let (x, y, z) = if t.2 == 0 { (a, b, c) } else { (a, c, d) };
+    offsets(p, if t.2 == 0 { [a, b, c] } else { [a, c, d] })
+}
+
+/// Distance from `p` to the triangle `[x, y, z]`, and the part of it along the
+/// triangle's plane.
+fn offsets(p: DVec3, [x, y, z]: [DVec3; 3]) -> (f64, f64) {
     let offset = p - closest_on_triangle(p, x, y, z);
     let normal = (y - x).cross(z - x).normalize_or_zero();
     let along = offset - offset.dot(normal) * normal;
     (offset.length(), along.length())
+}
+
+/// Any triangles (a trimmed mesh's faces, [`TrimmedMesh::triangles`](super::TrimmedMesh::triangles)), for the exact
+/// nearest of them to a point: an R-tree of their bounding boxes. [`MeshFaces`] seeks
+/// among the faces around a grid's nearest vertices, which for a trimmed mesh may be
+/// faces cut away.
+pub(super) struct Triangles(RTree<Corners>);
+
+/// A triangle's corners, in an R-tree.
+struct Corners([DVec3; 3]);
+
+impl rstar::RTreeObject for Corners {
+    type Envelope = rstar::AABB<[f64; 3]>;
+
+    fn envelope(&self) -> Self::Envelope {
+        let [a, b, c] = self.0;
+        rstar::AABB::from_corners(a.min(b).min(c).to_array(), a.max(b).max(c).to_array())
+    }
+}
+
+impl rstar::PointDistance for Corners {
+    fn distance_2(&self, p: &[f64; 3]) -> f64 {
+        let (p, [a, b, c]) = (DVec3::from_array(*p), self.0);
+        p.distance_squared(closest_on_triangle(p, a, b, c))
+    }
+}
+
+impl Triangles {
+    /// The index of `triangles`.
+    pub(super) fn new(triangles: Vec<[DVec3; 3]>) -> Self {
+        Triangles(RTree::bulk_load(
+            triangles.into_iter().map(Corners).collect(),
+        ))
+    }
+
+    /// Distance from `p` to the nearest triangle, and the part of it along that
+    /// triangle's plane (as [`MeshFaces::distance_from`]); infinite without triangles.
+    pub(super) fn distance_from(&self, p: DVec3) -> (f64, f64) {
+        self.0
+            .nearest_neighbor(p.to_array())
+            .map_or((f64::INFINITY, f64::INFINITY), |t| offsets(p, t.0))
+    }
 }
 
 /// Distance from `p` to the triangle `abc` (closest point by regions, Ericson,

@@ -396,19 +396,21 @@ impl TargetCloud {
     /// Distances both ways between `grid` and the target, relative to the target's size;
     /// target points are taken every `stride`-th.
     pub(super) fn deviation_strided(&self, grid: &QuadGrid, stride: usize) -> Deviation {
-        self.deviation_given(grid, &self.distances(grid), stride)
+        let faces = MeshFaces::new(grid);
+        self.deviation_given(&self.distances(grid), |p| faces.distance_from(p), stride)
     }
 
-    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`] given.
+    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`]
+    /// given, and `to_mesh`, a target point's distance to the mesh and its part along the
+    /// nearest face's plane.
     pub(super) fn deviation_given(
         &self,
-        grid: &QuadGrid,
         distances: &[f64],
+        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
         stride: usize,
     ) -> Deviation {
         let (m_max, m_rms) = max_rms(distances.iter().copied());
-        let faces = MeshFaces::new(grid);
-        let nearest = strided(&self.points, stride, |p| faces.distance_from(p));
+        let nearest = strided(&self.points, stride, to_mesh);
         let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
         let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
         Deviation {
@@ -471,7 +473,8 @@ impl TargetCloud {
     /// ```
     pub fn distances_and_deviation(&self, grid: &QuadGrid) -> (Vec<f64>, Deviation) {
         let distances = self.distances(grid);
-        let deviation = self.deviation_given(grid, &distances, 1);
+        let faces = MeshFaces::new(grid);
+        let deviation = self.deviation_given(&distances, |p| faces.distance_from(p), 1);
         (distances, deviation)
     }
 }

@@ -639,7 +639,7 @@ pub fn fit_report(
     // The deviation of a mesh, trimmed where the result is.
     let trimmed = design.trimmed();
     let deviation = |grid: &QuadGrid| match trimmed {
-        Some(mesh) => trimmed_deviation(target, grid, mesh, 1),
+        Some(mesh) => trimmed_deviation(target, mesh, 1),
         None => target.deviation(grid),
     };
     let mut r = match design {
