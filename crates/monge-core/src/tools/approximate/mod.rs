@@ -53,7 +53,8 @@
 //!    target point), so its columns cost one mesh generation each and no search. Where
 //!    the least squares stall away from the target (one patch cannot follow it), BOBYQA
 //!    (Powell 2009, set up as in [`crate::optimise`]) runs from the same starts and
-//!    polishes the result. Designs that cannot be generated or whose mesh folds
+//!    polishes the result (not for a mesh to be trimmed, whose least squares BOBYQA did
+//!    not better). Designs that cannot be generated or whose mesh folds
 //!    ([`QuadGrid::folds`], §5.2) are infeasible. The least squares then run again with
 //!    finer guides (knot insertion: 7, then 11 control points, the same curves), kept
 //!    only when closer to the target by the largest distance both ways: five control
@@ -671,6 +672,7 @@ pub fn approximate_until(
         }
     }
     if !options.keep_boundary
+        && search.polishes()
         && !search.timed_out
         && !results.iter().any(|r| r.0.sqrt() <= RECOVERED)
     {
