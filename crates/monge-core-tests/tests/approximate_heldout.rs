@@ -326,6 +326,15 @@ fn patches_from_a_trimmed_patch_are_trimmed_and_read_as_measured() {
         (to_target - read.0).abs() <= 0.05 * read.0 && (to_result - read.1).abs() <= 0.05 * read.1,
         "{to_target:e} {to_result:e} read {read:?}"
     );
+    // The patches' figures and the picture's colours read the target → mesh distance
+    // as the deviation does: to the trimmed mesh.
+    let per_patch = p.per_patch.iter().map(|f| f.max).fold(0.0, f64::max);
+    let cloud = monge_core::approximate::TargetCloud::new(&points).unwrap();
+    let colours = monge_core::approximate::target_distances(&cloud, &p.grid, Some(mesh));
+    let colours = colours.iter().copied().fold(0.0, f64::max) / p.after.size;
+    for figure in [per_patch, colours] {
+        assert!((figure - read.1).abs() <= 1e-12, "{figure:e} read {read:?}");
+    }
     let (a, b) = max_both_ways_trimmed(&target, single.trimmed.as_ref().unwrap());
     assert!(
         to_target.max(to_result) <= 1.05 * a.max(b),

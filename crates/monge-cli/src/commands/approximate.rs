@@ -271,7 +271,7 @@ fn picture_bytes(
             &d,
         );
     }
-    let distances = target_distances(target, result);
+    let distances = target_distances(target, result, trimmed.map(|(mesh, _)| mesh));
     let largest = distances.iter().copied().fold(0.0, f64::max);
     let dots = points
         .iter()

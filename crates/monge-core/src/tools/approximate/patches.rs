@@ -40,8 +40,7 @@
 use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
-use super::distance::MeshFaces;
-use super::trim::{measured, Outline, TrimmedMesh};
+use super::trim::{measured, Outline, ResultFaces, TrimmedMesh};
 use super::{
     sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
     TargetCloud, OBJECTIVE_POINTS,
@@ -126,9 +125,14 @@ fn folds(grid: &QuadGrid) -> usize {
     }
 }
 
-/// Per patch: θ, and the distances to the mesh of the target points nearest to it.
-pub(super) fn per_patch(target: &TargetCloud, mp: &MultiPatch) -> Vec<PatchFit> {
-    let faces = MeshFaces::new(&mp.grid);
+/// Per patch: θ, and the distances to the mesh (`trimmed` where given) of the target
+/// points nearest to it.
+pub(super) fn per_patch(
+    target: &TargetCloud,
+    mp: &MultiPatch,
+    trimmed: Option<&TrimmedMesh>,
+) -> Vec<PatchFit> {
+    let faces = ResultFaces::new(&mp.grid, trimmed);
     let cols = mp.grid.cols;
     let mut sums = vec![(0usize, 0.0f64, 0.0f64); mp.patches.len()];
     let owner = |at: usize| {
@@ -374,7 +378,7 @@ pub fn approximate_patches(
     };
     Ok(PatchApproximation {
         after,
-        per_patch: per_patch(&target, &mp),
+        per_patch: per_patch(&target, &mp, trimmed.as_ref()),
         before: single.after,
         design,
         layout: out_layout,

@@ -22,9 +22,8 @@ use crate::generate::{generate, GenerateError, GenerateOptions};
 use crate::grid::QuadGrid;
 use crate::multipatch::{build, MultiPatchDesign, MultiPatchError};
 
-use super::distance::MeshFaces;
 use super::patches::per_patch;
-use super::trim::{trimmed_deviation, TrimmedMesh};
+use super::trim::{trimmed_deviation, ResultFaces, TrimmedMesh};
 use super::{
     approximate, approximate_patches, fair_mesh, ApproxError, ApproxOptions, Approximation,
     Deviation, PatchFit, PatchLayout, Progress, TargetCloud,
@@ -662,7 +661,7 @@ pub fn fit_report(
         }
         FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => {
             let mp = build(d, &GenerateOptions::default())?;
-            let patches = per_patch(target, &mp);
+            let patches = per_patch(target, &mp, trimmed);
             report(BaseMesh::Circular(&mp.grid), deviation(&mp.grid), patches)
         }
     };
@@ -673,7 +672,8 @@ pub fn fit_report(
     Ok(r)
 }
 
-/// The distance from each target point to the mesh `grid` (model units), as
+/// The distance from each target point to the mesh `grid` (model units), or where the
+/// result is `trimmed` (the trimmed mesh of `grid`) to that, as
 /// [`Deviation::target_to_mesh_max`] measures it: to the nearest face. What a picture
 /// of the target coloured by its distance to a result shows.
 ///
@@ -688,12 +688,16 @@ pub fn fit_report(
 /// let square = [DVec3::new(3.0, 3.0, 0.5), DVec3::new(3.0, 4.0, 0.5),
 ///               DVec3::new(4.0, 3.0, 0.5), DVec3::new(4.0, 4.0, 0.5)];
 /// let grid = QuadGrid::new(2, 2, square.to_vec(), vec![DVec3::Z; 4]);
-/// let d = target_distances(&target, &grid);
+/// let d = target_distances(&target, &grid, None);
 /// assert!((d[33] - 0.5).abs() < 1e-12);
 /// assert!((d[0] - (18f64 + 0.25).sqrt()).abs() < 1e-12);
 /// ```
-pub fn target_distances(target: &TargetCloud, grid: &QuadGrid) -> Vec<f64> {
-    let faces = MeshFaces::new(grid);
+pub fn target_distances(
+    target: &TargetCloud,
+    grid: &QuadGrid,
+    trimmed: Option<&TrimmedMesh>,
+) -> Vec<f64> {
+    let faces = ResultFaces::new(grid, trimmed);
     target
         .points
         .iter()

@@ -13,7 +13,7 @@ use glam::{DVec2, DVec3};
 use crate::grid::QuadGrid;
 
 use super::clip::{clip, convex_pieces, polygon_area};
-use super::distance::{Deviation, Triangles};
+use super::distance::{Deviation, MeshFaces, Triangles};
 use super::error::ApproxError;
 use super::index::TargetCloud;
 
@@ -444,6 +444,35 @@ pub fn trim(grid: &QuadGrid, outline: &Outline) -> TrimmedMesh {
     out
 }
 
+/// The faces a fit's result is measured against, for a target point's distance to it
+/// and that distance's part along the nearest face's plane: `grid`'s faces, or where the
+/// result is `trimmed`, the trimmed mesh's. One measure for the deviation
+/// ([`trimmed_deviation`]), the patches' figures and the picture's colours.
+pub(super) enum ResultFaces<'a> {
+    /// The grid's faces (around its nearest vertices).
+    Grid(MeshFaces<'a>),
+    /// The trimmed mesh's faces (exact nearest).
+    Trimmed(Triangles),
+}
+
+impl<'a> ResultFaces<'a> {
+    /// The faces of `grid`, trimmed where `trimmed` is given (the trimmed mesh of `grid`).
+    pub(super) fn new(grid: &'a QuadGrid, trimmed: Option<&TrimmedMesh>) -> Self {
+        match trimmed {
+            Some(mesh) => ResultFaces::Trimmed(Triangles::new(mesh.triangles())),
+            None => ResultFaces::Grid(MeshFaces::new(grid)),
+        }
+    }
+
+    /// Distance from `p` to the nearest face, and its part along that face's plane.
+    pub(super) fn distance_from(&self, p: DVec3) -> (f64, f64) {
+        match self {
+            ResultFaces::Grid(faces) => faces.distance_from(p),
+            ResultFaces::Trimmed(faces) => faces.distance_from(p),
+        }
+    }
+}
+
 /// Distances both ways between a mesh trimmed to the target's outline (`trimmed`,
 /// [`trim`]) and `target`, relative to the target's size: from every vertex of the
 /// trimmed mesh (its cuts too) to the target, and from every target point to the
@@ -505,6 +534,39 @@ fn on_edge(q: DVec2, quad: &[DVec2; 4], eps: f64) -> Option<(usize, usize, f64)>
 mod tests {
     use super::*;
     use crate::approximate::TargetCloud;
+
+    #[test]
+    fn a_target_point_is_measured_to_what_the_trimming_keeps() {
+        // A flat target, the unit square; over it a sheet 0.5 above, whose overhang
+        // beyond the edge x = 1 drops steeply to the target's plane. The part cut away
+        // passes 0.1 from the target's points on that edge, the part kept 0.5 above them.
+        let target: Vec<DVec3> = (0..121)
+            .map(|k| DVec3::new((k % 11) as f64 / 10.0, (k / 11) as f64 / 10.0, 0.0))
+            .collect();
+        let cloud = TargetCloud::new(&target).unwrap();
+        let xz = [(-0.1, 0.5), (0.5, 0.5), (1.05, 0.5), (1.1, 0.0)];
+        let vertices = [-0.1, 0.5, 1.1]
+            .iter()
+            .flat_map(|y| xz.iter().map(move |(x, z)| DVec3::new(*x, *y, *z)))
+            .collect();
+        let grid = QuadGrid::new(3, 4, vertices, vec![DVec3::Z; 12]);
+        let trimmed = trim(&grid, &Outline::of(&cloud).unwrap());
+        let on_edge = DVec3::new(1.0, 0.5, 0.0);
+        let untrimmed = ResultFaces::new(&grid, None).distance_from(on_edge).0;
+        assert!(untrimmed < 0.11, "{untrimmed}");
+        let kept = ResultFaces::new(&grid, Some(&trimmed))
+            .distance_from(on_edge)
+            .0;
+        assert!((kept - 0.5).abs() < 1e-9, "{kept}");
+        // Every target point is 0.5 from the trimmed mesh, as the deviation and the
+        // picture's colours read it.
+        let d = trimmed_deviation(&cloud, &trimmed, 1);
+        assert!((d.target_to_mesh_max * d.size - 0.5).abs() < 1e-9);
+        assert!((d.target_to_mesh_rms * d.size - 0.5).abs() < 1e-9);
+        for c in crate::approximate::target_distances(&cloud, &grid, Some(&trimmed)) {
+            assert!((c - 0.5).abs() < 1e-9, "{c}");
+        }
+    }
 
     #[test]
     fn a_grid_trimmed_to_a_disc_has_planar_panels_and_no_cracks() {
