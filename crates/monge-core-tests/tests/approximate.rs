@@ -592,11 +592,7 @@ fn a_time_limit_keeps_the_best_design_found_so_far() {
 
 #[test]
 fn a_scans_noise_is_averaged_out_of_the_distance_and_a_meshs_own_vertices_are_on_it() {
-    use crate::heldout::targets;
-    let torus = targets()
-        .into_iter()
-        .find(|t| t.name == "torus patch")
-        .unwrap();
+    let torus = crate::heldout::target("torus patch");
     // Vertices exactly on the torus (at distance 0 from it), away from its edges,
     // measured against a scan of it noised by 1e-4 of its size: the quadric around each
     // nearest point averages its neighbours' noise; measured through the point itself,
@@ -684,8 +680,8 @@ fn held_out_fit(
     sample: impl Fn(&crate::heldout::Target) -> Vec<DVec3>,
     options: &ApproxOptions,
 ) -> (f64, f64, f64) {
-    use crate::heldout::{fold_theta, max_both_ways, targets};
-    let target = targets().into_iter().find(|t| t.name == name).unwrap();
+    use crate::heldout::{fold_theta, max_both_ways, target};
+    let target = target(name);
     let r = approximate(&sample(&target), options, &mut |_| {}).unwrap();
     let (to_max, from_max) = max_both_ways(&target, &finer(&r.design, 41));
     let theta = fold_theta(r.design.theta_deg);

@@ -7,7 +7,7 @@ use crate::heldout;
 use std::time::Instant;
 
 use glam::DVec3;
-use heldout::{fold_theta, max_both_ways, max_both_ways_trimmed, targets, Triangles};
+use heldout::{fold_theta, max_both_ways, max_both_ways_trimmed, target, targets, Triangles};
 use monge_core::approximate::{approximate, ApproxOptions};
 use monge_core::QuadGrid;
 
@@ -125,7 +125,7 @@ fn dense_scans_are_recovered_to_their_edges() {
     // (2.7e-3 reading every fifth point alone), the Dupin cyclide 2.4e-4 (3.5e-1 started
     // from all 8 000 points and its sides cut into five windows: off the target).
     for (name, count, seed) in [("moulding", 20_000, 2), ("Dupin cyclide", 8000, 2)] {
-        let target = targets().into_iter().find(|t| t.name == name).unwrap();
+        let target = target(name);
         let points = target.scan(count, 1e-4, seed);
         let a = approximate(&points, &ApproxOptions::default(), &mut |_| {}).unwrap();
         let (to_target, to_result) = max_both_ways(&target, &a.grid);
@@ -196,7 +196,7 @@ fn measure_free_form_trimmed() {
 /// `--trim` at default settings: its trimmed mesh's largest distances both ways, brute
 /// force against the closed form, and the untrimmed fit's (the larger of the two).
 fn trimmed_against_untrimmed(name: &str) -> ((f64, f64), f64) {
-    let target = targets().into_iter().find(|t| t.name == name).unwrap();
+    let target = target(name);
     let points = target.grid(41);
     let trim = ApproxOptions {
         trim: true,
@@ -237,10 +237,7 @@ fn a_trimmed_patch_reaches_the_targets_corners() {
     // away. Brute force both ways, measured 3.7e-4 / 3.9e-4 of the size (1.4e-3 / 2.2e-3,
     // the corners left uncovered, while the overhang's distance to the target carried
     // on counted whole).
-    let target = targets()
-        .into_iter()
-        .find(|t| t.name == "paraboloid")
-        .unwrap();
+    let target = target("paraboloid");
     let trim = ApproxOptions {
         trim: true,
         ..Default::default()
@@ -308,10 +305,7 @@ fn patches_from_a_trimmed_patch_are_trimmed_and_read_as_measured() {
     // The held-out paraboloid, one patch covering it on a coarse grid and a short search,
     // then two patches from it: they cover the target too, and are trimmed.
     use monge_core::approximate::{approximate_patches, PatchLayout};
-    let target = targets()
-        .into_iter()
-        .find(|t| t.name == "paraboloid")
-        .unwrap();
+    let target = target("paraboloid");
     let points = target.grid(41);
     let options = ApproxOptions {
         trim: true,

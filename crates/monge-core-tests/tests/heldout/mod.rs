@@ -350,6 +350,14 @@ pub fn targets() -> Vec<Target> {
     ]
 }
 
+/// The held-out target named `name` (one of [`targets`]).
+pub fn target(name: &str) -> Target {
+    targets()
+        .into_iter()
+        .find(|t| t.name == name)
+        .unwrap_or_else(|| panic!("no held-out target `{name}`"))
+}
+
 /// Triangles with their bounding spheres, for a brute-force search that skips the far ones.
 pub struct Triangles {
     triangles: Vec<([DVec3; 3], DVec3, f64)>,
