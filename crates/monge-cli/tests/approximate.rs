@@ -555,6 +555,45 @@ fn approximate_refuses_bad_tolerances_before_any_work() {
     );
 }
 
+/// The polygons of the OBJ at `path`, read back by a third-party reader, each checked
+/// planar (its corners' distances to the plane of its first three, measured here, within
+/// 1e-9 of the shipped paraboloid's size): how many are cut (more or fewer than four
+/// corners).
+fn planar_polygons_cut(path: &std::path::Path) -> usize {
+    let (models, _) = tobj::load_obj(path, &tobj::LoadOptions::default()).unwrap();
+    let mesh = &models[0].mesh;
+    let p = |k: u32| {
+        let k = 3 * k as usize;
+        [
+            mesh.positions[k],
+            mesh.positions[k + 1],
+            mesh.positions[k + 2],
+        ]
+    };
+    let mut start = 0;
+    let mut cut = 0;
+    for &arity in &mesh.face_arities {
+        let corners: Vec<[f64; 3]> = mesh.indices[start..start + arity as usize]
+            .iter()
+            .map(|k| p(*k))
+            .collect();
+        start += arity as usize;
+        cut += usize::from(arity != 4);
+        let (u, v) = (sub(corners[1], corners[0]), sub(corners[2], corners[0]));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let length = dot(n, n).sqrt();
+        for c in &corners[3..] {
+            let off = dot(sub(*c, corners[0]), n).abs() / length;
+            assert!(off < 1e-9 * 20.0, "a face off its plane by {off:e}");
+        }
+    }
+    cut
+}
+
 #[test]
 fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_curvature_lines() {
     let dir = TempDir::new().unwrap();
@@ -589,41 +628,7 @@ fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_
         .split_whitespace()
         .collect();
     assert!(ends.len() > 8 && ends.first() == ends.last(), "{ends:?}");
-    // Read back by a third-party reader: polygons, each planar (its corners' distances to
-    // the plane of its first three, measured here), some cut (more than four corners or
-    // fewer).
-    let (models, _) = tobj::load_obj(&trimmed, &tobj::LoadOptions::default()).unwrap();
-    let mesh = &models[0].mesh;
-    let p = |k: u32| {
-        let k = 3 * k as usize;
-        [
-            mesh.positions[k],
-            mesh.positions[k + 1],
-            mesh.positions[k + 2],
-        ]
-    };
-    let mut start = 0;
-    let mut cut = 0;
-    for &arity in &mesh.face_arities {
-        let corners: Vec<[f64; 3]> = mesh.indices[start..start + arity as usize]
-            .iter()
-            .map(|k| p(*k))
-            .collect();
-        start += arity as usize;
-        cut += usize::from(arity != 4);
-        let (u, v) = (sub(corners[1], corners[0]), sub(corners[2], corners[0]));
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let length = dot(n, n).sqrt();
-        for c in &corners[3..] {
-            let off = dot(sub(*c, corners[0]), n).abs() / length;
-            assert!(off < 1e-9 * 20.0, "a face off its plane by {off:e}");
-        }
-    }
-    assert!(cut > 0, "no face was cut");
+    assert!(planar_polygons_cut(&trimmed) > 0, "no face was cut");
     // The trimmed mesh is closer to the paraboloid, by brute force both ways, than the
     // untrimmed fit with the same settings (its boundary, a curvature line, cannot follow
     // the paraboloid's square edges), and monge reads its distances as measured here.
@@ -645,13 +650,61 @@ fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_
 }
 
 #[test]
-fn approximate_trim_refuses_patches_and_a_target_with_a_hole() {
+fn approximate_trim_with_patches_writes_the_patches_trimmed() {
+    let dir = TempDir::new().unwrap();
+    let (fit, trimmed) = (dir.path().join("fit.json"), dir.path().join("trimmed.obj"));
+    let out = paraboloid(&fit, 8, 100)
+        .arg("--trim")
+        .arg(&trimmed)
+        .args(["--patches", "2x2"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success(), "{stdout}");
+    assert!(
+        stdout.contains("they follow the target closer than one patch"),
+        "{stdout}"
+    );
+    assert!(planar_polygons_cut(&trimmed) > 0, "no face was cut");
+    // The trimmed mesh is cut from the patches' mesh: every vertex of it lies on a face
+    // of the mesh `monge patches` builds from DESIGN (measured here, by brute force).
+    let size = 19.8997;
+    let whole = dir.path().join("whole.obj");
+    monge_to("patches", &fit, &whole).assert().success();
+    let faces = common::obj_faces(&whole);
+    for v in obj_points(&trimmed) {
+        let off = faces
+            .iter()
+            .flat_map(|f| (1..f.len() - 1).map(move |k| to_triangle(v, f[0], f[k], f[k + 1])))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            off < 1e-9 * size,
+            "a trimmed vertex {off:e} off the patches"
+        );
+    }
+    // monge reads the patches' distances as measured here, both ways.
+    let (to_target, to_mesh) = paraboloid_distances(&trimmed);
+    let patches = &stdout[stdout.find("4 patches (§4.7):").unwrap()..];
+    for (label, truth) in [
+        ("mesh → target max", to_target),
+        ("target → mesh max", to_mesh),
+    ] {
+        let read = number_after(patches, label) * size;
+        assert!(
+            (read - truth).abs() < 0.05 * truth,
+            "{label}: {read} {truth}"
+        );
+    }
+}
+
+#[test]
+fn approximate_trim_refuses_the_kept_boundary_and_a_target_with_a_hole() {
     let dir = TempDir::new().unwrap();
     let fit = dir.path().join("fit.json");
     paraboloid(&fit, 8, 100)
         .arg("--trim")
         .arg(dir.path().join("t.obj"))
-        .args(["--patches", "2"])
+        .arg("--keep-boundary")
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot be used with"));

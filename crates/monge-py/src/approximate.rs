@@ -35,8 +35,9 @@ use crate::target::{points_array, points_of};
 /// target closer than one; `tolerance` (as `--tolerance`: a number relative to the
 /// target's size, `5e-3`, or a length, `"0.05m"`, `"5cm"`, `"50mm"`) fits one
 /// patch, then 2 × 1, 2 × 2, 3 × 2, … patches up to `max_patches` (default 6) until
-/// the mesh is within it both ways. `trim=True` (as `--trim`, one patch) fits a
-/// mesh that covers the target and trims it to the target's outline: `trimmed` is
+/// the mesh is within it both ways. `trim=True` (as `--trim`) fits a mesh that
+/// covers the target and trims it to the target's outline (with `patches`, the
+/// patches cover it too and are trimmed where they are kept): `trimmed` is
 /// then a dict of its `vertices` (n, 3), `faces` (lists of vertex indices, planar
 /// polygons) and `cut` (per face, whether the outline cut it), and `after` measures
 /// it; otherwise None.
@@ -97,10 +98,10 @@ pub fn approximate<'py>(
              command's --patches and --tolerance",
         ));
     }
-    if trim && (patches.is_some() || tolerance.is_some() || keep_boundary) {
+    if trim && (tolerance.is_some() || keep_boundary) {
         return Err(OptimiseError::new_err(
-            "trim fits one patch that covers the target: give it without patches, tolerance \
-             and keep_boundary, as the command's --trim",
+            "trim fits a mesh that covers the target: give it without tolerance (which tries \
+             one itself) and keep_boundary, as the command's --trim",
         ));
     }
     if max_patches.is_some() && tolerance.is_none() {
@@ -204,10 +205,7 @@ pub fn approximate<'py>(
     d.set_item("target_points", points.len())?;
     d.set_item("starts", single.starts)?;
     d.set_item("initial", Bound::new(py, plain(single.initial.clone()))?)?;
-    let trimmed = match &fit {
-        Fit::Single(r) => r.trimmed.as_ref(),
-        _ => design.trimmed(),
-    };
+    let trimmed = design.trimmed();
     // A trimmed result's panels are its polygons, as the command counts them.
     d.set_item("panels", trimmed.map_or(g.face_count(), |m| m.faces.len()))?;
     let trimmed = trimmed.map(|m| trimmed_dict(py, m)).transpose()?;
@@ -309,17 +307,29 @@ impl Fit {
     /// patches when it follows the target closer, as the command keeps it.
     fn kept(&self) -> (&Approximation, FitDesign, &QuadGrid, Deviation) {
         match self {
-            Fit::Single(r) => (r, FitDesign::Single(r.design.clone()), &r.grid, r.after),
+            Fit::Single(r) => (r, one_patch(r), &r.grid, r.after),
             Fit::Patches(b) => {
                 let (r, p) = &**b;
                 if p.closer_than(r) {
-                    (r, FitDesign::Patches(p.design.clone()), &p.grid, p.after)
+                    let design = match &p.trimmed {
+                        Some(mesh) => FitDesign::TrimmedPatches(p.design.clone(), mesh.clone()),
+                        None => FitDesign::Patches(p.design.clone()),
+                    };
+                    (r, design, &p.grid, p.after)
                 } else {
-                    (r, FitDesign::Single(r.design.clone()), &r.grid, r.after)
+                    (r, one_patch(r), &r.grid, r.after)
                 }
             }
             Fit::Tolerance(f) => (&f.single, f.design.clone(), &f.grid, f.deviation),
         }
+    }
+}
+
+/// The design of a one-patch fit, trimmed where it is.
+fn one_patch(r: &Approximation) -> FitDesign {
+    match &r.trimmed {
+        Some(mesh) => FitDesign::Trimmed(r.design.clone(), mesh.clone()),
+        None => FitDesign::Single(r.design.clone()),
     }
 }
 

@@ -142,10 +142,10 @@ def test_approximate_tolerance_and_patches_refuse_what_the_command_refuses(cli_e
         monge.approximate(points, tolerance=5e-3, max_patches=0)
     with pytest.raises(monge.OptimiseError, match="angle_tol_deg = -1"):
         monge.approximate(points, angle_tol_deg=-1)
-    with pytest.raises(monge.OptimiseError, match="trim fits one patch"):
-        monge.approximate(points, trim=True, patches=2)
+    with pytest.raises(monge.OptimiseError, match="trim fits a mesh that covers"):
+        monge.approximate(points, trim=True, keep_boundary=True)
     assert "cannot be used with" in cli_error(
-        "approximate", PARABOLOID, "-o", "x.json", "--trim", "x.obj", "--patches", "2"
+        "approximate", PARABOLOID, "-o", "x.json", "--trim", "x.obj", "--keep-boundary"
     )
 
 
@@ -225,3 +225,21 @@ def test_approximate_trim_equals_the_command_and_its_panels_are_planar(cli, tmp_
     surface = np.stack([x.ravel(), y.ravel(), (0.04 * x * x + 0.1 * y * y).ravel()], 1)
     far = max(np.min(np.linalg.norm(surface - v, axis=1)) for v in vertices)
     assert far <= 0.05 * size, far / size
+
+
+def test_approximate_trimmed_patches_equal_the_command(cli, tmp_path):
+    """trim=True with patches gives the command's multi-patch design and trimmed mesh
+    (--trim with --patches), bit for bit."""
+    out, mesh = tmp_path / "cli.json", tmp_path / "cli.obj"
+    cli("approximate", PARABOLOID, "-o", out, *SEARCH_ARGS, "--trim", mesh, "--patches", "2x2")
+    r = monge.approximate(paraboloid_points(), **SEARCH, trim=True, patches="2x2")
+    assert r["patches"] == 4
+    mine = tmp_path / "py.json"
+    r["design"].to_file(mine)
+    assert mine.read_bytes() == out.read_bytes()
+    lines = mesh.read_text().splitlines()
+    vertices = np.array([[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")])
+    faces = [[int(x) - 1 for x in l.split()[1:]] for l in lines if l.startswith("f ")]
+    t = r["trimmed"]
+    assert np.array_equal(vertices, t["vertices"]) and faces == t["faces"]
+    assert r["panels"] == len(faces)

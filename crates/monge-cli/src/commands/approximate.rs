@@ -85,13 +85,11 @@ pub struct ApproximateArgs {
     /// outline stay planar, no longer circular; the distances printed are the trimmed
     /// mesh's; --picture draws the mesh before trimming with the cut on it. DESIGN is the
     /// untrimmed design.
-    /// One patch. With --tolerance, where that fit chooses a trimmed mesh (it tries one
-    /// after one patch), it goes to TRIMMED (by default beside DESIGN: `x.trimmed.obj`).
-    #[arg(
-        long,
-        value_name = "TRIMMED",
-        conflicts_with_all = ["patches", "keep_boundary"]
-    )]
+    /// With --patches, the patches cover the target too and are trimmed, where they
+    /// follow it closer. With --tolerance, where that fit chooses a trimmed mesh (it
+    /// tries one after one patch), it goes to TRIMMED (by default beside DESIGN:
+    /// `x.trimmed.obj`).
+    #[arg(long, value_name = "TRIMMED", conflicts_with = "keep_boundary")]
     pub trim: Option<PathBuf>,
     /// Also draw the target's points coloured by their distance to the result, and the
     /// initial guess and the result coloured by their distance to the target, side by
@@ -408,8 +406,13 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             (&r.grid, r.after)
         }
     };
-    if let (Some(path), Some(trimmed)) = (&args.trim, &r.trimmed) {
-        write_trimmed_into(trimmed, path, &file, &mut out)?;
+    // The result trimmed, where it is: the patches' where they are kept.
+    let trimmed = match better {
+        Some(p) => p.trimmed.as_ref().map(|t| (t, p.after)),
+        None => r.trimmed.as_ref().map(|t| (t, r.after)),
+    };
+    if let (Some(path), Some((mesh, _))) = (&args.trim, trimmed) {
+        write_trimmed_into(mesh, path, &file, &mut out)?;
     }
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
@@ -418,14 +421,7 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             None => Vec::new(),
         };
         let bytes = picture_bytes(
-            &r,
-            grid,
-            boundaries,
-            &points,
-            &target,
-            None,
-            format,
-            r.trimmed.as_ref().map(|t| (t, r.after)),
+            &r, grid, boundaries, &points, &target, None, format, trimmed,
         )?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
@@ -471,11 +467,11 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         ))?;
     }
     print(&format!("wrote {}\n", args.output.display()))?;
-    if let (Some(path), Some(trimmed)) = (&args.trim, &r.trimmed) {
+    if let (Some(path), Some((mesh, _))) = (&args.trim, trimmed) {
         print(&format!(
             "wrote {} ({})\n",
             path.display(),
-            trimmed_faces(trimmed)
+            trimmed_faces(mesh)
         ))?;
     }
     if let Some(path) = &args.picture {

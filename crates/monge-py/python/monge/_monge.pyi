@@ -243,8 +243,8 @@ def approximate(
     ``node_types`` group nodes whose angles agree within ``angle_tol_deg`` degrees (default 0.5);
     it is None, and ``node_types_why_not`` says why, when fabrication refuses the mesh found.
     ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches.
-    ``trim=True`` (one patch, as ``--trim``) fits a mesh that covers the target and cuts it
-    by the target's outline: ``trimmed`` holds its ``vertices``, ``faces`` (planar polygons),
+    ``trim=True`` (as ``--trim``) fits a mesh that covers the target and cuts it by the
+    target's outline (with ``patches``, the patches cover it too and are cut where kept): ``trimmed`` holds its ``vertices``, ``faces`` (planar polygons),
     ``cut`` (per face, whether the outline cut it), ``from`` (per face, the grid's face
     ``(i, j)`` it was cut from) and ``mesh_faces`` (the faces as
     triangles and quads: each cut polygon split in its plane, for Rhino, Grasshopper and
