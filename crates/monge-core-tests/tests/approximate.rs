@@ -310,12 +310,13 @@ fn a_hyperbolic_paraboloid_gets_a_measured_bounded_deviation() {
     let (to_max, from_max, from_rms) = height_field_fit("hyperbolic paraboloid", &|x, y| {
         0.03 * (x - 5.0) * (y - 5.0)
     });
-    // Measured with the quick settings: max 8.0e-2 / 1.0e-1, RMS 2.8e-2; before the
-    // boundary start took the target's true corners, 3.0e-1 / 8.6e-2 (its sides
-    // overhung the plan by 0.3 of the size, which the height field extended beyond the
-    // plan did not count: it read 3.7e-2).
+    // Measured with the quick settings: max 1.0e-1 / 1.1e-1, RMS 3.1e-2 (8.0e-2 /
+    // 1.0e-1, RMS 2.8e-2 when BOBYQA polished the stalled least squares, in place of
+    // the θ restarts, five times as long); before the boundary start took the target's
+    // true corners, 3.0e-1 / 8.6e-2 (its sides overhung the plan by 0.3 of the size,
+    // which the height field extended beyond the plan did not count: it read 3.7e-2).
     assert!(
-        to_max <= 0.1 && from_max <= 0.16 && from_rms <= 3.5e-2,
+        to_max <= 0.12 && from_max <= 0.16 && from_rms <= 3.5e-2,
         "{to_max:e} {from_max:e} {from_rms:e}"
     );
 }

@@ -34,7 +34,8 @@ use glam::DVec3;
 #[command(
     long_about = "Find the design (corner, two planar guides, θ) whose exactly generated mesh is \
                   nearest to TARGET both ways (mesh → target and target → mesh), by least squares \
-                  (BOBYQA where they stall away from the target) from the target's principal \
+                  (again from θ moved to the best of a scan where they stall away from the \
+                  target) from the target's principal \
                   directions at its corners, its edges fitted to the envelope of the target's \
                   points (a scan's too); prints the deviation before \
                   and after, relative to the target's size, and the measured exactness.",

@@ -51,10 +51,11 @@
 //!    forward differences, its columns in parallel, against the spatial matches of the
 //!    current mesh (which target point is nearest to each vertex, which face to each
 //!    target point), so its columns cost one mesh generation each and no search. Where
-//!    the least squares stall away from the target (one patch cannot follow it), BOBYQA
-//!    (Powell 2009, set up as in [`crate::optimise`]) runs from the same starts and
-//!    polishes the result (not for a mesh to be trimmed, whose least squares BOBYQA did
-//!    not better). Designs that cannot be generated or whose mesh folds
+//!    the least squares stall away from the target from every start, they run again
+//!    from each of their results with θ moved to the best two of a scan every 10° (the
+//!    other parameters kept): they settle in the basin of their θ, which the scan
+//!    leaves (not for a mesh to be trimmed, whose least squares were not tried so).
+//!    Designs that cannot be generated or whose mesh folds
 //!    ([`QuadGrid::folds`], §5.2) are infeasible. The least squares then run again with
 //!    finer guides (knot insertion: 7, then 11 control points, the same curves), kept
 //!    only when closer to the target by the largest distance both ways: five control
@@ -653,8 +654,8 @@ pub fn approximate_until(
     })?;
     // The starts on the coarse grid: the least squares from each in turn (their Jacobian
     // in parallel) until one recovers the target; where they stall away from it from
-    // every start, BOBYQA from each start as well, in parallel (the least squares'
-    // results stay candidates).
+    // every start, again from each of their results with θ moved to the best of a scan
+    // ([`Search::theta_restarts`]), in parallel (the first results stay candidates).
     let (mut results, mut starts) = (Vec::new(), 0);
     for (g, theta) in &chosen {
         let from = [(*g, start_parameters(&guesses[*g], *theta))];
@@ -672,18 +673,15 @@ pub fn approximate_until(
         }
     }
     if !options.keep_boundary
-        && search.polishes()
+        && !options.trim
         && !search.timed_out
         && !results.iter().any(|r| r.0.sqrt() <= RECOVERED)
     {
-        let from: Vec<(usize, Vec<f64>)> = chosen
-            .iter()
-            .map(|(g, theta)| (*g, start_parameters(&guesses[*g], *theta)))
-            .collect();
-        let (polished, _) = search.each(&guesses, &from, &|s, start, x| {
-            s.polish(start, x, coarse, 0.05, &mut |_| {})
+        let from = search.theta_restarts(&guesses, &results, coarse);
+        let (restarted, _) = search.each(&guesses, &from, &|s, start, x| {
+            s.run(start, x, coarse, &mut |_| {})
         });
-        results.extend(polished);
+        results.extend(restarted);
     }
     progress(&search.progress());
     results.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -722,7 +720,7 @@ pub fn approximate_until(
             let (f, fine) = if options.keep_boundary {
                 search.run_theta(&guesses[*g], x, (fu, fv), 1.0, progress)
             } else {
-                search.refine(&guesses[*g], x, (fu, fv), 0.005, progress)
+                search.run(&guesses[*g], x, (fu, fv), progress)
             };
             if f.is_finite() {
                 return Some((&guesses[*g], fine));
