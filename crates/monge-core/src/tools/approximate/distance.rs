@@ -7,6 +7,8 @@ use rstar::RTree;
 
 use crate::grid::QuadGrid;
 
+use super::index::{max_rms, strided, TargetCloud};
+
 /// A point (of a target or a mesh) in a spatial index, with its index.
 pub(super) type Indexed = GeomWithData<[f64; 3], usize>;
 
@@ -222,5 +224,48 @@ impl Deviation {
     /// `κh²/8`, and fitting that sag would move the vertices off the target.
     pub(super) fn objective(&self) -> f64 {
         0.5 * (self.mesh_to_target_rms.powi(2) + self.beyond_mesh_rms.powi(2))
+    }
+}
+
+impl TargetCloud {
+    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`]
+    /// given, and `to_mesh`, a target point's distance to the mesh and its part along the
+    /// nearest face's plane.
+    pub(super) fn deviation_given(
+        &self,
+        distances: &[f64],
+        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
+        stride: usize,
+    ) -> Deviation {
+        self.deviation_below(|| distances.to_vec(), to_mesh, stride, f64::INFINITY)
+            .expect("no bound")
+    }
+
+    /// [`TargetCloud::deviation_given`], the vertices' distances computed by `distances`
+    /// only where the deviation may come closer than `than` (relative; infinite: always):
+    /// `None` where the largest distance target → mesh alone reaches it, then not
+    /// [`closer_than`](Deviation::closer_than) a deviation of largest distance `than`.
+    pub(super) fn deviation_below(
+        &self,
+        distances: impl FnOnce() -> Vec<f64>,
+        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
+        stride: usize,
+        than: f64,
+    ) -> Option<Deviation> {
+        let nearest = strided(&self.points, stride, to_mesh);
+        let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
+        if than.is_finite() && t_max / self.size >= than {
+            return None;
+        }
+        let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
+        let (m_max, m_rms) = max_rms(distances().into_iter());
+        Some(Deviation {
+            mesh_to_target_max: m_max / self.size,
+            mesh_to_target_rms: m_rms / self.size,
+            target_to_mesh_max: t_max / self.size,
+            target_to_mesh_rms: t_rms / self.size,
+            beyond_mesh_rms: b_rms / self.size,
+            size: self.size,
+        })
     }
 }

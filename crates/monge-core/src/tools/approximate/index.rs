@@ -400,29 +400,6 @@ impl TargetCloud {
         self.deviation_given(&self.distances(grid), |p| faces.distance_from(p), stride)
     }
 
-    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`]
-    /// given, and `to_mesh`, a target point's distance to the mesh and its part along the
-    /// nearest face's plane.
-    pub(super) fn deviation_given(
-        &self,
-        distances: &[f64],
-        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
-        stride: usize,
-    ) -> Deviation {
-        let (m_max, m_rms) = max_rms(distances.iter().copied());
-        let nearest = strided(&self.points, stride, to_mesh);
-        let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
-        let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
-        Deviation {
-            mesh_to_target_max: m_max / self.size,
-            mesh_to_target_rms: m_rms / self.size,
-            target_to_mesh_max: t_max / self.size,
-            target_to_mesh_rms: t_rms / self.size,
-            beyond_mesh_rms: b_rms / self.size,
-            size: self.size,
-        }
-    }
-
     /// The distance from each vertex of `grid` to the target (model units), as
     /// [`Deviation::mesh_to_target_max`] measures it: to the quadric fitted around the
     /// nearest target point, and beyond the target's boundary.
@@ -481,7 +458,7 @@ impl TargetCloud {
 
 /// `f` of every `stride`-th point of `points`, in order, blocks of them side by side
 /// ([`crate::tasks`]): a mesh's nearest faces to a target's points.
-fn strided<T: Send>(
+pub(super) fn strided<T: Send>(
     points: &[DVec3],
     stride: usize,
     f: impl Fn(DVec3) -> T + Sync + Send,
@@ -613,7 +590,7 @@ const TRIMMED_SPACINGS: f64 = 2.0;
 const EDGE_WEIGHT: f64 = 0.3;
 
 /// Largest and root-mean-square value (NaN wins the maximum).
-fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub(super) fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
     for d in values {
         max = if d.is_nan() { d } else { max.max(d) };

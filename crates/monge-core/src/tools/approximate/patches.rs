@@ -40,7 +40,7 @@
 use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
-use super::trim::{measured, Outline, ResultFaces, TrimmedMesh};
+use super::trim::{measured, trim, trimmed_deviation_below, Outline, ResultFaces, TrimmedMesh};
 use super::{
     sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
     TargetCloud, OBJECTIVE_POINTS,
@@ -223,15 +223,22 @@ pub fn approximate_patches(
             .deadline
             .is_some_and(|d| std::time::Instant::now() >= d)
     };
-    let measure = |grid: &QuadGrid| {
-        let d = measured(&target, grid, outline.as_ref(), stride).0;
-        let f = match outline {
-            Some(_) => sum_of_squares(&target.cover_residuals(grid, &target.matches(grid, stride))),
-            None => d.objective(),
-        };
-        (d, f)
+    // The deviation on the objective's points (`None` for a trimmed mesh that cannot come
+    // closer than a deviation of largest distance `than`, [`trimmed_deviation_below`]) and
+    // the search's objective.
+    let measure = |grid: &QuadGrid, than: f64| match outline.as_ref() {
+        Some(outline) => {
+            let d = trimmed_deviation_below(&target, &trim(grid, outline), stride, than);
+            let matches = target.matches(grid, stride);
+            (d, sum_of_squares(&target.cover_residuals(grid, &matches)))
+        }
+        None => {
+            let d = target.deviation_strided(grid, stride);
+            (Some(d), d.objective())
+        }
     };
-    let (single_strided, single_objective) = measure(grid);
+    let (single_strided, single_objective) = measure(grid, f64::INFINITY);
+    let single_strided = single_strided.expect("measured without a bound");
     let mut evaluations = 0;
     let budget = count * 359 + options.max_evaluations.max(2 * n + 2);
     // The best point seen by the search's objective, and the closest to the target
@@ -248,8 +255,8 @@ pub fn approximate_patches(
         let (folded, f) = match setup.build(x, fit) {
             Some((_, mp)) => match folds(&mp.grid) {
                 0 => {
-                    let (d, f) = measure(&mp.grid);
-                    if d.closer_than(&closest.0) {
+                    let (d, f) = measure(&mp.grid, closest.0.max());
+                    if let Some(d) = d.filter(|d| d.closer_than(&closest.0)) {
                         closest = (d, Some(x.to_vec()));
                     }
                     (0, f)

@@ -484,13 +484,31 @@ pub(super) fn trimmed_deviation(
     trimmed: &TrimmedMesh,
     stride: usize,
 ) -> Deviation {
-    let distances: Vec<f64> = trimmed
-        .vertices
-        .iter()
-        .map(|v| target.distance_from(*v))
-        .collect();
+    trimmed_deviation_below(target, trimmed, stride, f64::INFINITY).expect("no bound")
+}
+
+/// [`trimmed_deviation`] where it may come closer than a deviation of largest distance
+/// `than` ([`TargetCloud::deviation_below`]): the trimmed mesh's vertices are measured
+/// only then, what a search's evaluation costs most.
+pub(super) fn trimmed_deviation_below(
+    target: &TargetCloud,
+    trimmed: &TrimmedMesh,
+    stride: usize,
+    than: f64,
+) -> Option<Deviation> {
     let faces = Triangles::new(trimmed.triangles());
-    target.deviation_given(&distances, |p| faces.distance_from(p), stride)
+    target.deviation_below(
+        || {
+            trimmed
+                .vertices
+                .iter()
+                .map(|v| target.distance_from(*v))
+                .collect()
+        },
+        |p| faces.distance_from(p),
+        stride,
+        than,
+    )
 }
 
 /// How a fit's mesh `grid` is measured against `target` (every `stride`-th point):
@@ -563,6 +581,14 @@ mod tests {
         let d = trimmed_deviation(&cloud, &trimmed, 1);
         assert!((d.target_to_mesh_max * d.size - 0.5).abs() < 1e-9);
         assert!((d.target_to_mesh_rms * d.size - 0.5).abs() < 1e-9);
+        // Measured in full while it may come closer than a bound, not once its largest
+        // distance target → mesh alone reaches the bound.
+        let t = d.target_to_mesh_max;
+        assert_eq!(
+            trimmed_deviation_below(&cloud, &trimmed, 1, 1.01 * t),
+            Some(d)
+        );
+        assert_eq!(trimmed_deviation_below(&cloud, &trimmed, 1, t), None);
         for c in crate::approximate::target_distances(&cloud, &grid, Some(&trimmed)) {
             assert!((c - 0.5).abs() < 1e-9, "{c}");
         }
