@@ -7,8 +7,6 @@ use rstar::RTree;
 
 use crate::grid::QuadGrid;
 
-use super::index::{max_rms, strided, TargetCloud};
-
 /// A point (of a target or a mesh) in a spatial index, with its index.
 pub(super) type Indexed = GeomWithData<[f64; 3], usize>;
 
@@ -227,45 +225,37 @@ impl Deviation {
     }
 }
 
-impl TargetCloud {
-    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`]
-    /// given, and `to_mesh`, a target point's distance to the mesh and its part along the
-    /// nearest face's plane.
-    pub(super) fn deviation_given(
-        &self,
-        distances: &[f64],
-        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
-        stride: usize,
-    ) -> Deviation {
-        self.deviation_below(|| distances.to_vec(), to_mesh, stride, f64::INFINITY)
-            .expect("no bound")
-    }
+/// `f` of every `stride`-th point of `points`, in order, blocks of them side by side
+/// ([`crate::tasks`]): a mesh's nearest faces to a target's points.
+pub(super) fn strided<T: Send>(
+    points: &[DVec3],
+    stride: usize,
+    f: impl Fn(DVec3) -> T + Sync + Send,
+) -> Vec<T> {
+    map_blocks(points.len().div_ceil(stride.max(1)), |k| {
+        f(points[k * stride])
+    })
+}
 
-    /// [`TargetCloud::deviation_given`], the vertices' distances computed by `distances`
-    /// only where the deviation may come closer than `than` (relative; infinite: always):
-    /// `None` where the largest distance target → mesh alone reaches it, then not
-    /// [`closer_than`](Deviation::closer_than) a deviation of largest distance `than`.
-    pub(super) fn deviation_below(
-        &self,
-        distances: impl FnOnce() -> Vec<f64>,
-        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
-        stride: usize,
-        than: f64,
-    ) -> Option<Deviation> {
-        let nearest = strided(&self.points, stride, to_mesh);
-        let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
-        if than.is_finite() && t_max / self.size >= than {
-            return None;
-        }
-        let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
-        let (m_max, m_rms) = max_rms(distances().into_iter());
-        Some(Deviation {
-            mesh_to_target_max: m_max / self.size,
-            mesh_to_target_rms: m_rms / self.size,
-            target_to_mesh_max: t_max / self.size,
-            target_to_mesh_rms: t_rms / self.size,
-            beyond_mesh_rms: b_rms / self.size,
-            size: self.size,
-        })
+/// `f` of `0..count`, in order, blocks of [`STRIDED_BLOCK`] side by side
+/// ([`crate::tasks`]).
+pub(super) fn map_blocks<T: Send>(count: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    crate::tasks::ranges(count, STRIDED_BLOCK, |r| r.map(&f).collect::<Vec<T>>())
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// Points per task of [`map_blocks`]: a few tenths of a millisecond of nearest faces.
+const STRIDED_BLOCK: usize = 256;
+
+/// Largest and root-mean-square value (NaN wins the maximum).
+pub(super) fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
+    for d in values {
+        max = if d.is_nan() { d } else { max.max(d) };
+        sum += d * d;
+        n += 1;
     }
+    (max, (sum / n.max(1) as f64).sqrt())
 }

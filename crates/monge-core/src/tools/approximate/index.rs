@@ -7,7 +7,9 @@ use rstar::RTree;
 
 use crate::grid::{bbox_diagonal, point_segment, QuadGrid, MAX_SIZE, MIN_SIZE};
 
-use super::distance::{triangle_offsets, Deviation, Indexed, MeshFaces, Triangle};
+use super::distance::{
+    map_blocks, max_rms, strided, triangle_offsets, Deviation, Indexed, MeshFaces, Triangle,
+};
 use super::edge::{beyond_edge, edge_residuals, edge_windows, side_windows, EDGE_NEIGHBOURS};
 use super::error::{ApproxError, MIN_POINTS};
 use super::quadric::{misfits, principal_axes, Quadric};
@@ -400,6 +402,47 @@ impl TargetCloud {
         self.deviation_given(&self.distances(grid), |p| faces.distance_from(p), stride)
     }
 
+    /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`]
+    /// given, and `to_mesh`, a target point's distance to the mesh and its part along the
+    /// nearest face's plane.
+    pub(super) fn deviation_given(
+        &self,
+        distances: &[f64],
+        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
+        stride: usize,
+    ) -> Deviation {
+        self.deviation_below(|| distances.to_vec(), to_mesh, stride, f64::INFINITY)
+            .expect("no bound")
+    }
+
+    /// [`TargetCloud::deviation_given`], the vertices' distances computed by `distances`
+    /// only where the deviation may come closer than `than` (relative; infinite: always):
+    /// `None` where the largest distance target → mesh alone reaches it, then not
+    /// [`closer_than`](Deviation::closer_than) a deviation of largest distance `than`.
+    pub(super) fn deviation_below(
+        &self,
+        distances: impl FnOnce() -> Vec<f64>,
+        to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
+        stride: usize,
+        than: f64,
+    ) -> Option<Deviation> {
+        let nearest = strided(&self.points, stride, to_mesh);
+        let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
+        if than.is_finite() && t_max / self.size >= than {
+            return None;
+        }
+        let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
+        let (m_max, m_rms) = max_rms(distances().into_iter());
+        Some(Deviation {
+            mesh_to_target_max: m_max / self.size,
+            mesh_to_target_rms: m_rms / self.size,
+            target_to_mesh_max: t_max / self.size,
+            target_to_mesh_rms: t_rms / self.size,
+            beyond_mesh_rms: b_rms / self.size,
+            size: self.size,
+        })
+    }
+
     /// The distance from each vertex of `grid` to the target (model units), as
     /// [`Deviation::mesh_to_target_max`] measures it: to the quadric fitted around the
     /// nearest target point, and beyond the target's boundary.
@@ -455,30 +498,6 @@ impl TargetCloud {
         (distances, deviation)
     }
 }
-
-/// `f` of every `stride`-th point of `points`, in order, blocks of them side by side
-/// ([`crate::tasks`]): a mesh's nearest faces to a target's points.
-pub(super) fn strided<T: Send>(
-    points: &[DVec3],
-    stride: usize,
-    f: impl Fn(DVec3) -> T + Sync + Send,
-) -> Vec<T> {
-    map_blocks(points.len().div_ceil(stride.max(1)), |k| {
-        f(points[k * stride])
-    })
-}
-
-/// `f` of `0..count`, in order, blocks of [`STRIDED_BLOCK`] side by side
-/// ([`crate::tasks`]).
-fn map_blocks<T: Send>(count: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
-    crate::tasks::ranges(count, STRIDED_BLOCK, |r| r.map(&f).collect::<Vec<T>>())
-        .into_iter()
-        .flatten()
-        .collect()
-}
-
-/// Points per task of [`map_blocks`]: a few tenths of a millisecond of nearest faces.
-const STRIDED_BLOCK: usize = 256;
 
 /// Whether the boundary points of a target are evenly spaced along its edge, as a
 /// mesh's boundary vertices are: the distances from each to its nearest boundary point
@@ -588,17 +607,6 @@ const TRIMMED_SPACINGS: f64 = 2.0;
 /// only the edges set, need no more; the surface's shape, which sets the sides' shapes,
 /// is left to the surface.
 const EDGE_WEIGHT: f64 = 0.3;
-
-/// Largest and root-mean-square value (NaN wins the maximum).
-pub(super) fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
-    for d in values {
-        max = if d.is_nan() { d } else { max.max(d) };
-        sum += d * d;
-        n += 1;
-    }
-    (max, (sum / n.max(1) as f64).sqrt())
-}
 
 #[cfg(test)]
 mod tests {
