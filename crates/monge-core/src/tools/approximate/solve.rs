@@ -19,36 +19,51 @@ impl Search<'_> {
         guesses: &[Start],
         faces: (usize, usize),
     ) -> Vec<(f64, usize, f64)> {
-        let trials: Vec<(usize, f64)> = (0..guesses.len())
+        let trials: Vec<(usize, Vec<f64>, f64)> = (0..guesses.len())
             .flat_map(|g| {
                 (-17..=18)
                     .filter(|k| *k != 9)
                     .map(move |k| (g, 10.0 * f64::from(k)))
             })
+            .map(|(g, theta)| (g, start_parameters(&guesses[g], theta), theta))
             .collect();
+        self.objectives(guesses, &trials, faces)
+            .into_iter()
+            .map(|(f, k)| (f, trials[k].0, trials[k].2))
+            .collect()
+    }
+
+    /// The objective on a grid of `faces` of each of `trials` (a start's index in
+    /// `guesses`, parameters, and a tag), the meshes in parallel, counted: the feasible
+    /// ones as (objective, index in `trials`), in `trials`' order.
+    fn objectives<T: Sync>(
+        &mut self,
+        guesses: &[Start],
+        trials: &[(usize, Vec<f64>, T)],
+        faces: (usize, usize),
+    ) -> Vec<(f64, usize)> {
         // The objective, NaN when infeasible, `None` once stopped.
         let values = crate::tasks::map(trials.len(), |k| {
-            let (g, theta) = trials[k];
-            let start = &guesses[g];
+            let (g, x, _) = &trials[k];
             (!(self.stop)()).then(|| {
-                self.sum_of_squares_at(start, &start_parameters(start, theta), faces)
+                self.sum_of_squares_at(&guesses[*g], x, faces)
                     .unwrap_or(f64::NAN)
             })
         });
-        let mut scan = Vec::with_capacity(trials.len());
-        for ((g, theta), f) in trials.into_iter().zip(values) {
+        let mut feasible = Vec::with_capacity(trials.len());
+        for (k, f) in values.into_iter().enumerate() {
             match f {
                 Some(f) => {
                     self.evaluations += 1;
                     if f.is_finite() {
                         self.best = self.best.min(f);
-                        scan.push((f, g, theta));
+                        feasible.push((f, k));
                     }
                 }
                 None => self.timed_out = true,
             }
         }
-        scan
+        feasible
     }
 
     /// The Jacobian of the residuals at `x` (real units), measured against the
@@ -191,8 +206,8 @@ impl Search<'_> {
         results: &[(f64, usize, Vec<f64>)],
         faces: (usize, usize),
     ) -> Vec<(usize, Vec<f64>)> {
-        // Per finite result (its index), the scan's trials: start, parameters.
-        let trials: Vec<(usize, usize, Vec<f64>)> = results
+        // The scan's trials: start, parameters, and the index of the finite result.
+        let trials: Vec<(usize, Vec<f64>, usize)> = results
             .iter()
             .enumerate()
             .filter(|(_, r)| r.0.is_finite())
@@ -206,37 +221,21 @@ impl Search<'_> {
                     .map(move |t| {
                         let mut y = x.clone();
                         y[8] = t;
-                        (n, *g, y)
+                        (*g, y, n)
                     })
             })
             .collect();
-        // The objective, NaN when infeasible, `None` once stopped.
-        let values = crate::tasks::map(trials.len(), |k| {
-            let (_, g, y) = &trials[k];
-            (!(self.stop)()).then(|| {
-                self.sum_of_squares_at(&guesses[*g], y, faces)
-                    .unwrap_or(f64::NAN)
-            })
-        });
-        let mut scanned: Vec<(usize, f64, usize)> = Vec::new();
-        for (k, f) in values.into_iter().enumerate() {
-            match f {
-                Some(f) => {
-                    self.evaluations += 1;
-                    if f.is_finite() {
-                        self.best = self.best.min(f);
-                        scanned.push((trials[k].0, f, k));
-                    }
-                }
-                None => self.timed_out = true,
-            }
-        }
+        let mut scanned: Vec<(usize, f64, usize)> = self
+            .objectives(guesses, &trials, faces)
+            .into_iter()
+            .map(|(f, k)| (trials[k].2, f, k))
+            .collect();
         // The best few of each result's scan, in the results' order.
         scanned.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
         let mut restarts = Vec::new();
         for (n, (result, _, k)) in scanned.iter().enumerate() {
             if scanned[..n].iter().filter(|s| s.0 == *result).count() < THETA_RESTARTS {
-                let (_, g, y) = &trials[*k];
+                let (g, y, _) = &trials[*k];
                 restarts.push((*g, y.clone()));
             }
         }
