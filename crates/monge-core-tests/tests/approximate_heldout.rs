@@ -156,6 +156,38 @@ fn a_scan_whose_least_squares_stall_at_a_wrong_theta_is_restarted_from_another()
     assert_scan_recovered("moulding", 8000, 5);
 }
 
+#[test]
+fn a_scan_within_a_tolerance_but_at_its_edge_keeps_its_one_patch_and_says_so() {
+    // 2 000 points of the torus patch under a tolerance of 1e-3: one patch comes 1.4e-3
+    // from the surface both ways (brute force), and every scan point within 1e-3 of it,
+    // but its corners read 1.0e-2 beyond the scan's outermost points, which leave the
+    // corners bare. Compared by that reading, four patches came nearer (5.9e-3 read) and
+    // were kept, 6.1e-3 from the surface: their corners pulled in to the outermost points.
+    use monge_core::approximate::{
+        approximate_to_tolerance, Chosen, Stop, TargetCloud, Tolerance, ToleranceOptions,
+    };
+    let target = target("torus patch");
+    let points = target.scan(2000, 1e-4, 7);
+    let options = ToleranceOptions {
+        tolerance: Tolerance::Relative(1e-3),
+        ..Default::default()
+    };
+    let fit = approximate_to_tolerance(&points, &options, &mut |_| {}).unwrap();
+    assert_eq!(fit.chosen, Chosen::OnePatch);
+    let overread = TargetCloud::new(&points).unwrap().edge_overread();
+    assert_eq!(fit.stop, Stop::ScanEdge { overread });
+    assert!(!fit.met() && fit.stop.scan_edge_reason(1.0).is_some());
+    // Read beyond the tolerance, within it less what the reading may overstate.
+    let read = fit.deviation;
+    assert!(read.mesh_to_target_max > 1e-3 && read.target_to_mesh_max <= 1e-3);
+    assert!(read.mesh_to_target_max - overread <= 1e-3);
+    let (to_target, to_result) = max_both_ways(&target, &fit.grid);
+    assert!(
+        to_target.max(to_result) <= 2e-3,
+        "{to_target:e} {to_result:e}"
+    );
+}
+
 /// The free-form held-out targets (no planar curvature lines), as meshes and scans,
 /// fitted to cover them and trimmed to their outline (`trim`, default settings
 /// otherwise): the largest distances both ways, brute force, against the untrimmed

@@ -60,7 +60,8 @@ use crate::target::{points_array, points_of};
 /// `per_patch`, `max_error`, `evaluations`, and `closer`, whether it is the
 /// `design` returned). With `tolerance`, the command's report: `tolerance` (model
 /// units) and `tolerance_relative`, `met`, `stop` (`"met"`, `"max_patches"`,
-/// `"time_limit"` or `"refused"`) and `why` (None when met), `chosen`
+/// `"time_limit"`, `"refused"` or `"scan_edge"`: a scan within the tolerance as far as
+/// its points tell, its edge not) and `why` (None when met), `chosen`
 /// (`"initial_guess"`, `"one_patch"`, `"trimmed"`: one patch covering the target, trimmed
 /// to its outline, tried after one patch, its mesh in `trimmed`; `"patches"`; or
 /// `"trimmed_patches"`: several patches refining that one, trimmed too), `steps`, each fit tried
@@ -382,6 +383,7 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
             "refused",
             Some(format!("{patches} patches cannot be fitted: {error}")),
         ),
+        Stop::ScanEdge { .. } => ("scan_edge", fit.stop.scan_edge_reason(size)),
     };
     d.set_item("stop", stop)?;
     d.set_item("why", if fit.met() { None } else { why })?;

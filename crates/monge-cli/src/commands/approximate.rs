@@ -726,6 +726,7 @@ fn finish_tolerance(
         Stop::Refused { patches, error } => {
             Some(format!("{patches} patches cannot be fitted: {error}"))
         }
+        Stop::ScanEdge { .. } => fit.stop.scan_edge_reason(size),
     };
     text.push_str(&match why {
         None => format!("within the tolerance: largest distance {largest} ≤ {tolerance}\n"),

@@ -4,10 +4,11 @@
 //! the target's points, its sides moved out by the gap a sampling leaves).
 
 use glam::{DVec2, DVec3};
+use rstar::RTree;
 
 use crate::grid::QuadGrid;
 
-use super::distance::Triangle;
+use super::distance::{Indexed, Triangle};
 
 /// Windows along each side of the mesh in which the edge residuals are measured, at
 /// least.
@@ -321,6 +322,31 @@ fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     hull.pop();
     hull
 }
+
+/// Whether the boundary points of a target are evenly spaced along its edge, as a
+/// mesh's boundary vertices are: the distances from each to its nearest boundary point
+/// vary by less than [`REGULAR_EDGE`] of their mean (a random sampling's by about half).
+pub(super) fn regular_edge(boundary: &RTree<Indexed>) -> bool {
+    let gaps: Vec<f64> = boundary
+        .iter()
+        .filter_map(|b| {
+            boundary
+                .nearest_neighbor_iter(*b.geom())
+                .nth(1)
+                .map(|n| DVec3::from_array(*n.geom()).distance(DVec3::from_array(*b.geom())))
+        })
+        .collect();
+    if gaps.len() < 8 {
+        return false;
+    }
+    let mean = gaps.iter().sum::<f64>() / gaps.len() as f64;
+    let var = gaps.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / gaps.len() as f64;
+    mean > 0.0 && var.sqrt() < REGULAR_EDGE * mean
+}
+
+/// Largest coefficient of variation of the boundary points' spacing of a target whose
+/// boundary points lie on its edge ([`regular_edge`]).
+const REGULAR_EDGE: f64 = 0.25;
 
 #[cfg(test)]
 pub(super) mod tests {

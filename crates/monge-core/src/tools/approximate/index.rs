@@ -10,9 +10,11 @@ use crate::grid::{bbox_diagonal, point_segment, QuadGrid, MAX_SIZE, MIN_SIZE};
 use super::distance::{
     map_blocks, max_rms, strided, triangle_offsets, Deviation, Indexed, MeshFaces, Triangle,
 };
-use super::edge::{beyond_edge, edge_residuals, edge_windows, side_windows, EDGE_NEIGHBOURS};
+use super::edge::{
+    beyond_edge, edge_residuals, edge_windows, regular_edge, side_windows, EDGE_NEIGHBOURS,
+};
 use super::error::{ApproxError, MIN_POINTS};
-use super::quadric::{misfits, principal_axes, Quadric};
+use super::quadric::{misfits, principal_axes, through_point_share, Quadric, SHARE_POINTS};
 
 /// The target: its points, a spatial index, a normal for each point and an outward
 /// direction for each point of its boundary.
@@ -214,12 +216,18 @@ impl TargetCloud {
     /// Distance from `v` to the target: to the quadric fitted around the nearest target
     /// point, combined with how far `v` lies beyond the target's edge ([`beyond_edge`]).
     pub(super) fn distance_from(&self, v: DVec3) -> f64 {
+        self.distance_less(v, 0.0)
+    }
+
+    /// [`TargetCloud::distance_from`], `v`'s reading beyond the target's edge less
+    /// `overread` (model units).
+    fn distance_less(&self, v: DVec3, overread: f64) -> f64 {
         let i = self
             .tree
             .nearest_neighbor(v.to_array())
             .expect("a target has points")
             .data;
-        let beyond = self.beyond_edge(v, i);
+        let beyond = (self.beyond_edge(v, i) - overread).max(0.0);
         let d = self.across(v, i).hypot(beyond);
         if beyond > 0.0 && self.edge_on_points {
             // The edge read in the tangent plane cuts a curved edge's chords; the
@@ -227,6 +235,53 @@ impl TargetCloud {
             d.max(self.to_boundary(v))
         } else {
             d
+        }
+    }
+
+    /// How much a reading beyond the target's edge may overstate how far a vertex lies
+    /// beyond its true edge (at nine corners in ten), relative to its size:
+    /// [`SCAN_EDGE_OVERREAD`] mean spacings of a scan's points, nil for a mesh's
+    /// vertices, which lie on its edge.
+    pub fn edge_overread(&self) -> f64 {
+        if self.edge_on_points {
+            0.0
+        } else {
+            SCAN_EDGE_OVERREAD * self.spacing / self.size
+        }
+    }
+
+    /// `deviation`, of a mesh of vertices `vertices`, as far as the target's points tell
+    /// its edge: each vertex's reading beyond it less [`TargetCloud::edge_overread`] (on a
+    /// scan, whose sampling leaves its corners bare; the same on a mesh). Compared by it, a
+    /// design whose corners sit at a scan's true corners is not read farther than one
+    /// pulled in to its outermost points.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::{approximate::TargetCloud, QuadGrid};
+    /// // 2 000 random points of the unit square, and a mesh of its four corners.
+    /// let mut rng = fastrand::Rng::with_seed(1);
+    /// let scan: Vec<DVec3> = (0..2000).map(|_| DVec3::new(rng.f64(), rng.f64(), 0.0)).collect();
+    /// let target = TargetCloud::new(&scan).unwrap();
+    /// let square = vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 0.0)];
+    /// let grid = QuadGrid::new(2, 2, square, vec![DVec3::Z; 4]);
+    /// let (read, over) = (target.deviation(&grid), target.edge_overread());
+    /// let resolved = target.resolved(&read, &grid.vertices).mesh_to_target_max;
+    /// assert!(over > 0.0 && resolved < read.mesh_to_target_max);
+    /// assert!(resolved >= read.mesh_to_target_max - over);
+    /// ```
+    pub fn resolved(&self, deviation: &Deviation, vertices: &[DVec3]) -> Deviation {
+        if self.edge_on_points {
+            return *deviation;
+        }
+        let overread = self.edge_overread() * self.size;
+        let max = vertices
+            .iter()
+            .map(|v| self.distance_less(*v, overread))
+            .fold(0.0, f64::max);
+        Deviation {
+            mesh_to_target_max: max / self.size,
+            ..*deviation
         }
     }
 
@@ -499,70 +554,15 @@ impl TargetCloud {
     }
 }
 
-/// Whether the boundary points of a target are evenly spaced along its edge, as a
-/// mesh's boundary vertices are: the distances from each to its nearest boundary point
-/// vary by less than [`REGULAR_EDGE`] of their mean (a random sampling's by about half).
-fn regular_edge(boundary: &RTree<Indexed>) -> bool {
-    let gaps: Vec<f64> = boundary
-        .iter()
-        .filter_map(|b| {
-            boundary
-                .nearest_neighbor_iter(*b.geom())
-                .nth(1)
-                .map(|n| DVec3::from_array(*n.geom()).distance(DVec3::from_array(*b.geom())))
-        })
-        .collect();
-    if gaps.len() < 8 {
-        return false;
-    }
-    let mean = gaps.iter().sum::<f64>() / gaps.len() as f64;
-    let var = gaps.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / gaps.len() as f64;
-    mean > 0.0 && var.sqrt() < REGULAR_EDGE * mean
-}
-
-/// Largest coefficient of variation of the boundary points' spacing of a target whose
-/// boundary points lie on its edge ([`regular_edge`]).
-const REGULAR_EDGE: f64 = 0.25;
-
 /// A vertex is measured against the target's edge when a boundary point is within this
 /// many mean spacings of as near to it as its nearest target point: a random sampling's
 /// outermost points lie up to about two spacings apart along its edge.
 const EDGE_REACH: f64 = 3.0;
 
-/// The share of a point's height above its own quadric that is the surface's (the
-/// quadric's misfit of a smooth surface's higher-order terms) rather than noise, from the
-/// sums of the squared residuals of the quadratic and cubic fits to the neighbours of
-/// at most [`SHARE_POINTS`] points spread over the target ([`misfits`]) and their
-/// degrees of freedom: noise leaves the same variance to both, so the share is what the
-/// cubic removes of the quadric's; from one half up, the heights are mostly misfit and
-/// the share is 1. 1 for a mesh's vertices (measured
-/// 0.7 to 1 on meshes of 11 × 11 to 41 × 41: a target's own vertices are at distance 0
-/// from it), under 0.1 for a scan noised by 1e-4 of its size, whose points' own heights
-/// are noise that the quadric averages out.
-fn through_point_share((quadratic, cubic): (f64, f64), (dof2, dof3): (f64, f64), size: f64) -> f64 {
-    // Below rounding, a surface its quadrics follow exactly.
-    if quadratic <= (ROUNDING * size).powi(2) * dof2 || dof3 <= 0.0 {
-        return 1.0;
-    }
-    // Mostly the surface's misfit: through the point (a mesh against itself is at 0
-    // everywhere, however coarse); mostly noise: averaged.
-    let share = 1.0 - (cubic / dof3) / (quadratic / dof2);
-    if share >= 0.5 {
-        1.0
-    } else {
-        share.max(0.0)
-    }
-}
-
-/// Target points, at most, whose neighbours' misfits estimate [`through_point_share`]
-/// (every `⌈n / SHARE_POINTS⌉`-th of the `n`): the share is one number for the whole
-/// target, which a few hundred points spread over it estimate as well as all of them
-/// (measured within 0.03 on the held-out meshes and scans, where it is 0.88 to 1 and
-/// 0 to 0.07), at two least-squares fits per point.
-const SHARE_POINTS: usize = 256;
-
-/// Relative residual of the neighbours' quadrics below which a target is exact.
-const ROUNDING: f64 = 1e-12;
+/// How far, in mean spacings of a scan's points, its reading of a vertex beyond its edge
+/// lies beyond the truth at nine corners in ten (of 200 samplings of a rectangle: 0.85 at
+/// the median, 4.0 at 99 in 100; on a side 0.06, 0.40 and 0.79).
+pub const SCAN_EDGE_OVERREAD: f64 = 2.5;
 
 /// What the residuals of a mesh are measured against ([`TargetCloud::matches`]).
 pub(super) struct Matches {
@@ -735,6 +735,29 @@ mod tests {
         assert!(!TargetCloud::new(&scan).unwrap().edge_on_points);
     }
 
+    /// [`SCAN_EDGE_OVERREAD`]: a vertex on a corner of a random sampling of a rectangle
+    /// reads beyond it by more at about one corner in ten; on a side, never by a spacing.
+    #[test]
+    fn a_scans_corner_is_read_beyond_by_the_overread_at_one_corner_in_ten() {
+        let (mut over, mut corners, mut side) = (0, 0, 0.0f64);
+        for seed in 0..60 {
+            let mut rng = fastrand::Rng::with_seed(seed);
+            let points: Vec<DVec3> = (0..2000)
+                .map(|_| DVec3::new(rng.f64(), 0.7 * rng.f64(), 0.0))
+                .collect();
+            let scan = TargetCloud::new(&points).unwrap();
+            let read = |x: f64, y: f64| scan.distance_from(DVec3::new(x, y, 0.0)) / scan.spacing;
+            for (x, y) in [(0.0, 0.0), (1.0, 0.0), (0.0, 0.7), (1.0, 0.7)] {
+                corners += 1;
+                over += usize::from(read(x, y) > SCAN_EDGE_OVERREAD);
+            }
+            side = side.max(read(0.5, 0.0)).max(read(0.0, 0.35));
+        }
+        let share = over as f64 / corners as f64;
+        assert!((0.03..=0.2).contains(&share), "{share}");
+        assert!(side < 1.0, "{side}");
+    }
+
     /// A scan's outermost points lie inside its true edge, by up to about a spacing along
     /// its sides and more at its corners, where they thin out: the edge read from them
     /// is the true one within a share of a spacing along the sides, and within about two
@@ -772,7 +795,7 @@ mod tests {
                 "{name}: sides {sides:?} spacings"
             );
             assert!(
-                corners.0 > -0.5 && corners.1 < 2.5,
+                corners.0 > -0.5 && corners.1 < SCAN_EDGE_OVERREAD,
                 "{name}: corners {corners:?} spacings"
             );
         }

@@ -111,6 +111,7 @@ mod index;
 mod layout;
 mod patches;
 mod quadric;
+mod report;
 mod solve;
 mod start;
 mod tolerance;
@@ -122,10 +123,11 @@ pub use distance::{point_triangle, Deviation};
 pub use error::{ApproxError, FLAT_CURVATURE, MIN_POINTS, UMBILIC_RATIO};
 use fit_guide::{hooked, refine_guide, CONTROL_POINTS};
 use index::Matches;
-pub use index::TargetCloud;
+pub use index::{TargetCloud, SCAN_EDGE_OVERREAD};
 pub use layout::PatchLayout;
 pub use patches::{approximate_patches, PatchApproximation, PatchFit};
 
+pub use report::{fit_report, target_distances, FitReport};
 pub use tolerance::*;
 pub use trim::{trim, Outline, TrimmedMesh};
 

@@ -4,29 +4,23 @@
 //! ways (the largest distances, mesh → target and target → mesh), or says why it
 //! stopped short ([`Stop`]): the patch budget, the time limit, or patches that cannot
 //! be fitted. It never returns a design farther from the target than the best one it
-//! saw, the initial guess included.
-//!
-//! [`fit_report`] gives what a designer looks at: the panels, the distinct node types
-//! (as [`crate::fabrication`] groups them), the deviation, and each patch's deviation
-//! and θ; [`target_distances`] colours the target by its distance to the result.
+//! saw, the initial guess included. What a designer looks at in the result is
+//! [`super::report`]'s.
 
 use std::str::FromStr;
 use std::time::Instant;
 
 use glam::DVec3;
 
-use crate::conical::conical_dual;
-use crate::design::{Design, MeshKind};
-use crate::fabrication::{fabricate, BaseMesh, FabricationError, FabricationOptions};
-use crate::generate::{generate, GenerateError, GenerateOptions};
+use crate::design::Design;
+use crate::generate::GenerateError;
 use crate::grid::QuadGrid;
-use crate::multipatch::{build, MultiPatchDesign, MultiPatchError};
+use crate::multipatch::{MultiPatchDesign, MultiPatchError};
 
-use super::patches::per_patch;
-use super::trim::{trimmed_deviation, ResultFaces, TrimmedMesh};
+use super::trim::TrimmedMesh;
 use super::{
     approximate, approximate_patches, fair_mesh, ApproxError, ApproxOptions, Approximation,
-    Deviation, PatchFit, PatchLayout, Progress, TargetCloud,
+    Deviation, PatchLayout, Progress, TargetCloud,
 };
 
 /// How close the result must come to the target, both ways.
@@ -202,6 +196,16 @@ pub enum Stop {
     MaxPatches(usize),
     /// The deadline ([`ApproxOptions::deadline`]) came first.
     TimeLimit,
+    /// The target is a scan, and the result within the tolerance as far as its points
+    /// tell ([`TargetCloud::resolved`]): every point of it near the mesh, every vertex
+    /// near it across its surface, but the mesh's edge read beyond the scan's outermost
+    /// points by more than the tolerance, which such a reading may overstate by up to
+    /// `overread` (relative to the target's size, [`TargetCloud::edge_overread`]). More
+    /// patches would only move the edge the points cannot place.
+    ScanEdge {
+        /// How much the reading of the edge may overstate, relative to the size.
+        overread: f64,
+    },
     /// This many patches cannot be fitted, nor any more (a grid too coarse for them, a
     /// conical mesh).
     Refused {
@@ -210,6 +214,36 @@ pub enum Stop {
         /// Why.
         error: ApproxError,
     },
+}
+
+impl Stop {
+    /// Why the result is not certified within the tolerance where the search stopped at
+    /// a scan's edge ([`Stop::ScanEdge`]; `None` for the other stops, which each front
+    /// end words with its own option names), for a target of size `size`.
+    ///
+    /// ```
+    /// use monge_core::approximate::Stop;
+    /// let why = Stop::ScanEdge { overread: 0.02 }.scan_edge_reason(10.0).unwrap();
+    /// assert!(why.contains("0.200 model units"));
+    /// assert_eq!(Stop::Met.scan_edge_reason(10.0), None);
+    /// ```
+    pub fn scan_edge_reason(&self, size: f64) -> Option<String> {
+        let Stop::ScanEdge { overread } = self else {
+            return None;
+        };
+        Some(format!(
+            "the target is a scan: every point of it is within the tolerance of the mesh, \
+             and every vertex across its surface; only the mesh's edge reads farther beyond \
+             the scan's outermost points, a reading that overstates by up to {:.3} model units \
+             at nine corners in ten ({:.1e} of the size: {} mean spacings of its points, as \
+             a random sampling leaves the target's corners bare), so the edge is within only if the reading \
+             overstates; more patches would only move an edge the points cannot place. A \
+             denser scan reads its edge closer",
+            overread * size,
+            overread,
+            super::SCAN_EDGE_OVERREAD,
+        ))
+    }
 }
 
 /// One fit of [`approximate_to_tolerance`]: its patches and its deviation, or why it
@@ -367,12 +401,37 @@ fn fit_patches(
     Ok((design, p.grid, p.after, p.evaluations))
 }
 
-/// A design seen, its mesh and deviation.
+/// A design seen, its mesh, its deviation and its deviation as far as the target's
+/// points tell ([`TargetCloud::resolved`]), by which designs are compared.
 struct Seen {
     design: FitDesign,
     grid: QuadGrid,
     deviation: Deviation,
+    resolved: Deviation,
     chosen: Chosen,
+}
+
+impl Seen {
+    /// `design`, of mesh `grid` and deviation `deviation` from `target`.
+    fn new(
+        target: &TargetCloud,
+        design: FitDesign,
+        grid: QuadGrid,
+        deviation: Deviation,
+        chosen: Chosen,
+    ) -> Self {
+        let resolved = match design.trimmed() {
+            Some(mesh) => target.resolved(&deviation, &mesh.vertices),
+            None => target.resolved(&deviation, &grid.vertices),
+        };
+        Seen {
+            design,
+            grid,
+            deviation,
+            resolved,
+            chosen,
+        }
+    }
 }
 
 /// The design nearest to a target within `options.tolerance` both ways: one patch
@@ -384,8 +443,8 @@ struct Seen {
 /// §4.7; from the trimmed one, they cover the target and are trimmed too), until
 /// one is within the tolerance. The
 /// result is the nearest design seen (largest distance both ways; the initial guess
-/// included), whether or not within the tolerance ([`ToleranceFit::met`],
-/// [`ToleranceFit::stop`]). `progress` is called after every mesh generated.
+/// included; on a scan, as far as its points tell its edge, [`TargetCloud::resolved`]),
+/// whether or not within the tolerance ([`ToleranceFit::met`], [`ToleranceFit::stop`]). `progress` is called after every mesh generated.
 ///
 /// Errors: the tolerance and patch budget ([`ToleranceError`]), and whatever keeps
 /// the first patch from being fitted ([`ApproxError`]: an umbilic, a flat target, …).
@@ -415,6 +474,7 @@ pub fn approximate_to_tolerance(
     if options.max_patches == 0 {
         return Err(ToleranceError::NoPatches);
     }
+    let target = TargetCloud::new(points)?;
     let mut done = 0;
     let mut best_max = f64::INFINITY;
     let single = approximate(points, &options.approx, &mut |p| {
@@ -432,23 +492,26 @@ pub fn approximate_to_tolerance(
         trimmed: false,
         outcome: Ok(single.after),
     }];
-    let mut best = Seen {
-        design: FitDesign::Single(single.design.clone()),
-        grid: single.grid.clone(),
-        deviation: single.after,
-        chosen: Chosen::OnePatch,
-    };
-    if single.before.closer_than(&best.deviation)
-        && let Some(grid) = fair_mesh(&single.initial)
-    {
-        best = Seen {
-            design: FitDesign::Single(single.initial.clone()),
+    let mut best = Seen::new(
+        &target,
+        FitDesign::Single(single.design.clone()),
+        single.grid.clone(),
+        single.after,
+        Chosen::OnePatch,
+    );
+    if let Some(grid) = fair_mesh(&single.initial) {
+        let initial = Seen::new(
+            &target,
+            FitDesign::Single(single.initial.clone()),
             grid,
-            deviation: single.before,
-            chosen: Chosen::InitialGuess,
-        };
+            single.before,
+            Chosen::InitialGuess,
+        );
+        if initial.resolved.closer_than(&best.resolved) {
+            best = initial;
+        }
     }
-    best_max = best.deviation.max();
+    best_max = best.resolved.max();
     let past_deadline = || options.approx.deadline.is_some_and(|d| Instant::now() >= d);
     // One patch covering the target, trimmed to its outline, where one patch does not
     // meet the tolerance and the outline can be traced; the patches then refine the
@@ -475,14 +538,18 @@ pub fn approximate_to_tolerance(
                     trimmed: true,
                     outcome: Ok(t.after),
                 });
-                if let (true, Some(mesh)) = (t.after.closer_than(&best.deviation), &t.trimmed) {
-                    best_max = t.after.max();
-                    best = Seen {
-                        design: FitDesign::Trimmed(t.design.clone(), mesh.clone()),
-                        grid: t.grid.clone(),
-                        deviation: t.after,
-                        chosen: Chosen::Trimmed,
-                    };
+                if let Some(mesh) = &t.trimmed {
+                    let seen = Seen::new(
+                        &target,
+                        FitDesign::Trimmed(t.design.clone(), mesh.clone()),
+                        t.grid.clone(),
+                        t.after,
+                        Chosen::Trimmed,
+                    );
+                    if seen.resolved.closer_than(&best.resolved) {
+                        best_max = seen.resolved.max();
+                        best = seen;
+                    }
                 }
                 if t.after.closer_than(&single.after) {
                     nearer = Some(t);
@@ -497,7 +564,7 @@ pub fn approximate_to_tolerance(
     }
     let mut stop = Stop::MaxPatches(options.max_patches);
     if best_max <= limit {
-        stop = Stop::Met;
+        stop = within(&best, limit, &target);
     } else if single.timed_out || past_deadline() {
         stop = Stop::TimeLimit;
     } else {
@@ -525,21 +592,18 @@ pub fn approximate_to_tolerance(
                         trimmed,
                         outcome: Ok(deviation),
                     });
-                    if deviation.closer_than(&best.deviation) {
-                        best_max = deviation.max();
-                        best = Seen {
-                            chosen: if trimmed {
-                                Chosen::TrimmedPatches(patches)
-                            } else {
-                                Chosen::Patches(patches)
-                            },
-                            design,
-                            grid,
-                            deviation,
-                        };
+                    let chosen = if trimmed {
+                        Chosen::TrimmedPatches(patches)
+                    } else {
+                        Chosen::Patches(patches)
+                    };
+                    let seen = Seen::new(&target, design, grid, deviation, chosen);
+                    if seen.resolved.closer_than(&best.resolved) {
+                        best_max = seen.resolved.max();
+                        best = seen;
                     }
                     if best_max <= limit {
-                        stop = Stop::Met;
+                        stop = within(&best, limit, &target);
                         break;
                     }
                 }
@@ -571,138 +635,16 @@ pub fn approximate_to_tolerance(
     })
 }
 
-/// What a designer looks at (§6's counts and the deviation).
-#[derive(Clone, Debug, PartialEq)]
-pub struct FitReport {
-    /// Panels (faces of the mesh; of a trimmed mesh, its polygons).
-    pub panels: usize,
-    /// Distinct node types, as [`fabricate`] groups them at `node_angle_tol`; or why
-    /// the nodes could not be grouped: fabrication's refusal of the mesh found (an
-    /// edge or a face it calls degenerate), which does not make the fit less near.
-    pub node_types: Result<usize, FabricationError>,
-    /// Nodes whose beam angles agree within this many radians share a type
-    /// ([`FabricationOptions::angle_tol`]).
-    pub node_angle_tol: f64,
-    /// Distances both ways, relative to the target's size.
-    pub deviation: Deviation,
-    /// Each patch, in design order.
-    pub per_patch: Vec<PatchFit>,
-}
-
-/// The report of the fit `design` of `target`: panels, node types (nodes whose beam
-/// and axis angles agree within `angle_tol` radians are one type, as [`fabricate`]
-/// groups them; [`crate::fabrication::DESIGN_ANGLE_TOL_DEG`] is a designer's; of a
-/// trimmed mesh, the untrimmed grid's nodes), deviation, and per patch its θ and
-/// deviation.
-///
-/// ```
-/// use glam::DVec3;
-/// use monge_core::approximate::{approximate, fit_report, FitDesign, TargetCloud};
-/// use monge_core::approximate::ApproxOptions;
-/// let target: Vec<DVec3> = (0..121)
-///     .map(|k| {
-///         let (x, y) = ((k % 11) as f64, (k / 11) as f64);
-///         DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
-///     })
-///     .collect();
-/// let options = ApproxOptions { faces: (6, 4), starts: 1, max_evaluations: 40, ..Default::default() };
-/// let fit = approximate(&target, &options, &mut |_| {}).unwrap();
-/// let cloud = TargetCloud::new(&target).unwrap();
-/// let report = fit_report(&cloud, &FitDesign::Single(fit.design.clone()), 0.1f64.to_radians()).unwrap();
-/// assert_eq!(report.panels, 24);
-/// assert_eq!(report.per_patch.len(), 1);
-/// assert_eq!(report.deviation, fit.after);
-/// ```
-pub fn fit_report(
-    target: &TargetCloud,
-    design: &FitDesign,
-    angle_tol: f64,
-) -> Result<FitReport, ToleranceError> {
-    let options = FabricationOptions {
-        angle_tol,
-        ..FabricationOptions::default()
-    };
-    let report = |base: BaseMesh<'_>, deviation: Deviation, per_patch: Vec<PatchFit>| {
-        let panels = match base {
-            BaseMesh::Circular(g) => g.face_count(),
-            BaseMesh::Conical(c) => c.grid.face_count(),
-        };
-        FitReport {
-            panels,
-            node_types: fabricate(base, &options).map(|f| f.summary.node_types),
-            node_angle_tol: options.angle_tol,
-            deviation,
-            per_patch,
+/// Why the search stops at `best`, within the tolerance `limit` as far as the target's
+/// points tell: met, or only at a scan's edge ([`Stop::ScanEdge`]).
+fn within(best: &Seen, limit: f64, target: &TargetCloud) -> Stop {
+    if best.deviation.max() <= limit {
+        Stop::Met
+    } else {
+        Stop::ScanEdge {
+            overread: target.edge_overread(),
         }
-    };
-    // The deviation of a mesh, trimmed where the result is.
-    let trimmed = design.trimmed();
-    let deviation = |grid: &QuadGrid| match trimmed {
-        Some(mesh) => trimmed_deviation(target, mesh, 1),
-        None => target.deviation(grid),
-    };
-    let mut r = match design {
-        FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
-            let circular = generate(d, &GenerateOptions::default())?.grid;
-            let dual = (d.mesh == MeshKind::Conical).then(|| conical_dual(&circular));
-            let (grid, base) = match &dual {
-                Some(c) => (&c.grid, BaseMesh::Conical(c)),
-                None => (&circular, BaseMesh::Circular(&circular)),
-            };
-            let deviation = deviation(grid);
-            let one = PatchFit {
-                block: (0, 0),
-                theta_deg: d.theta_deg,
-                target_points: target.points.len(),
-                max: deviation.target_to_mesh_max,
-                rms: deviation.target_to_mesh_rms,
-            };
-            report(base, deviation, vec![one])
-        }
-        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => {
-            let mp = build(d, &GenerateOptions::default())?;
-            let patches = per_patch(target, &mp, trimmed);
-            report(BaseMesh::Circular(&mp.grid), deviation(&mp.grid), patches)
-        }
-    };
-    // A trimmed mesh's panels are its polygons.
-    if let Some(mesh) = trimmed {
-        r.panels = mesh.faces.len();
     }
-    Ok(r)
-}
-
-/// The distance from each target point to the mesh `grid` (model units), or where the
-/// result is `trimmed` (the trimmed mesh of `grid`) to that, as
-/// [`Deviation::target_to_mesh_max`] measures it: to the nearest face. What a picture
-/// of the target coloured by its distance to a result shows.
-///
-/// ```
-/// use glam::DVec3;
-/// use monge_core::approximate::{target_distances, TargetCloud};
-/// use monge_core::QuadGrid;
-/// let plane: Vec<DVec3> =
-///     (0..100).map(|k| DVec3::new((k % 10) as f64, (k / 10) as f64, 0.0)).collect();
-/// let target = TargetCloud::new(&plane).unwrap();
-/// // A square 0.5 above the points of x, y in [3, 4].
-/// let square = [DVec3::new(3.0, 3.0, 0.5), DVec3::new(3.0, 4.0, 0.5),
-///               DVec3::new(4.0, 3.0, 0.5), DVec3::new(4.0, 4.0, 0.5)];
-/// let grid = QuadGrid::new(2, 2, square.to_vec(), vec![DVec3::Z; 4]);
-/// let d = target_distances(&target, &grid, None);
-/// assert!((d[33] - 0.5).abs() < 1e-12);
-/// assert!((d[0] - (18f64 + 0.25).sqrt()).abs() < 1e-12);
-/// ```
-pub fn target_distances(
-    target: &TargetCloud,
-    grid: &QuadGrid,
-    trimmed: Option<&TrimmedMesh>,
-) -> Vec<f64> {
-    let faces = ResultFaces::new(grid, trimmed);
-    target
-        .points
-        .iter()
-        .map(|p| faces.distance_from(*p).0)
-        .collect()
 }
 
 #[cfg(test)]
