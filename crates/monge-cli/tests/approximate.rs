@@ -774,6 +774,12 @@ fn approximate_to_a_tolerance_on_a_scan_keeps_one_patch_where_only_its_edge_read
     assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
     assert!(stdout.contains("NOT within the tolerance"), "{stdout}");
     assert!(stdout.contains("the target is a scan"), "{stdout}");
+    // Each fit's largest distance as far as the scan's points tell its edge, below its
+    // full reading.
+    let line = stdout.lines().find(|l| l.starts_with("1 patch: ")).unwrap();
+    let (read, edge) = line.split_once("edge").unwrap();
+    let (read, resolved) = (number_after(read, "("), number_after(edge, "("));
+    assert!(resolved < read && resolved <= 5e-3, "{line}");
     assert!(
         stdout.contains("2.5 mean spacings of its points"),
         "{stdout}"

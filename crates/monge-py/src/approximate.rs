@@ -66,7 +66,9 @@ use crate::target::{points_array, points_of};
 /// to its outline, tried after one patch, its mesh in `trimmed`; `"patches"`; or
 /// `"trimmed_patches"`: several patches refining that one, trimmed too), `steps`, each fit tried
 /// (`patches`, `trimmed`, its `deviation` or the `error` that kept it from being
-/// fitted);
+/// fitted, and `resolved_max`, its largest distance both ways as far as a scan's points
+/// tell its edge, by which the fits are compared: on a mesh, the deviation's; NaN where
+/// not fitted);
 /// `node_types`, nodes whose beam angles and angles to the node axis agree within
 /// `node_angle_tol_deg` (`angle_tol_deg`, default 0.5°, a designer's fabrication
 /// tolerance) being one type, as `fabricate(angle_tol_deg=...)` groups them; and
@@ -402,6 +404,7 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
         let s = PyDict::new(py);
         s.set_item("patches", step.patches)?;
         s.set_item("trimmed", step.trimmed)?;
+        s.set_item("resolved_max", step.resolved)?;
         match &step.outcome {
             Ok(deviation) => {
                 s.set_item("deviation", pythonize(py, deviation)?)?;

@@ -243,3 +243,46 @@ def test_approximate_trimmed_patches_equal_the_command(cli, tmp_path):
     t = r["trimmed"]
     assert np.array_equal(vertices, t["vertices"]) and faces == t["faces"]
     assert r["panels"] == len(faces)
+
+
+def torus_scan(count=2000):
+    """`count` random points of a torus patch (radii 10 and 4), from the generator of
+    the command's own test of a scan to a tolerance (xorshift), so the same points."""
+    mask, state = (1 << 64) - 1, 0x9E3779B97F4A7C15
+    points = []
+    for _ in range(count):
+        uv = []
+        for _ in range(2):
+            state ^= (state << 13) & mask
+            state ^= state >> 7
+            state ^= (state << 17) & mask
+            uv.append((state >> 11) / float(1 << 53))
+        u, v = 0.9 * uv[0], -0.6 + 1.5 * uv[1]
+        rho = 10.0 + 4.0 * np.cos(v)
+        points.append([rho * np.cos(u), rho * np.sin(u), 4.0 * np.sin(v)])
+    return np.array(points)
+
+
+def test_approximate_tolerance_on_a_scan_stops_at_its_edge_as_the_command_does(cli, tmp_path):
+    """A scan within the tolerance but at its edge: the command's design and reason,
+    and each fit's largest distance as far as the scan's points tell its edge, below
+    its full reading; the mesh within the tolerance of the torus (closed form)."""
+    points = torus_scan()
+    scan = tmp_path / "torus.obj"
+    scan.write_text("".join(f"v {float(x)!r} {float(y)!r} {float(z)!r}\n" for x, y, z in points))
+    out = tmp_path / "cli.json"
+    p = cli("approximate", scan, "-o", out, "--tolerance", "5e-3", check=False)
+    assert p.returncode == 1, p.stderr
+    r = monge.approximate(points, tolerance=5e-3)
+    mine = tmp_path / "py.json"
+    r["design"].to_file(mine)
+    assert mine.read_bytes() == out.read_bytes()
+    assert not r["met"] and r["stop"] == "scan_edge" and r["chosen"] == "one_patch"
+    assert "the target is a scan" in r["why"] and "the target is a scan" in p.stdout
+    step = r["steps"][0]
+    full = max(step["deviation"]["mesh_to_target_max"], step["deviation"]["target_to_mesh_max"])
+    assert step["resolved_max"] < full
+    assert step["resolved_max"] <= 5e-3 < full
+    vertices = np.asarray(monge.generate(r["design"]).vertices).reshape(-1, 3)
+    across = np.abs(np.hypot(np.hypot(vertices[:, 0], vertices[:, 1]) - 10.0, vertices[:, 2]) - 4.0)
+    assert across.max() <= 5e-3 * r["after"]["size"]

@@ -630,6 +630,11 @@ fn finish_tolerance(
             (k, false) => format!("{k} patches (§4.7)"),
         };
         match &step.outcome {
+            Ok(d) if step.resolved < d.max() => text.push_str(&format!(
+                "{name}: largest distance {}; as far as the scan's points tell its edge {}\n",
+                both(d.max(), size),
+                both(step.resolved, size)
+            )),
             Ok(d) => text.push_str(&format!(
                 "{name}: largest distance {}\n",
                 both(d.max(), size)
@@ -706,6 +711,14 @@ fn finish_tolerance(
         ));
     }
     let largest = both(fit.deviation.max(), size);
+    let resolved = if fit.resolved.max() < fit.deviation.max() {
+        format!(
+            "; {} as far as the scan's points tell its edge",
+            both(fit.resolved.max(), size)
+        )
+    } else {
+        String::new()
+    };
     let tolerance = format!("{} model units", num(fit.limit * size));
     let why = match &fit.stop {
         Stop::Met => None,
@@ -731,8 +744,8 @@ fn finish_tolerance(
     text.push_str(&match why {
         None => format!("within the tolerance: largest distance {largest} ≤ {tolerance}\n"),
         Some(why) => format!(
-            "NOT within the tolerance: the nearest design found is {largest} from the target, \
-             above {tolerance}: {why}\n"
+            "NOT within the tolerance: the nearest design found is {largest} from the \
+             target{resolved}, above {tolerance}: {why}\n"
         ),
     });
     print(&text)?;

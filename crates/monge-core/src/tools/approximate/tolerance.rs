@@ -256,6 +256,32 @@ pub struct Step {
     pub trimmed: bool,
     /// Its deviation, or why it could not be fitted.
     pub outcome: Result<Deviation, ApproxError>,
+    /// Its largest distance both ways as far as the target's points tell its edge
+    /// ([`TargetCloud::resolved`]), by which the fits are compared: its deviation's on a
+    /// mesh's vertices; NaN where it could not be fitted.
+    pub resolved: f64,
+}
+
+impl Step {
+    /// The step of the fit `seen` of `patches` patches, trimmed or not.
+    fn of(seen: &Seen, patches: usize, trimmed: bool) -> Self {
+        Step {
+            patches,
+            trimmed,
+            outcome: Ok(seen.deviation),
+            resolved: seen.resolved.max(),
+        }
+    }
+
+    /// The step of a fit of `patches` patches that failed with `error`.
+    fn failed(patches: usize, trimmed: bool, error: ApproxError) -> Self {
+        Step {
+            patches,
+            trimmed,
+            outcome: Err(error),
+            resolved: f64::NAN,
+        }
+    }
 }
 
 /// The design of a fit: one patch, or several (§4.7).
@@ -316,6 +342,9 @@ pub struct ToleranceFit {
     pub grid: QuadGrid,
     /// Its deviation.
     pub deviation: Deviation,
+    /// Its deviation as far as the target's points tell its edge
+    /// ([`TargetCloud::resolved`]), by which the designs were compared.
+    pub resolved: Deviation,
     /// Which design it is.
     pub chosen: Chosen,
     /// The tolerance, relative to the target's size.
@@ -344,9 +373,8 @@ impl ToleranceFit {
         let nearest = |several: bool| {
             self.steps
                 .iter()
-                .filter(|s| (s.patches > 1) == several)
-                .filter_map(|s| s.outcome.as_ref().ok())
-                .map(Deviation::max)
+                .filter(|s| (s.patches > 1) == several && s.outcome.is_ok())
+                .map(|s| s.resolved)
                 .fold(f64::INFINITY, f64::min)
         };
         let (one, several) = (nearest(false), nearest(true));
@@ -487,11 +515,6 @@ pub fn approximate_to_tolerance(
     })?;
     done += single.evaluations;
     let limit = options.tolerance.relative_to(single.after.size);
-    let mut steps = vec![Step {
-        patches: 1,
-        trimmed: false,
-        outcome: Ok(single.after),
-    }];
     let mut best = Seen::new(
         &target,
         FitDesign::Single(single.design.clone()),
@@ -499,6 +522,7 @@ pub fn approximate_to_tolerance(
         single.after,
         Chosen::OnePatch,
     );
+    let mut steps = vec![Step::of(&best, 1, false)];
     if let Some(grid) = fair_mesh(&single.initial) {
         let initial = Seen::new(
             &target,
@@ -533,33 +557,21 @@ pub fn approximate_to_tolerance(
         match fit {
             Ok(t) => {
                 done += t.evaluations;
-                steps.push(Step {
-                    patches: 1,
-                    trimmed: true,
-                    outcome: Ok(t.after),
-                });
-                if let Some(mesh) = &t.trimmed {
-                    let seen = Seen::new(
-                        &target,
-                        FitDesign::Trimmed(t.design.clone(), mesh.clone()),
-                        t.grid.clone(),
-                        t.after,
-                        Chosen::Trimmed,
-                    );
-                    if seen.resolved.closer_than(&best.resolved) {
-                        best_max = seen.resolved.max();
-                        best = seen;
-                    }
+                let design = match &t.trimmed {
+                    Some(mesh) => FitDesign::Trimmed(t.design.clone(), mesh.clone()),
+                    None => FitDesign::Single(t.design.clone()),
+                };
+                let seen = Seen::new(&target, design, t.grid.clone(), t.after, Chosen::Trimmed);
+                steps.push(Step::of(&seen, 1, true));
+                if t.trimmed.is_some() && seen.resolved.closer_than(&best.resolved) {
+                    best_max = seen.resolved.max();
+                    best = seen;
                 }
                 if t.after.closer_than(&single.after) {
                     nearer = Some(t);
                 }
             }
-            Err(error) => steps.push(Step {
-                patches: 1,
-                trimmed: true,
-                outcome: Err(error),
-            }),
+            Err(error) => steps.push(Step::failed(1, true, error)),
         }
     }
     let mut stop = Stop::MaxPatches(options.max_patches);
@@ -587,17 +599,13 @@ pub fn approximate_to_tolerance(
                 Ok((design, grid, deviation, evaluations)) => {
                     done += evaluations;
                     let trimmed = design.trimmed().is_some();
-                    steps.push(Step {
-                        patches,
-                        trimmed,
-                        outcome: Ok(deviation),
-                    });
                     let chosen = if trimmed {
                         Chosen::TrimmedPatches(patches)
                     } else {
                         Chosen::Patches(patches)
                     };
                     let seen = Seen::new(&target, design, grid, deviation, chosen);
+                    steps.push(Step::of(&seen, patches, trimmed));
                     if seen.resolved.closer_than(&best.resolved) {
                         best_max = seen.resolved.max();
                         best = seen;
@@ -614,11 +622,7 @@ pub fn approximate_to_tolerance(
                     stop = Stop::Refused { patches, error };
                     break;
                 }
-                Err(error) => steps.push(Step {
-                    patches,
-                    trimmed: nearer.is_some(),
-                    outcome: Err(error),
-                }),
+                Err(error) => steps.push(Step::failed(patches, nearer.is_some(), error)),
             }
         }
     }
@@ -626,6 +630,7 @@ pub fn approximate_to_tolerance(
         design: best.design,
         grid: best.grid,
         deviation: best.deviation,
+        resolved: best.resolved,
         chosen: best.chosen,
         limit,
         stop,
@@ -679,6 +684,7 @@ mod tests {
                 target_to_mesh_max: 0.5 * max,
                 ..fit.deviation
             }),
+            resolved: max,
         };
         fit.steps = vec![step(1, false, 0.02), step(1, true, 0.018)];
         assert_eq!(fit.patches_helped(), None);
@@ -688,11 +694,8 @@ mod tests {
         fit.steps.push(step(4, false, 0.016));
         assert_eq!(fit.patches_helped(), Some(true));
         fit.steps.truncate(2);
-        fit.steps.push(Step {
-            patches: 2,
-            trimmed: false,
-            outcome: Err(ApproxError::PatchesNotCircular),
-        });
+        fit.steps
+            .push(Step::failed(2, false, ApproxError::PatchesNotCircular));
         assert_eq!(fit.patches_helped(), None);
     }
 }
