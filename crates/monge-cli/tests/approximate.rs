@@ -794,4 +794,19 @@ fn approximate_to_a_tolerance_on_a_scan_keeps_one_patch_where_only_its_edge_read
         .map(|[x, y, z]| ((x.hypot(*y) - big).hypot(*z) - small).abs())
         .fold(0.0, f64::max);
     assert!(across <= 5e-3 * size, "{across} of {size}");
+    // Four patches are compared with it the same way, and not kept (2.4e-3 of the size
+    // from the torus patch both ways against their 4.0e-3, which read nearer).
+    let out = monge()
+        .arg("approximate")
+        .arg(&scan)
+        .arg("-o")
+        .arg(dir.path().join("patches.json"))
+        .args(["--patches", "2x2"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("they do not follow the target closer than one patch"),
+        "{stdout}"
+    );
 }

@@ -40,7 +40,9 @@
 use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
-use super::trim::{measured, trim, trimmed_deviation_below, Outline, ResultFaces, TrimmedMesh};
+use super::trim::{
+    measured, resolved, trim, trimmed_deviation_below, Outline, ResultFaces, TrimmedMesh,
+};
 use super::{
     sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
     TargetCloud, OBJECTIVE_POINTS,
@@ -175,6 +177,16 @@ pub(super) fn per_patch(
         })
         .collect()
 }
+
+/// A multi-patch design kept, its mesh, its deviation, its trimmed mesh and its
+/// deviation as far as the target's points tell its edge.
+type Kept = (
+    MultiPatchDesign,
+    MultiPatch,
+    Deviation,
+    Option<TrimmedMesh>,
+    Deviation,
+);
 
 /// Several patches following the target more closely than the single patch `single`
 /// (§4.7; see the module documentation): its grid cut into `layout.u` blocks along
@@ -346,17 +358,24 @@ pub fn approximate_patches(
         );
     }
     // The closer to the target of the two, by the largest distance both ways over all
-    // its points, if closer than the single patch.
-    let mut kept: Option<(MultiPatchDesign, MultiPatch, Deviation, Option<TrimmedMesh>)> = None;
+    // its points as far as they tell its edge, if closer than the single patch.
+    let single_resolved = resolved(
+        &target,
+        &single.after,
+        &single.grid,
+        single.trimmed.as_ref(),
+    );
+    let mut kept = None;
     for x in [&best.1, &closest.1].into_iter().flatten() {
         let (design, mp) = setup.build(x, false).expect("the design was built");
         let (after, trimmed) = measured(&target, &mp.grid, outline.as_ref(), 1);
-        if after.closer_than(kept.as_ref().map_or(&single.after, |k| &k.2)) {
-            kept = Some((design, mp, after, trimmed));
+        let r = resolved(&target, &after, &mp.grid, trimmed.as_ref());
+        if r.closer_than(kept.as_ref().map_or(&single_resolved, |k: &Kept| &k.4)) {
+            kept = Some((design, mp, after, trimmed, r));
         }
     }
     let (design, mp, after, trimmed, out_layout) = match kept {
-        Some((design, mp, after, trimmed)) => (design, mp, after, trimmed, layout),
+        Some((design, mp, after, trimmed, _)) => (design, mp, after, trimmed, layout),
         None => {
             // The single patch stays the best: a design of one patch.
             let design = MultiPatchDesign {

@@ -17,7 +17,7 @@ use crate::generate::GenerateError;
 use crate::grid::QuadGrid;
 use crate::multipatch::{MultiPatchDesign, MultiPatchError};
 
-use super::trim::TrimmedMesh;
+use super::trim::{resolved, TrimmedMesh};
 use super::{
     approximate, approximate_patches, fair_mesh, ApproxError, ApproxOptions, Approximation,
     Deviation, PatchLayout, Progress, TargetCloud,
@@ -448,10 +448,7 @@ impl Seen {
         deviation: Deviation,
         chosen: Chosen,
     ) -> Self {
-        let resolved = match design.trimmed() {
-            Some(mesh) => target.resolved(&deviation, &mesh.vertices),
-            None => target.resolved(&deviation, &grid.vertices),
-        };
+        let resolved = resolved(target, &deviation, &grid, design.trimmed());
         Seen {
             design,
             grid,

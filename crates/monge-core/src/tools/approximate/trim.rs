@@ -529,6 +529,22 @@ pub(super) fn measured(
     }
 }
 
+/// `deviation`, of a fit's mesh `grid` (trimmed to `trimmed` where it is), as far as
+/// the target's points tell its edge ([`TargetCloud::resolved`]): the figure fits are
+/// compared by.
+pub(super) fn resolved(
+    target: &TargetCloud,
+    deviation: &Deviation,
+    grid: &QuadGrid,
+    trimmed: Option<&TrimmedMesh>,
+) -> Deviation {
+    let vertices = match trimmed {
+        Some(mesh) => &mesh.vertices,
+        None => &grid.vertices,
+    };
+    target.resolved(deviation, vertices)
+}
+
 /// Tolerance of [`trim`], relative to the grid's size: a cut this near a face's corner
 /// is that corner, this near its edge is on it.
 const TRIM_EPS: f64 = 1e-10;
