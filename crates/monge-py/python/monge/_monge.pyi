@@ -239,7 +239,8 @@ def approximate(
 
     ``patches`` ("2x3", 3 or (2, 3)) fits that many patches (§4.7) as ``--patches``;
     ``tolerance`` (5e-3 of the target's size, or "0.05m", "5cm", "50mm") fits up to
-    ``max_patches`` (default 6) until within it, as ``--tolerance``; its report's
+    ``max_patches`` (default 6) until within it, as ``--tolerance`` (on a scan, as far as
+    its points tell its edge: ``stop`` is "scan_edge" where only that edge reads above it); its report's
     ``node_types`` group nodes whose angles agree within ``angle_tol_deg`` degrees (default 0.5);
     it is None, and ``node_types_why_not`` says why, when fabrication refuses the mesh found.
     ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches.
