@@ -609,6 +609,13 @@ pub fn approximate_until(
     stop: &(dyn Fn() -> bool + Sync),
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<Approximation, ApproxError> {
+    check_faces(options)?;
+    approximate_target(&TargetCloud::new(points)?, options, stop, progress)
+}
+
+/// Whether a grid of `options.faces` can be fitted: at least 4 × 4 faces, at most
+/// [`GenerateOptions::max_vertices`] vertices.
+fn check_faces(options: &ApproxOptions) -> Result<(), ApproxError> {
     let (fu, fv) = options.faces;
     if fu < 4 || fv < 4 {
         return Err(ApproxError::GridTooSmall(fu, fv));
@@ -617,11 +624,23 @@ pub fn approximate_until(
     if (fu + 1).saturating_mul(fv + 1) > limit {
         return Err(ApproxError::GridTooLarge(fu, fv, limit));
     }
-    let target = TargetCloud::new(points)?;
-    let outline = options.trim.then(|| Outline::of(&target)).transpose()?;
+    Ok(())
+}
+
+/// [`approximate_until`] of the target `target`, indexed once for several fits (a
+/// tolerance's), `options.faces` checked ([`check_faces`]).
+pub(super) fn approximate_target(
+    target: &TargetCloud,
+    options: &ApproxOptions,
+    stop: &(dyn Fn() -> bool + Sync),
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<Approximation, ApproxError> {
+    let (fu, fv) = options.faces;
+    let points = &target.points;
+    let outline = options.trim.then(|| Outline::of(target)).transpose()?;
     let mut guesses = match target.thinned(START_POINTS) {
         Some(sparse) => initial_guesses(&sparse)?,
-        None => initial_guesses(&target)?,
+        None => initial_guesses(target)?,
     };
     if options.keep_boundary {
         guesses.retain(|g| g.on_boundary);
@@ -633,7 +652,7 @@ pub fn approximate_until(
     let budget = options.max_evaluations.max(MIN_EVALUATIONS);
     let starts_wanted = options.starts.max(1);
     let mut search = Search {
-        target: &target,
+        target,
         kind: options.kind,
         stride: points.len().div_ceil(EDGE_POINTS),
         faces: options.faces,
@@ -758,7 +777,7 @@ pub fn approximate_until(
     };
     let initial = design_of(&guesses[first], &initial_x, samples, options.kind);
     // Measured as trimmed, where trimmed.
-    let measure = |grid: &QuadGrid| trim::measured(&target, grid, outline.as_ref(), 1);
+    let measure = |grid: &QuadGrid| trim::measured(target, grid, outline.as_ref(), 1);
     let before = fair_mesh(&initial).map(|g| measure(&g).0);
     let design = design_of(start, &fine, samples, options.kind);
     let grid = fair_mesh(&design).expect("the refined design was generated fair");

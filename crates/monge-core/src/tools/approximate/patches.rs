@@ -218,12 +218,30 @@ pub fn approximate_patches(
     options: &ApproxOptions,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<PatchApproximation, ApproxError> {
-    let target = TargetCloud::new(points)?;
+    patches_of(
+        &TargetCloud::new(points)?,
+        single,
+        layout,
+        options,
+        progress,
+    )
+}
+
+/// [`approximate_patches`] of the target `target`, indexed once for several fits (a
+/// tolerance's).
+pub(super) fn patches_of(
+    target: &TargetCloud,
+    single: &Approximation,
+    layout: PatchLayout,
+    options: &ApproxOptions,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<PatchApproximation, ApproxError> {
+    let points = &target.points;
     // Patches from a mesh that covers the target cover it too, and are trimmed.
     let outline = single
         .trimmed
         .is_some()
-        .then(|| Outline::of(&target))
+        .then(|| Outline::of(target))
         .transpose()?;
     let (setup, x0) = Pieces::cut(single, layout)?;
     let grid = &single.grid;
@@ -240,7 +258,7 @@ pub fn approximate_patches(
     // the search's objective.
     let measure = |grid: &QuadGrid, than: f64| match outline.as_ref() {
         Some(outline) => {
-            let d = trimmed_deviation_below(&target, &trim(grid, outline), stride, than);
+            let d = trimmed_deviation_below(target, &trim(grid, outline), stride, than);
             let matches = target.matches(grid, stride);
             (d, sum_of_squares(&target.cover_residuals(grid, &matches)))
         }
@@ -359,17 +377,12 @@ pub fn approximate_patches(
     }
     // The closer to the target of the two, by the largest distance both ways over all
     // its points as far as they tell its edge, if closer than the single patch.
-    let single_resolved = resolved(
-        &target,
-        &single.after,
-        &single.grid,
-        single.trimmed.as_ref(),
-    );
+    let single_resolved = resolved(target, &single.after, &single.grid, single.trimmed.as_ref());
     let mut kept = None;
     for x in [&best.1, &closest.1].into_iter().flatten() {
         let (design, mp) = setup.build(x, false).expect("the design was built");
-        let (after, trimmed) = measured(&target, &mp.grid, outline.as_ref(), 1);
-        let r = resolved(&target, &after, &mp.grid, trimmed.as_ref());
+        let (after, trimmed) = measured(target, &mp.grid, outline.as_ref(), 1);
+        let r = resolved(target, &after, &mp.grid, trimmed.as_ref());
         if r.closer_than(kept.as_ref().map_or(&single_resolved, |k: &Kept| &k.4)) {
             kept = Some((design, mp, after, trimmed, r));
         }
@@ -404,7 +417,7 @@ pub fn approximate_patches(
     };
     Ok(PatchApproximation {
         after,
-        per_patch: per_patch(&target, &mp, trimmed.as_ref()),
+        per_patch: per_patch(target, &mp, trimmed.as_ref()),
         before: single.after,
         design,
         layout: out_layout,

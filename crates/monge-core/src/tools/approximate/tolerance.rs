@@ -17,9 +17,10 @@ use crate::generate::GenerateError;
 use crate::grid::QuadGrid;
 use crate::multipatch::{MultiPatchDesign, MultiPatchError};
 
+use super::patches::patches_of;
 use super::trim::{resolved, TrimmedMesh};
 use super::{
-    approximate, approximate_patches, fair_mesh, ApproxError, ApproxOptions, Approximation,
+    approximate_target, check_faces, fair_mesh, ApproxError, ApproxOptions, Approximation,
     Deviation, PatchLayout, Progress, TargetCloud,
 };
 
@@ -413,15 +414,15 @@ pub fn refinements(max_patches: usize) -> impl Iterator<Item = PatchLayout> {
 }
 
 /// The fit of `layout` from the one-patch fit `single`: the one call of
-/// [`approximate_patches`].
+/// [`approximate_patches`](super::approximate_patches).
 fn fit_patches(
-    points: &[DVec3],
+    target: &TargetCloud,
     single: &Approximation,
     layout: PatchLayout,
     options: &ApproxOptions,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<(FitDesign, QuadGrid, Deviation, usize), ApproxError> {
-    let p = approximate_patches(points, single, layout, options, progress)?;
+    let p = patches_of(target, single, layout, options, progress)?;
     let design = match p.trimmed {
         Some(mesh) => FitDesign::TrimmedPatches(p.design, mesh),
         None => FitDesign::Patches(p.design),
@@ -463,7 +464,7 @@ impl Seen {
 /// ([`super::approximate`]), then (where the target's outline can be traced) one patch
 /// that covers it, trimmed to its outline ([`ApproxOptions::trim`]: a target whose
 /// edges are not curvature lines), then the layouts of [`refinements`] of up to
-/// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`]: the nearer of
+/// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`](super::approximate_patches): the nearer of
 /// the one-patch results cut into blocks from its middle, every free guide and θ free,
 /// §4.7; from the trimmed one, they cover the target and are trimmed too), until
 /// one is within the tolerance. The
@@ -499,10 +500,12 @@ pub fn approximate_to_tolerance(
     if options.max_patches == 0 {
         return Err(ToleranceError::NoPatches);
     }
+    check_faces(&options.approx)?;
     let target = TargetCloud::new(points)?;
+    let never = || false;
     let mut done = 0;
     let mut best_max = f64::INFINITY;
-    let single = approximate(points, &options.approx, &mut |p| {
+    let single = approximate_target(&target, &options.approx, &never, &mut |p| {
         progress(&ToleranceProgress {
             patches: 1,
             evaluations: p.evaluations,
@@ -543,7 +546,7 @@ pub fn approximate_to_tolerance(
             trim: true,
             ..options.approx
         };
-        let fit = approximate(points, &trim, &mut |p| {
+        let fit = approximate_target(&target, &trim, &never, &mut |p| {
             progress(&ToleranceProgress {
                 patches: 1,
                 evaluations: done + p.evaluations,
@@ -584,7 +587,7 @@ pub fn approximate_to_tolerance(
                 break;
             }
             let from = nearer.as_ref().unwrap_or(&single);
-            let fit = fit_patches(points, from, layout, &options.approx, &mut |p| {
+            let fit = fit_patches(&target, from, layout, &options.approx, &mut |p| {
                 progress(&ToleranceProgress {
                     patches,
                     evaluations: done + p.evaluations,
