@@ -2,9 +2,10 @@
 //! piecewise planar curvature lines): [`approximate_to_tolerance`] fits one patch,
 //! then more patches ([`refinements`]: 2 × 1, 2 × 2, 3 × 2, …), until the mesh is within the tolerance of the target both
 //! ways (the largest distances, mesh → target and target → mesh), or says why it
-//! stopped short ([`Stop`]): the patch budget, the time limit, or patches that cannot
-//! be fitted. It never returns a design farther from the target than the best one it
-//! saw, the initial guess included. What a designer looks at in the result is
+//! stopped short ([`Stop`]): the patch budget, the time limit, patches that cannot be
+//! fitted, or a scan's edge that its points cannot place. It never returns a design
+//! farther from the target than the best one it saw, the initial guess included (on a
+//! scan, as far as its points tell its edge). What a designer looks at in the result is
 //! [`super::report`]'s.
 
 use std::str::FromStr;
@@ -237,9 +238,9 @@ impl Stop {
              and every vertex across its surface; only the mesh's edge reads farther beyond \
              the scan's outermost points, a reading that overstates by up to {:.3} model units \
              at nine corners in ten ({:.1e} of the size: {} mean spacings of its points, as \
-             a random sampling leaves the target's corners bare), so the edge is within only if the reading \
-             overstates; more patches would only move an edge the points cannot place. A \
-             denser scan reads its edge closer",
+             a random sampling leaves the target's corners bare), so the edge is within only \
+             if the reading overstates; more patches would only move an edge the points \
+             cannot place. A denser scan reads its edge closer",
             overread * size,
             overread,
             super::SCAN_EDGE_OVERREAD,
@@ -464,13 +465,15 @@ impl Seen {
 /// ([`super::approximate`]), then (where the target's outline can be traced) one patch
 /// that covers it, trimmed to its outline ([`ApproxOptions::trim`]: a target whose
 /// edges are not curvature lines), then the layouts of [`refinements`] of up to
-/// [`ToleranceOptions::max_patches`] patches ([`approximate_patches`](super::approximate_patches): the nearer of
-/// the one-patch results cut into blocks from its middle, every free guide and θ free,
-/// §4.7; from the trimmed one, they cover the target and are trimmed too), until
-/// one is within the tolerance. The
-/// result is the nearest design seen (largest distance both ways; the initial guess
-/// included; on a scan, as far as its points tell its edge, [`TargetCloud::resolved`]),
-/// whether or not within the tolerance ([`ToleranceFit::met`], [`ToleranceFit::stop`]). `progress` is called after every mesh generated.
+/// [`ToleranceOptions::max_patches`] patches
+/// ([`approximate_patches`](super::approximate_patches): the nearer of the one-patch
+/// results cut into blocks from its middle, every free guide and θ free, §4.7; from the
+/// trimmed one, they cover the target and are trimmed too), until one is within the
+/// tolerance. The result is the nearest design seen (largest distance both ways; the
+/// initial guess included; on a scan, as far as its points tell its edge,
+/// [`TargetCloud::resolved`]), whether or not within the tolerance
+/// ([`ToleranceFit::met`], [`ToleranceFit::stop`]). `progress` is called after every
+/// mesh generated.
 ///
 /// Errors: the tolerance and patch budget ([`ToleranceError`]), and whatever keeps
 /// the first patch from being fitted ([`ApproxError`]: an umbilic, a flat target, …).
