@@ -1,6 +1,6 @@
 //! The searches of [`approximate`](super::approximate) (monge's extension): the θ scan
 //! of the starts, Levenberg–Marquardt on the residuals, with a finite-difference
-//! Jacobian, and θ restarts where the least squares stall.
+//! Jacobian, θ restarts where the least squares stall, and θ alone (the guides kept).
 
 use crate::gauss_map::admissible_theta_at;
 
@@ -329,6 +329,66 @@ impl Search<'_> {
             }
         }
         best.1
+    }
+
+    /// θ alone from `x0`, the rest fixed: every tenth of `half_width` degrees on both
+    /// sides, then golden-section search around the best; the best point and its
+    /// objective.
+    pub(super) fn run_theta(
+        &mut self,
+        start: &Start,
+        x0: &[f64],
+        faces: (usize, usize),
+        half_width: f64,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> (f64, Vec<f64>) {
+        let mut f = |search: &mut Self, theta: f64| {
+            let mut x = x0.to_vec();
+            x[8] = theta.clamp(-179.0, 179.0);
+            let value = search.objective(start, &x, faces);
+            progress(&search.progress());
+            (
+                if value.is_finite() {
+                    value
+                } else {
+                    f64::INFINITY
+                },
+                x,
+            )
+        };
+        let step = half_width / 10.0;
+        let mut best = f(self, x0[8]);
+        for k in -10..=10 {
+            let trial = f(self, x0[8] + f64::from(k) * step);
+            if trial.0 < best.0 {
+                best = trial;
+            }
+        }
+        let golden = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (best.1[8] - step, best.1[8] + step);
+        let (mut c, mut d) = (b - golden * (b - a), a + golden * (b - a));
+        let (mut fc, mut fd) = (f(self, c), f(self, d));
+        while b - a > 1e-6 && !self.timed_out {
+            if fc.0 < fd.0 {
+                (b, d, fd) = (d, c, fc);
+                c = b - golden * (b - a);
+                fc = f(self, c);
+            } else {
+                (a, c, fc) = (c, d, fd);
+                d = a + golden * (b - a);
+                fd = f(self, d);
+            }
+        }
+        for trial in [fc, fd] {
+            if trial.0 < best.0 {
+                best = trial;
+            }
+        }
+        if best.0.is_finite() {
+            best
+        } else {
+            (f64::NAN, x0.to_vec())
+        }
     }
 }
 
