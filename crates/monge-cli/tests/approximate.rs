@@ -760,17 +760,21 @@ fn approximate_to_a_tolerance_on_a_scan_keeps_one_patch_where_only_its_edge_read
         })
         .collect();
     fs::write(&scan, points).unwrap();
+    // `monge approximate` of the scan into `design`, its exit status and standard output.
+    let approximate = |design: &std::path::Path, args: &[&str]| {
+        let out = monge()
+            .arg("approximate")
+            .arg(&scan)
+            .arg("-o")
+            .arg(design)
+            .args(args)
+            .output()
+            .unwrap();
+        (out.status.code(), String::from_utf8(out.stdout).unwrap())
+    };
     let design = dir.path().join("fit.json");
-    let out = monge()
-        .arg("approximate")
-        .arg(&scan)
-        .arg("-o")
-        .arg(&design)
-        .args(["--tolerance", "5e-3"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    let (status, stdout) = approximate(&design, &["--tolerance", "5e-3"]);
+    assert_eq!(status, Some(1), "{stdout}");
     assert!(stdout.contains("result: 1 patch\n"), "{stdout}");
     assert!(stdout.contains("NOT within the tolerance"), "{stdout}");
     assert!(stdout.contains("the target is a scan"), "{stdout}");
@@ -796,15 +800,7 @@ fn approximate_to_a_tolerance_on_a_scan_keeps_one_patch_where_only_its_edge_read
     assert!(across <= 5e-3 * size, "{across} of {size}");
     // Four patches are compared with it the same way, and not kept (2.4e-3 of the size
     // from the torus patch both ways against their 4.0e-3, which read nearer).
-    let out = monge()
-        .arg("approximate")
-        .arg(&scan)
-        .arg("-o")
-        .arg(dir.path().join("patches.json"))
-        .args(["--patches", "2x2"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8(out.stdout).unwrap();
+    let (_, stdout) = approximate(&dir.path().join("patches.json"), &["--patches", "2x2"]);
     assert!(
         stdout.contains("they do not follow the target closer than one patch"),
         "{stdout}"
