@@ -83,9 +83,11 @@ fn measure_every_held_out_target() {
 }
 
 /// The scans of the held-out surfaces with planar curvature lines on eight random
-/// samplings each (seeds 1 to 8, 2 000 points, noise 1e-4 of the size, default
+/// samplings each (seeds 1 to 8; 2 000 points, noise 1e-4 of the size, default
 /// settings): per sampling the larger of the two largest distances (brute force), `*`
-/// within 1e-3. One sampling hides a search that falls off the target on another:
+/// within 1e-3. One sampling hides a search that falls off the target on another, and
+/// the searches were tuned on these eight: measure others too (`HELDOUT_FIRST_SEED=9`,
+/// seeds 9 to 16):
 /// `cargo test -p monge-core-tests --test integration approximate_heldout:: -- --ignored --nocapture`
 /// (`HELDOUT=onion` measures only the targets whose name contains it,
 /// `HELDOUT_POINTS=20000` scans of that many points).
@@ -94,13 +96,14 @@ fn measure_every_held_out_target() {
 fn measure_scans_on_eight_samplings() {
     let only = std::env::var("HELDOUT").unwrap_or_default();
     let count = std::env::var("HELDOUT_POINTS").map_or(2000, |n| n.parse().unwrap());
+    let first: u64 = std::env::var("HELDOUT_FIRST_SEED").map_or(1, |n| n.parse().unwrap());
     for target in targets()
         .into_iter()
         .filter(|t| t.pcl && t.name.contains(&only))
     {
         let mut line = format!("{}:", target.name);
         let mut within = 0;
-        for seed in 1..=8 {
+        for seed in first..first + 8 {
             let points = target.scan(count, 1e-4, seed);
             match approximate(&points, &ApproxOptions::default(), &mut |_| {}) {
                 Ok(a) => {

@@ -603,7 +603,7 @@ pub(super) fn approximate_target(
         timed_out: false,
     };
     // θ from a scan every 10° (§4.3) at each corner; the best few as starts.
-    let scan = search.scan_theta(&guesses, coarse);
+    let scan = search.scan_starts(&guesses, coarse);
     let corners: Vec<usize> = guesses.iter().map(|g| g.at_corner).collect();
     let chosen = choose_starts(scan, &corners, starts_wanted);
     let (first, initial_phi) = *chosen.first().ok_or(if search.timed_out {

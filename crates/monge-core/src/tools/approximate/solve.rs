@@ -10,16 +10,42 @@ use super::{
 };
 
 impl Search<'_> {
-    /// The θ scan of the starts (§4.3): the objective on a grid of `faces` at every 10°
-    /// from each start in `guesses` (but 90°, where the guides' planes coincide), the
-    /// meshes in parallel; the feasible ones as (objective, start, θ), in the starts'
-    /// order.
-    pub(super) fn scan_theta(
+    /// The θ scan ([`Search::scan_theta`]) of the starts in `guesses`, a corner's
+    /// boundary traced again ([`Start::retraced`]) only where its boundary starts fold at
+    /// every θ or could not be traced: as (objective, start, θ).
+    pub(super) fn scan_starts(
         &mut self,
         guesses: &[Start],
         faces: (usize, usize),
     ) -> Vec<(f64, usize, f64)> {
-        let trials: Vec<(usize, Vec<f64>, f64)> = (0..guesses.len())
+        let all = 0..guesses.len();
+        let mut scan = self.scan_theta(
+            guesses,
+            all.clone().filter(|g| !guesses[*g].retraced),
+            faces,
+        );
+        let holds = |corner: usize| {
+            scan.iter()
+                .any(|s| guesses[s.1].on_boundary && guesses[s.1].at_corner == corner)
+        };
+        let again: Vec<usize> = all
+            .filter(|g| guesses[*g].retraced && !holds(guesses[*g].at_corner))
+            .collect();
+        scan.extend(self.scan_theta(guesses, again.into_iter(), faces));
+        scan
+    }
+
+    /// The θ scan of the starts (§4.3): the objective on a grid of `faces` at every 10°
+    /// from each start `which` of `guesses` (but 90°, where the guides' planes
+    /// coincide), the meshes in parallel; the feasible ones as (objective, start, θ), in
+    /// the starts' order.
+    pub(super) fn scan_theta(
+        &mut self,
+        guesses: &[Start],
+        which: impl Iterator<Item = usize>,
+        faces: (usize, usize),
+    ) -> Vec<(f64, usize, f64)> {
+        let trials: Vec<(usize, Vec<f64>, f64)> = which
             .flat_map(|g| {
                 (-17..=18)
                     .filter(|k| *k != 9)

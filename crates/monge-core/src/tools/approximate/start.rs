@@ -25,6 +25,9 @@ pub(super) struct Start {
     pub(super) tilts: [f64; 2],
     /// Whether the guides are the target's own boundary curves ([`boundary_start`]).
     pub(super) on_boundary: bool,
+    /// Whether it is a boundary start traced along the chord of several steps, tried
+    /// only at a corner whose boundary starts fold at every θ ([`TRACE_CHORD`]).
+    pub(super) retraced: bool,
     pub(super) curvatures: (f64, f64),
     /// Which of the target's four corners it starts from (0 to 3): the scan's choice
     /// of starts takes the best of each corner first.
@@ -158,6 +161,7 @@ fn corner_start(points: &[DVec3], corner: &Principal, d1: DVec3, d2: DVec3, size
         guides: [guide(t_u, t_v), guide(t_v, t_u)],
         tilts: [0.0; 2],
         on_boundary: false,
+        retraced: false,
         curvatures: (corner.k1, corner.k2),
         at_corner: 0,
     }
@@ -222,6 +226,7 @@ fn quadric_start(
         guides: [guide(t_u)?, guide(t_v)?],
         tilts: [0.0; 2],
         on_boundary: false,
+        retraced: false,
         curvatures: (corner.k1, corner.k2),
         at_corner: 0,
     })
@@ -323,6 +328,13 @@ const CORNER_SECTOR: f64 = 0.75 * std::f64::consts::PI;
 /// (radians): a sharper one is the target's next corner.
 const BOUNDARY_TURN: f64 = 0.75;
 
+/// Steps of [`trace_boundary`] whose chord is the direction ahead for the boundary
+/// starts traced again ([`Start::retraced`]). Along the last step alone, a random
+/// sampling's outermost point well out to one side can turn the path off the boundary:
+/// it stops a third of the way along a side, or goes on round the next corner, and the
+/// guides fitted to it fold at every θ.
+pub(super) const TRACE_CHORD: usize = 3;
+
 /// The start along the target's boundary at its corner lowest along `d1` and `d2` (the
 /// principal directions at its centre, turned towards that corner; a corner: a boundary
 /// point whose neighbours fill a sector of at most [`CORNER_SECTOR`]): the boundary
@@ -335,7 +347,9 @@ const BOUNDARY_TURN: f64 = 0.75;
 /// its own guides. Two starts: the guides fitted with the points' parameters (a mesh's
 /// boundary, exactly) and at their chord lengths, with each curve's start tangent from
 /// the cubic nearest to it all (a scan's, whose outermost points zigzag; see
-/// [`Parameters`]). None when the boundary cannot be traced (too few points on it).
+/// [`Parameters`]); and the same two of the boundary traced along chords
+/// ([`TRACE_CHORD`], [`Start::retraced`]) where that traces it otherwise. None when the
+/// boundary cannot be traced (too few points on it).
 fn boundary_start(
     target: &TargetCloud,
     d1: DVec3,
@@ -380,11 +394,24 @@ fn boundary_start(
     } else {
         (b, a)
     };
-    let path_u = trace_boundary(target, corner_index, e_u, -e_v, step);
-    let path_v = trace_boundary(target, corner_index, e_v, -e_u, step);
-    [Parameters::Fitted, Parameters::ChordLength]
-        .into_iter()
-        .filter_map(|p| curves_start(corner, &path_u, &path_v, curvatures, true, p))
+    let trace = |chord: usize| {
+        [
+            trace_boundary(target, corner_index, e_u, -e_v, step, chord),
+            trace_boundary(target, corner_index, e_v, -e_u, step, chord),
+        ]
+    };
+    let first = trace(1);
+    let again = Some(trace(TRACE_CHORD)).filter(|paths| *paths != first);
+    std::iter::once((first, false))
+        .chain(again.map(|paths| (paths, true)))
+        .flat_map(|([path_u, path_v], retraced)| {
+            [Parameters::Fitted, Parameters::ChordLength]
+                .into_iter()
+                .filter_map(move |p| {
+                    let start = curves_start(corner, &path_u, &path_v, curvatures, true, p);
+                    start.map(|s| Start { retraced, ..s })
+                })
+        })
         .collect()
 }
 
@@ -494,6 +521,7 @@ fn curves_start(
         guides: [g_u, g_v],
         tilts: [tilt_u, tilt_v],
         on_boundary,
+        retraced: false,
         curvatures,
         at_corner: 0,
     })
@@ -524,14 +552,17 @@ fn start_slope(section: &[(f64, f64)]) -> Option<f64> {
 /// The target's boundary from point `from` along `along`, with the target on the
 /// side opposite to `outside` (both tangent): gift wrapping, each step to the point
 /// ahead (between half a step and two and a half steps away, or six across a gap of
-/// the sampling) that lies furthest outside, until the boundary ends or turns inwards
-/// sharper than [`BOUNDARY_TURN`] (the target's next corner). The points, `from` first.
+/// the sampling) that lies furthest outside, "ahead" along the chord of the last
+/// `chord` steps (once it has taken as many; 1: the last step), until the boundary
+/// ends or turns inwards sharper than [`BOUNDARY_TURN`] (the target's next corner).
+/// The points, `from` first.
 fn trace_boundary(
     target: &TargetCloud,
     from: usize,
     along: DVec3,
     outside: DVec3,
     step: f64,
+    chord: usize,
 ) -> Vec<DVec3> {
     let mut path = vec![target.points[from]];
     let (mut at, mut d, mut out) = (from, along, outside);
@@ -567,7 +598,8 @@ fn trace_boundary(
         if angle < -BOUNDARY_TURN {
             break;
         }
-        d = (target.points[next] - q).normalize();
+        let from = path.len().checked_sub(chord).map_or(q, |k| path[k]);
+        d = (target.points[next] - from).normalize();
         out = o_t;
         at = next;
         path.push(target.points[next]);
