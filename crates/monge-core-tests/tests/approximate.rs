@@ -776,9 +776,11 @@ fn a_scanned_onion_dome_whose_coarse_fit_folds_on_the_full_grid_is_recovered() {
         |t| t.scan(2000, 1e-4, 4),
         &ApproxOptions::default(),
     );
-    // Measured: 1.1e-3 and 1.0e-3, θ 0.000°.
+    // Measured: 2.7e-3 and 3.6e-3, θ 0.000° (1.1e-3 and 1.0e-3 before the least squares
+    // counted the scan's points the mesh leaves uncovered, which brought 8 more of 120
+    // held-out scans within 1e-3; this sampling's corners it left farther).
     assert!(
-        to_max <= 3e-3 && from_max <= 3e-3,
+        to_max <= 5e-3 && from_max <= 5e-3,
         "{to_max:e} {from_max:e}"
     );
     assert!(theta <= 0.5, "θ {theta}");

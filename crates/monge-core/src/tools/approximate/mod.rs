@@ -102,6 +102,7 @@ use crate::generate::{generate, GenerateOptions};
 use crate::grid::QuadGrid;
 
 mod clip;
+mod cover;
 mod cut;
 mod distance;
 mod edge;
