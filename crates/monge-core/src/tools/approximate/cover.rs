@@ -72,6 +72,7 @@ impl TargetCloud {
 mod tests {
     use glam::DVec3;
 
+    use super::super::edge::tests::square;
     use super::super::index::OVERHANG_SPACINGS;
     use super::*;
 
@@ -80,10 +81,7 @@ mod tests {
         // 2 000 random points of the unit square; a mesh of all of it, and of its half
         // x ≤ 0.5: each point's residual is its distance beyond x = 0.5 (closed form)
         // less the allowance, relative to the size, over the root of their number.
-        let mut rng = fastrand::Rng::with_seed(3);
-        let scan: Vec<DVec3> = (0..2000)
-            .map(|_| DVec3::new(rng.f64(), rng.f64(), 0.0))
-            .collect();
+        let scan = square(&mut fastrand::Rng::with_seed(3), 2000);
         let target = TargetCloud::new(&scan).unwrap();
         let over = |width: f64| {
             let vertices = (0..121)

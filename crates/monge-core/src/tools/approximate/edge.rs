@@ -362,7 +362,7 @@ pub(super) mod tests {
     }
 
     /// `n` uniform random points of the unit square (z = 0).
-    fn square(rng: &mut fastrand::Rng, n: usize) -> Vec<DVec3> {
+    pub(in crate::tools::approximate) fn square(rng: &mut fastrand::Rng, n: usize) -> Vec<DVec3> {
         (0..n)
             .map(|_| DVec3::new(rng.f64(), rng.f64(), 0.0))
             .collect()
