@@ -26,7 +26,9 @@
 //!    cut along its curvature lines is started from its own guides; and again with
 //!    each B-spline at its points' chord lengths and each tangent the slope of the cubic
 //!    nearest to the whole curve, which a scan's zigzag boundary does not tie into
-//!    loops. A third follows the
+//!    loops. Where those fold at every θ (a random sampling's outermost point far out to
+//!    one side turned the path off the boundary), the boundary is traced again, each
+//!    step ahead along the chord of the last three. A third follows the
 //!    target's curvature lines (each step on the quadric of the nearest target points):
 //!    from the centre to the boundary and along it to the corner, then the two lines
 //!    leaving the corner are the curves of the boundary start's construction, their
@@ -78,8 +80,11 @@
 //!    the gap that a sampling leaves between its outermost points and the true edge,
 //!    estimated from the spacing of those outermost points (nil for a mesh's vertices,
 //!    about `A / (n·L)` for `n` random points over an area `A` along a length `L`), so
-//!    that a scan is recovered to its edges and a mesh exactly to its boundary.
-//!    [`Deviation`] reports the whole distances both ways.
+//!    that a scan is recovered to its edges and a mesh exactly to its boundary; on a
+//!    scan, plus how much farther than a few spacings each target point lies from the
+//!    mesh (nil where the mesh reaches its edges; a corner cut off, or a part of the
+//!    target the mesh does not reach). [`Deviation`] reports the whole distances both
+//!    ways.
 //!
 //! With [`ApproxOptions::trim`], the mesh is fitted to cover the target rather than to
 //! end on its edges (every vertex within the target's outline near it, every target
