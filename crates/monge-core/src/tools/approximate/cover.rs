@@ -70,9 +70,7 @@ impl TargetCloud {
 
 #[cfg(test)]
 mod tests {
-    use glam::DVec3;
-
-    use super::super::edge::tests::square;
+    use super::super::edge::tests::{square, unit_square};
     use super::super::index::OVERHANG_SPACINGS;
     use super::*;
 
@@ -83,20 +81,15 @@ mod tests {
         // less the allowance, relative to the size, over the root of their number.
         let scan = square(&mut fastrand::Rng::with_seed(3), 2000);
         let target = TargetCloud::new(&scan).unwrap();
-        let over = |width: f64| {
-            let vertices = (0..121)
-                .map(|k| DVec3::new(width * (k / 11) as f64 / 10.0, (k % 11) as f64 / 10.0, 0.0))
-                .collect();
-            QuadGrid::new(11, 11, vertices, vec![DVec3::Z; 121])
-        };
         let allowance = OVERHANG_SPACINGS * target.spacing;
-        let whole = over(1.0);
+        let whole = unit_square();
         let m = target.matches(&whole, 1);
         assert!(target
             .to_mesh_beyond(&whole, &m, allowance)
             .iter()
             .all(|r| *r == 0.0));
-        let half = over(0.5);
+        let mut half = unit_square();
+        half.vertices.iter_mut().for_each(|v| v.x *= 0.5);
         let m = target.matches(&half, 1);
         let residuals = target.to_mesh_beyond(&half, &m, allowance);
         let weight = 1.0 / (target.size * (m.points.len() as f64).sqrt());
