@@ -366,16 +366,12 @@ impl TargetCloud {
             .collect();
         Matches {
             windows: side_windows(grid, self.spacing),
-            vertices: grid
-                .vertices
-                .iter()
-                .map(|v| {
-                    self.tree
-                        .nearest_neighbor(v.to_array())
-                        .expect("a target has points")
-                        .data
-                })
-                .collect(),
+            vertices: map_blocks(grid.vertices.len(), |k| {
+                self.tree
+                    .nearest_neighbor(grid.vertices[k].to_array())
+                    .expect("a target has points")
+                    .data
+            }),
             points: map_blocks(sample.len(), |j| {
                 (sample[j], faces.nearest(self.points[sample[j]]).0)
             }),
@@ -501,10 +497,12 @@ impl TargetCloud {
     /// }
     /// ```
     pub fn distances(&self, grid: &QuadGrid) -> Vec<f64> {
-        grid.vertices
-            .iter()
-            .map(|v| self.distance_from(*v))
-            .collect()
+        self.distances_of(&grid.vertices)
+    }
+
+    /// [`TargetCloud::distances`] of `vertices`, blocks of them side by side.
+    pub(super) fn distances_of(&self, vertices: &[DVec3]) -> Vec<f64> {
+        map_blocks(vertices.len(), |k| self.distance_from(vertices[k]))
     }
 
     /// Distances both ways between `grid` and the target, relative to the target's size.

@@ -498,13 +498,7 @@ pub(super) fn trimmed_deviation_below(
 ) -> Option<Deviation> {
     let faces = Triangles::new(trimmed.triangles());
     target.deviation_below(
-        || {
-            trimmed
-                .vertices
-                .iter()
-                .map(|v| target.distance_from(*v))
-                .collect()
-        },
+        || target.distances_of(&trimmed.vertices),
         |p| faces.distance_from(p),
         stride,
         than,
