@@ -2,6 +2,8 @@
 //! index, with a normal at each and an outward direction at its boundary, and the
 //! distances between it and a mesh both ways.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::{DVec2, DVec3};
 use rstar::RTree;
 
@@ -445,28 +447,58 @@ impl TargetCloud {
         to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
         stride: usize,
     ) -> Deviation {
-        self.deviation_below(|| distances.to_vec(), to_mesh, stride, f64::INFINITY)
-            .expect("no bound")
+        self.deviation_below(
+            (distances.len(), |k| distances[k]),
+            to_mesh,
+            stride,
+            f64::INFINITY,
+        )
+        .expect("no bound")
     }
 
-    /// [`TargetCloud::deviation_given`], the vertices' distances computed by `distances`
-    /// only where the deviation may come closer than `than` (relative; infinite: always):
-    /// `None` where the largest distance target → mesh alone reaches it, then not
-    /// [`closer_than`](Deviation::closer_than) a deviation of largest distance `than`.
+    /// [`TargetCloud::deviation_given`], the vertices' distances `distance(0)`,
+    /// `distance(1)`, … of `vertices` computed only where the deviation may come closer
+    /// than `than` (relative; infinite: always): `None` as soon as a largest distance,
+    /// target → mesh or mesh → target, reaches it (then not
+    /// [`closer_than`](Deviation::closer_than) a deviation of largest distance `than`),
+    /// the rest unmeasured.
     pub(super) fn deviation_below(
         &self,
-        distances: impl FnOnce() -> Vec<f64>,
+        (vertices, distance): (usize, impl Fn(usize) -> f64 + Sync + Send),
         to_mesh: impl Fn(DVec3) -> (f64, f64) + Sync + Send,
         stride: usize,
         than: f64,
     ) -> Option<Deviation> {
-        let nearest = strided(&self.points, stride, to_mesh);
-        let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
-        if than.is_finite() && t_max / self.size >= than {
+        // Set once a distance reaches `than`: the blocks side by side skip the rest.
+        let reached = AtomicBool::new(false);
+        let bounded = |d: f64| {
+            if than.is_finite() && d / self.size >= than {
+                reached.store(true, Ordering::Relaxed);
+            }
+            d
+        };
+        let nearest = strided(&self.points, stride, |p| {
+            if reached.load(Ordering::Relaxed) {
+                return (f64::NAN, f64::NAN);
+            }
+            let d = to_mesh(p);
+            (bounded(d.0), d.1)
+        });
+        if reached.load(Ordering::Relaxed) {
             return None;
         }
+        let (t_max, t_rms) = max_rms(nearest.iter().map(|d| d.0));
         let (_, b_rms) = max_rms(nearest.iter().map(|d| d.1));
-        let (m_max, m_rms) = max_rms(distances().into_iter());
+        let distances = map_blocks(vertices, |k| {
+            if reached.load(Ordering::Relaxed) {
+                return f64::NAN;
+            }
+            bounded(distance(k))
+        });
+        if reached.load(Ordering::Relaxed) {
+            return None;
+        }
+        let (m_max, m_rms) = max_rms(distances.into_iter());
         Some(Deviation {
             mesh_to_target_max: m_max / self.size,
             mesh_to_target_rms: m_rms / self.size,
@@ -497,12 +529,9 @@ impl TargetCloud {
     /// }
     /// ```
     pub fn distances(&self, grid: &QuadGrid) -> Vec<f64> {
-        self.distances_of(&grid.vertices)
-    }
-
-    /// [`TargetCloud::distances`] of `vertices`, blocks of them side by side.
-    pub(super) fn distances_of(&self, vertices: &[DVec3]) -> Vec<f64> {
-        map_blocks(vertices.len(), |k| self.distance_from(vertices[k]))
+        map_blocks(grid.vertices.len(), |k| {
+            self.distance_from(grid.vertices[k])
+        })
     }
 
     /// Distances both ways between `grid` and the target, relative to the target's size.
@@ -769,5 +798,25 @@ mod tests {
                 "{name}: corners {corners:?} spacings"
             );
         }
+    }
+
+    #[test]
+    fn a_deviation_bounded_by_a_closer_one_is_not_measured_past_it_either_way() {
+        // A 11 × 11 mesh's vertices as the target; every target point at 0.1 of the size
+        // from the mesh, and two vertices, at 0.2 and 0.4 of it from the target.
+        let target = TargetCloud::new(&unit_square().vertices).unwrap();
+        let size = target.size;
+        let vertices = [0.2 * size, 0.4 * size];
+        let measure = |than: f64| {
+            target.deviation_below((2, |k| vertices[k]), |_| (0.1 * size, 0.0), 1, than)
+        };
+        let d = measure(f64::INFINITY).unwrap();
+        assert!((d.target_to_mesh_max - 0.1).abs() < 1e-12);
+        assert!((d.mesh_to_target_max - 0.4).abs() < 1e-12);
+        assert_eq!(measure(0.5), Some(d));
+        // Reached target → mesh, or only mesh → target: not closer, not measured.
+        assert_eq!(measure(0.1), None);
+        assert_eq!(measure(0.3), None);
+        assert_eq!(measure(0.4), None);
     }
 }

@@ -498,7 +498,9 @@ pub(super) fn trimmed_deviation_below(
 ) -> Option<Deviation> {
     let faces = Triangles::new(trimmed.triangles());
     target.deviation_below(
-        || target.distances_of(&trimmed.vertices),
+        (trimmed.vertices.len(), |k| {
+            target.distance_from(trimmed.vertices[k])
+        }),
         |p| faces.distance_from(p),
         stride,
         than,
