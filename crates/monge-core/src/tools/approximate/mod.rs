@@ -109,6 +109,7 @@ use crate::grid::QuadGrid;
 mod clip;
 mod cover;
 mod cut;
+mod deviation;
 mod distance;
 mod edge;
 mod error;
