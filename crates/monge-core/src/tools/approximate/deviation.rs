@@ -16,7 +16,14 @@ impl TargetCloud {
     /// target points are taken every `stride`-th.
     pub(super) fn deviation_strided(&self, grid: &QuadGrid, stride: usize) -> Deviation {
         let faces = MeshFaces::new(grid);
-        self.deviation_given(&self.distances(grid), |p| faces.distance_from(p), stride)
+        let vertices = &grid.vertices;
+        self.deviation_below(
+            (vertices.len(), |k| self.distance_from(vertices[k])),
+            |p| faces.distance_from(p),
+            stride,
+            f64::INFINITY,
+        )
+        .expect("no bound")
     }
 
     /// [`TargetCloud::deviation_strided`] with the vertices' [`TargetCloud::distances`]
