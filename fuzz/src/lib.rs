@@ -83,6 +83,12 @@ pub fn design(data: &[u8], format: DesignFormat) {
                     assert_grid("developable", &mesh.grid);
                 }
             }
+            Ok(AnyDesign::Trimmed(t)) => {
+                if let Ok((grid, trimmed)) = t.mesh(&options()) {
+                    assert_grid("trimmed design", &grid);
+                    assert_finite("trimmed", &trimmed.vertices);
+                }
+            }
             Err(_) => {}
         },
     }

@@ -442,7 +442,7 @@ fn approximate_to_a_tolerance_not_met_says_why_with_numbers_and_exits_1() {
     assert!(best <= one, "{stdout}");
     assert!(best > 0.001);
     // The result: the design's mesh, or the trimmed mesh written beside it.
-    let mesh = if stdout.contains("covering the target, trimmed to its outline\n") {
+    let mesh = if stdout.contains(", trimmed to its outline\n") {
         assert!(stdout.contains("fit.trimmed.obj (the result: "), "{stdout}");
         dir.path().join("fit.trimmed.obj")
     } else {
@@ -634,9 +634,15 @@ fn approximate_trim_writes_planar_panels_closer_to_a_target_whose_edges_are_not_
     // the paraboloid's square edges), and monge reads its distances as measured here.
     let size = 19.8997;
     let (to_target, to_mesh) = paraboloid_distances(&trimmed);
+    // DESIGN is a trimmed design: `monge generate` writes the same trimmed mesh (all
+    // but the header comment), and its `design` is the design before trimming.
+    let generated = dir.path().join("generated.obj");
+    monge_to("generate", &fit, &generated).assert().success();
+    assert_eq!(obj_body(&generated), obj_body(&trimmed));
     let untrimmed = dir.path().join("untrimmed.obj");
-    paraboloid(&fit, 8, 100).assert().success();
-    monge_to("generate", &fit, &untrimmed).assert().success();
+    monge_to("generate", design_before_trimming(&fit), &untrimmed)
+        .assert()
+        .success();
     let (a, b) = paraboloid_distances(&untrimmed);
     assert!(
         to_target.max(to_mesh) < 0.5 * a.max(b),
@@ -669,8 +675,13 @@ fn approximate_trim_with_patches_writes_the_patches_trimmed() {
     // The trimmed mesh is cut from the patches' mesh: every vertex of it lies on a face
     // of the mesh `monge patches` builds from DESIGN (measured here, by brute force).
     let size = 19.8997;
+    let generated = dir.path().join("generated.obj");
+    monge_to("generate", &fit, &generated).assert().success();
+    assert_eq!(obj_body(&generated), obj_body(&trimmed));
     let whole = dir.path().join("whole.obj");
-    monge_to("patches", &fit, &whole).assert().success();
+    monge_to("patches", design_before_trimming(&fit), &whole)
+        .assert()
+        .success();
     let faces = common::obj_faces(&whole);
     for v in obj_points(&trimmed) {
         let off = faces
@@ -805,4 +816,21 @@ fn approximate_to_a_tolerance_on_a_scan_keeps_one_patch_where_only_its_edge_read
         stdout.contains("they do not follow the target closer than one patch"),
         "{stdout}"
     );
+}
+
+/// An OBJ file's lines but its first (the header comment, which names the command).
+fn obj_body(path: &std::path::Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines().skip(1).map(str::to_owned).collect()
+}
+
+/// The design before trimming of the trimmed design `path` (its key `design`), written
+/// beside it as a file of its own.
+fn design_before_trimming(path: &std::path::Path) -> std::path::PathBuf {
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    assert!(file.get("trim").is_some(), "not a trimmed design: {file}");
+    let before = path.with_extension("before.json");
+    std::fs::write(&before, serde_json::to_string(&file["design"]).unwrap()).unwrap();
+    before
 }

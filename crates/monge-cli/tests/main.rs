@@ -28,3 +28,4 @@ mod outputs;
 mod patches;
 mod render;
 mod smooth;
+mod trimmed;

@@ -4,7 +4,6 @@ use std::io::{self, Write};
 use std::path::Path;
 
 use monge_core::design::{Design, GuideSpec, THIS_GUIDE};
-use monge_core::developable::DevelopableDesign;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
@@ -15,7 +14,7 @@ use crate::kind::expect_kind;
 use crate::read::{path_name, read_error, read_unchanged, utf8};
 
 /// File name used in error messages for text that did not come from a file.
-const NO_FILE: &str = "<input>";
+pub(crate) const NO_FILE: &str = "<input>";
 
 /// The largest design file read, of any kind (a design, a developable or
 /// multi-patch design, a planes file), in bytes: 16 MiB. A design is a few kB;
@@ -209,61 +208,6 @@ fn non_finite(value: &toml::Value, key: String) -> Option<String> {
     }
 }
 
-/// Any design file monge reads (§3, §3.3).
-#[derive(Clone, Debug, PartialEq)]
-pub enum AnyDesign {
-    /// A surface from two guide curves and θ (§3): circular or conical.
-    Surface(Box<Design>),
-    /// A developable circular mesh from a discrete general helix (§3.3): a file
-    /// whose only top-level key is `developable`.
-    Developable(DevelopableDesign),
-}
-
-/// Reads a design file of either kind, JSON or TOML by its extension: a
-/// developable design if its top level has the key `developable`, a surface
-/// design otherwise (with the errors of [`read_design`]).
-///
-/// ```
-/// use monge_io::{read_any_design, AnyDesign};
-/// let dir = std::env::temp_dir().join("monge-doc-any-design");
-/// std::fs::create_dir_all(&dir).unwrap();
-/// let path = dir.join("helix.json");
-/// std::fs::write(&path, r#"{"developable": {"projection": {"points": [[0,0,0],[1,0,0],[2,1,0]],
-///     "alpha_deg": 30}, "heights": [2, 3]}}"#).unwrap();
-/// assert!(matches!(read_any_design(&path).unwrap(), AnyDesign::Developable(_)));
-/// ```
-pub fn read_any_design(path: &Path) -> Result<AnyDesign, IoError> {
-    let format = DesignFormat::from_path(path)?;
-    let text = read_design_text(path)?;
-    parse_any_design_named(&text, format, &path_name(path))
-}
-
-/// Parses the text of a design file of either kind (§3, §3.3), as
-/// [`read_any_design`] does; errors name the file `<input>`.
-///
-/// ```
-/// use monge_io::{parse_any_design, AnyDesign, DesignFormat};
-/// let d = parse_any_design(r#"{"developable": {"projection": {"points": [[0,0,0],[1,0,0],[2,1,0]],
-///     "alpha_deg": 30}, "heights": [2, 3]}}"#, DesignFormat::Json).unwrap();
-/// assert!(matches!(d, AnyDesign::Developable(_)));
-/// ```
-pub fn parse_any_design(text: &str, format: DesignFormat) -> Result<AnyDesign, IoError> {
-    parse_any_design_named(text, format, NO_FILE)
-}
-
-fn parse_any_design_named(
-    text: &str,
-    format: DesignFormat,
-    file: &str,
-) -> Result<AnyDesign, IoError> {
-    let kinds = [FileKind::Design, FileKind::Developable];
-    if expect_design(text, format, file, &kinds)? == Some(FileKind::Developable) {
-        parse_as(text, format, file).map(AnyDesign::Developable)
-    } else {
-        parse_as(text, format, file).map(|d| AnyDesign::Surface(Box::new(d)))
-    }
-}
-
 /// An [`IoError::Parse`] from a serde_json error on `text`.
 pub(crate) fn json_error(file: &str, text: &str, e: &serde_json::Error) -> IoError {
     IoError::parse_at_line(file, text, e.line(), e.column(), json_message(e))
@@ -323,7 +267,7 @@ pub(crate) fn write_pretty<T: Serialize, W: Write + ?Sized>(
 }
 
 /// [`IoError::NonFinite`] naming the first non-finite number of `design`.
-fn check_finite(design: &Design, file: &str) -> Result<(), IoError> {
+pub(crate) fn check_finite(design: &Design, file: &str) -> Result<(), IoError> {
     let mut bad = None;
     let mut check = |key: &dyn Fn() -> String, x: f64| {
         if bad.is_none() && !x.is_finite() {

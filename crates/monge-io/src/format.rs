@@ -17,17 +17,21 @@ pub enum FileKind {
     Planes,
     /// A quad mesh: `rows`, `cols`, `vertices` (as `monge generate` writes it).
     Mesh,
+    /// A design or a multi-patch design whose mesh is cut by an outline: the keys
+    /// `design` and `trim` (as `monge approximate` writes a trimmed result).
+    Trimmed,
 }
 
 impl FileKind {
     /// The kind whose top-level keys `keys` has, if any: `vertices` or `rows`
     /// makes a mesh (a multi-patch mesh also has `patches`), then `developable`,
-    /// `patches`, any of the four planes, and any of a design's keys.
+    /// `trim`, `patches`, any of the four planes, and any of a design's keys.
     pub fn from_keys(keys: &[&str]) -> Option<FileKind> {
         let has = |names: &[&str]| keys.iter().any(|k| names.contains(k));
         [
             (FileKind::Mesh, &["vertices", "rows"][..]),
             (FileKind::Developable, &["developable"]),
+            (FileKind::Trimmed, &["trim"]),
             (FileKind::MultiPatch, &["patches"]),
             (
                 FileKind::Planes,
@@ -72,6 +76,10 @@ impl FileKind {
             FileKind::MultiPatch => "`monge patches` (or `monge fit` when it has a `fit` key)",
             FileKind::Planes => "`monge align`",
             FileKind::Mesh => "`monge check` (or `monge smooth --mesh`)",
+            FileKind::Trimmed => {
+                "`monge generate`, which writes its mesh trimmed (its `design` is the design \
+                 before trimming, for the other commands)"
+            }
         }
     }
 }
@@ -84,6 +92,7 @@ impl fmt::Display for FileKind {
             FileKind::MultiPatch => "a multi-patch design (§4.7)",
             FileKind::Planes => "a planes file (§4.5)",
             FileKind::Mesh => "a mesh",
+            FileKind::Trimmed => "a trimmed design (a design and the outline its mesh is cut by)",
         })
     }
 }

@@ -25,6 +25,7 @@
 
 #![warn(missing_docs)]
 
+mod any;
 mod atomic;
 mod design;
 mod dxf;
@@ -46,11 +47,13 @@ mod scan;
 mod schedule;
 mod svg;
 mod text;
+mod trimmed;
 
+pub use any::{parse_any_design, read_any_design, AnyDesign};
 pub use atomic::{check_output, is_stdio, write_atomic, write_output, Outputs, STALE};
 pub use design::{
-    parse_any_design, parse_design, parse_design_named, read_any_design, read_design, write_design,
-    write_design_into, write_design_to, AnyDesign, MAX_DESIGN_BYTES,
+    parse_design, parse_design_named, read_design, write_design, write_design_into,
+    write_design_to, MAX_DESIGN_BYTES,
 };
 pub use dxf::{write_beams_dxf, write_panels_dxf};
 pub use error::IoError;
@@ -78,3 +81,4 @@ pub use schedule::{
     write_schedule_json, write_segments_csv, ScheduleJson,
 };
 pub use svg::write_overview_svg;
+pub use trimmed::{write_trimmed_into, Trimmable, TrimmedDesign, TrimmedMeshError};

@@ -70,7 +70,7 @@ fn reading_a_design_costs_a_few_times_its_size() {
             peak_of(|| assert_eq!(surface(&parse_design(&text, format).unwrap()), 100_000)),
             peak_of(|| match parse_any_design(&text, format).unwrap() {
                 AnyDesign::Surface(d) => assert_eq!(surface(&d), 100_000),
-                AnyDesign::Developable(_) => panic!("a surface design"),
+                AnyDesign::Developable(_) | AnyDesign::Trimmed(_) => panic!("a surface design"),
             }),
         ];
         for peak in peaks {

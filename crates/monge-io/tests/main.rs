@@ -15,3 +15,4 @@ mod mesh_read;
 mod mesh_write;
 mod points_read;
 mod scan;
+mod trimmed;

@@ -43,7 +43,9 @@ use crate::target::{points_array, points_of};
 /// it; otherwise None.
 ///
 /// Returns the `design` found (a `Design`, or a `PatchesDesign` of several patches:
-/// `design.to_file(path)` writes it as the command does), the `initial` guess (a
+/// `design.to_file(path)` writes it as the command does; of a trimmed result, the
+/// design before trimming, which the command's file holds as its key `design` beside
+/// the outline `trim`), the `initial` guess (a
 /// `Design`), its `mesh` (a `Mesh`, for `monge.rhino.write_3dm`,
 /// `monge.compas.to_mesh`, `monge.blender.add_mesh`; None for several patches), its
 /// `kind`, `vertices` (rows, cols, 3), `normals` (its node axes, (rows, cols, 3);

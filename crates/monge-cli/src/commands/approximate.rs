@@ -8,8 +8,9 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
     approximate, approximate_patches, approximate_to_tolerance, deadline_after, fit_report,
-    target_distances, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, PatchLayout,
-    Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions, TrimmedMesh, PATCHES_GAIN,
+    target_distances, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, Outline,
+    PatchLayout, Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions, TrimmedMesh,
+    PATCHES_GAIN,
 };
 use monge_core::conical::conical_dual;
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
@@ -18,7 +19,7 @@ use monge_core::multipatch::{build, MultiPatch, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{
     check_output, read_points, write_design_into, write_multipatch_into, write_polygons_obj,
-    Outputs,
+    write_trimmed_into, Outputs, Trimmable, TrimmedDesign,
 };
 use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 
@@ -397,23 +398,22 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     let better = patched.as_ref().filter(|p| p.closer_than(&r));
     // The design and its picture change together or not at all.
     let mut out = Outputs::new();
-    let (grid, after) = match better {
-        Some(p) => {
-            write_multipatch_into(&p.design, &args.output, &mut out)?;
-            (&p.grid, p.after)
-        }
-        None => {
-            write_design_into(&r.design, &args.output, &mut out)?;
-            (&r.grid, r.after)
-        }
-    };
     // The result trimmed, where it is: the patches' where they are kept.
     let trimmed = match better {
         Some(p) => p.trimmed.as_ref().map(|t| (t, p.after)),
         None => r.trimmed.as_ref().map(|t| (t, r.after)),
     };
+    let (grid, after, design) = match better {
+        Some(p) => (&p.grid, p.after, Trimmable::Patches(p.design.clone())),
+        None => (
+            &r.grid,
+            r.after,
+            Trimmable::Surface(Box::new(r.design.clone())),
+        ),
+    };
+    write_result_into(args, design, trimmed.is_some(), &points, &mut out)?;
     if let (Some(path), Some((mesh, _))) = (&args.trim, trimmed) {
-        write_trimmed_into(mesh, path, &file, &mut out)?;
+        write_trimmed_obj_into(mesh, path, &file, &mut out)?;
     }
     if let Some((path, format)) = picture {
         let target = TargetCloud::new(&points).with_context(|| file.clone())?;
@@ -467,7 +467,15 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             }
         ))?;
     }
-    print(&format!("wrote {}\n", args.output.display()))?;
+    print(&format!(
+        "wrote {}{}\n",
+        args.output.display(),
+        if trimmed.is_some() {
+            format!(" ({TRIMMED_DESIGN})")
+        } else {
+            String::new()
+        }
+    ))?;
     if let (Some(path), Some((mesh, _))) = (&args.trim, trimmed) {
         print(&format!(
             "wrote {} ({})\n",
@@ -508,6 +516,35 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
+/// What DESIGN is where the result is trimmed.
+const TRIMMED_DESIGN: &str =
+    "a trimmed design: the design and the target's outline; `monge generate` writes its mesh trimmed";
+
+/// Queues DESIGN: the result's design, one patch or several, and where the result is
+/// `trimmed`, the outline of the target `points` with it (a trimmed design, whose mesh
+/// `monge generate` cuts by it as the fit did: the same outline of the same points).
+fn write_result_into(
+    args: &ApproximateArgs,
+    design: Trimmable,
+    trimmed: bool,
+    points: &[DVec3],
+    out: &mut Outputs,
+) -> anyhow::Result<()> {
+    let path = &args.output;
+    if trimmed {
+        let context = || args.target.display().to_string();
+        let target = TargetCloud::new(points).with_context(context)?;
+        let trim = Outline::of(&target).with_context(context)?;
+        write_trimmed_into(&TrimmedDesign { design, trim }, path, out)?;
+    } else {
+        match design {
+            Trimmable::Surface(d) => write_design_into(&d, path, out)?,
+            Trimmable::Patches(d) => write_multipatch_into(&d, path, out)?,
+        }
+    }
+    Ok(())
+}
+
 /// Where the trimmed mesh goes: `--trim`'s path, or beside DESIGN (`x.json` →
 /// `x.trimmed.obj`) when `--tolerance` chooses a trimmed mesh without it.
 fn trimmed_path(args: &ApproximateArgs) -> PathBuf {
@@ -518,7 +555,7 @@ fn trimmed_path(args: &ApproximateArgs) -> PathBuf {
 
 /// Queues the trimmed mesh `mesh` of the target `file` for `path` (OBJ, faces as
 /// polygons).
-fn write_trimmed_into(
+fn write_trimmed_obj_into(
     mesh: &TrimmedMesh,
     path: &Path,
     file: &str,
@@ -586,18 +623,24 @@ fn finish_tolerance(
         .with_context(|| file.clone())?;
     let mut out = Outputs::new();
     let trimmed_path = trimmed_path(args);
-    let boundaries = match &fit.design {
+    let (design, boundaries) = match &fit.design {
         FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
-            write_design_into(d, &args.output, &mut out)?;
-            Vec::new()
+            (Trimmable::Surface(Box::new(d.clone())), Vec::new())
         }
-        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => {
-            write_multipatch_into(d, &args.output, &mut out)?;
-            patch_boundaries(&build(d, &GenerateOptions::default())?)
-        }
+        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => (
+            Trimmable::Patches(d.clone()),
+            patch_boundaries(&build(d, &GenerateOptions::default())?),
+        ),
     };
+    write_result_into(
+        args,
+        design,
+        fit.design.trimmed().is_some(),
+        points,
+        &mut out,
+    )?;
     if let Some(mesh) = fit.design.trimmed() {
-        write_trimmed_into(mesh, &trimmed_path, &file, &mut out)?;
+        write_trimmed_obj_into(mesh, &trimmed_path, &file, &mut out)?;
     }
     if let Some((path, format)) = picture {
         let tolerance = Some(fit.limit * fit.deviation.size);
@@ -690,14 +733,13 @@ fn finish_tolerance(
         match fit.design {
             FitDesign::Single(_) => String::new(),
             FitDesign::Trimmed(_, ref mesh) => format!(
-                " (the design before trimming)\nwrote {} (the result: {})",
+                " ({TRIMMED_DESIGN})\nwrote {} (the result: {})",
                 trimmed_path.display(),
                 trimmed_faces(mesh)
             ),
             FitDesign::Patches(_) => " (a multi-patch design: `monge patches` reads it)".to_owned(),
             FitDesign::TrimmedPatches(_, ref mesh) => format!(
-                " (the multi-patch design before trimming: `monge patches` reads it)\nwrote {} \
-                 (the result: {})",
+                " ({TRIMMED_DESIGN}: several patches)\nwrote {} (the result: {})",
                 trimmed_path.display(),
                 trimmed_faces(mesh)
             ),

@@ -6,10 +6,10 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use glam::DVec3;
-use monge_core::approximate::{fit_report, FitDesign, TargetCloud, TrimmedMesh};
+use monge_core::approximate::{fit_report, FitDesign, TargetCloud};
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
-use monge_io::{read_design, read_multipatch, read_points, read_polygons_obj};
+use monge_io::{read_any_design, read_multipatch, read_points, AnyDesign, Trimmable};
 
 use crate::shared::help::EXIT;
 use crate::shared::output::print;
@@ -253,31 +253,18 @@ fn run_free_form(
     let context = || format!("`monge {label}` of the shipped paraboloid (40 × 40 faces)");
     let run = run_child(exe, &args, &[0, 1]).with_context(context)?;
     let points = read_points(&target)?;
-    let text = std::fs::read_to_string(&design)
-        .with_context(|| format!("cannot read `{}`", design.display()))?;
-    // The result: the multi-patch design, the trimmed mesh written beside the design,
-    // or the design.
-    let patches = serde_json::from_str::<serde_json::Value>(&text)?
-        .get("patches")
-        .is_some();
-    let fit = if trimmed.exists() {
-        // Its polygons read as not cut: the bench measures their distances.
-        let (vertices, faces) = read_polygons_obj(&trimmed)?;
-        let mesh = TrimmedMesh {
-            from: vec![(0, 0); faces.len()],
-            cut: vec![false; faces.len()],
-            vertices,
-            faces,
-        };
-        if patches {
-            FitDesign::TrimmedPatches(read_multipatch(&design)?, mesh)
-        } else {
-            FitDesign::Trimmed(read_design(&design)?, mesh)
+    // The result as DESIGN has it: a multi-patch design, a trimmed design (its mesh cut
+    // as `monge generate` cuts it), or a design.
+    let fit = match read_any_design(&design) {
+        Ok(AnyDesign::Surface(d)) => FitDesign::Single(*d),
+        Ok(AnyDesign::Trimmed(t)) => {
+            let (_, mesh) = t.mesh(&GenerateOptions::default()).with_context(context)?;
+            match t.design {
+                Trimmable::Surface(d) => FitDesign::Trimmed(*d, mesh),
+                Trimmable::Patches(d) => FitDesign::TrimmedPatches(d, mesh),
+            }
         }
-    } else if patches {
-        FitDesign::Patches(read_multipatch(&design)?)
-    } else {
-        FitDesign::Single(read_design(&design)?)
+        _ => FitDesign::Patches(read_multipatch(&design)?),
     };
     let cloud = TargetCloud::new(&points).with_context(context)?;
     let report =

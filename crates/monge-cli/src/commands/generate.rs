@@ -6,10 +6,12 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::developable::{developable, DevelopableSpec};
+use monge_core::multipatch::build;
 use monge_core::{generate, BasePoint, GenerateOptions, Generated, MeshKind};
 use monge_io::generated::{json_extras, layers, max_error, node_offset, Layer};
 use monge_io::{
-    check_output, is_stdio, read_any_design, write_mesh_at, AnyDesign, MeshFormat, Outputs,
+    check_output, is_stdio, read_any_design, write_mesh_at, write_output, write_polygons_obj,
+    AnyDesign, MeshFormat, Outputs, Trimmable, TrimmedDesign,
 };
 use serde_json::{json, Map, Value};
 
@@ -88,6 +90,7 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<Outcome> {
         AnyDesign::Developable(d) => {
             return run_developable(args, format, &d.developable, &options)
         }
+        AnyDesign::Trimmed(t) => return run_trimmed(args, format, &t, &options),
     };
     let (design, base) = match &args.base_point {
         Some(b) => b.apply(design),
@@ -244,6 +247,77 @@ fn run_developable(
         millis(start.elapsed().as_secs_f64()),
     ));
     eprint(&far_from_origin_warning(&g.vertices).unwrap_or_default());
+    Ok(Outcome::Success)
+}
+
+/// `monge generate` of a trimmed design: its design's mesh (one patch or several) cut
+/// by its outline, as OBJ polygons (the cut panels keep their faces' planes).
+fn run_trimmed(
+    args: &GenerateArgs,
+    format: MeshFormat,
+    design: &TrimmedDesign,
+    options: &GenerateOptions,
+) -> anyhow::Result<Outcome> {
+    let file = args.design.display();
+    if format != MeshFormat::Obj {
+        bail!(
+            "{file} is a trimmed design: its panels along the outline are polygons of 3 to 8 \
+             corners, which monge writes as OBJ: give OUT the extension `.obj` (or --format obj)"
+        );
+    }
+    if args.base_point.is_some() || !args.offsets.is_empty() {
+        bail!(
+            "--offset and --base-point work on a whole grid; {file} is a trimmed design: \
+             generate the design before trimming (the file's `design`, as a file of its own)"
+        );
+    }
+    let start = Instant::now();
+    let (grid, mesh) = design.mesh(options).with_context(|| file.to_string())?;
+    let generation = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let out = &args.out.output;
+    write_output(out, |w| {
+        write_polygons_obj(
+            &mesh.vertices,
+            &mesh.faces,
+            &format!(
+                "monge generate: {} faces of {file} trimmed to its outline",
+                mesh.faces.len()
+            ),
+            w,
+        )
+    })?;
+    // The exactness as `monge check` and `monge patches` measure it: of a multi-patch
+    // design, each patch on its own grid (its lines are planar only piecewise).
+    let (error, patches, tolerance) = match &design.design {
+        Trimmable::Surface(d) => (max_error(&grid, d.mesh), "1 patch".to_owned(), d.tolerance),
+        Trimmable::Patches(d) => (
+            build(d, options)?.max_error(),
+            format!("{} patches", d.patches.len()),
+            d.tolerance,
+        ),
+    };
+    eprint(&format!(
+        "{file}: {patches} of {} × {} vertices trimmed to the design's outline: {} \
+         faces, {} of them cut (their new corners in their faces' planes). Generated in {} ms; \
+         wrote OBJ `{}` in {} ms.\n",
+        grid.rows,
+        grid.cols,
+        mesh.faces.len(),
+        mesh.cut.iter().filter(|c| **c).count(),
+        millis(generation),
+        out.display(),
+        millis(start.elapsed().as_secs_f64()),
+    ));
+    eprint(&inexact_warning(
+        "the grid before trimming",
+        error,
+        tolerance.unwrap_or_default().planarity,
+        &grid.vertices,
+        0,
+        None,
+    ));
+    eprint(&far_from_origin_warning(&mesh.vertices).unwrap_or_default());
     Ok(Outcome::Success)
 }
 

@@ -12,6 +12,7 @@ use serde_json::{json, Value};
 
 use crate::shared::help::{EXIT, THETA};
 use crate::shared::output::{eprint, far_from_origin_warning, num, print, xyz};
+use crate::shared::trimmed_design_refused;
 use crate::shared::warnings::range_text;
 use crate::shared::Outcome;
 
@@ -53,6 +54,7 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
     let design = match read_any_design(&args.design)? {
         AnyDesign::Surface(design) => *design,
         AnyDesign::Developable(d) => return developable_info(args, &d.developable, &options),
+        AnyDesign::Trimmed(_) => return Err(trimmed_design_refused(&args.design, "info")),
     };
     let info = inspect(&design, &options).with_context(|| args.design.display().to_string())?;
     let report = Report {

@@ -19,6 +19,7 @@ use crate::shared::args::parse_finite;
 use crate::shared::help::{EXIT, THETA};
 use crate::shared::output::{eprint, num};
 use crate::shared::picture::{distance_panel, sheet, Picture};
+use crate::shared::trimmed_design_refused;
 use crate::shared::Outcome;
 
 /// Draw designs as a shaded picture (PNG or SVG), or a sheet of θ values.
@@ -124,11 +125,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
         let [path] = args.designs.as_slice() else {
             bail!("--theta-sweep renders one design at several θ: give exactly one DESIGN");
         };
-        let AnyDesign::Surface(design) = read_any_design(path)? else {
-            bail!(
+        let design = match read_any_design(path)? {
+            AnyDesign::Surface(design) => design,
+            AnyDesign::Developable(_) => bail!(
                 "--theta-sweep varies the θ of a design with two guides; `{}` is a developable design (no θ)",
                 path.display()
-            );
+            ),
+            AnyDesign::Trimmed(_) => return Err(trimmed_design_refused(path, "render")),
         };
         let panels: Vec<Panel> = thetas
             .iter()
@@ -224,6 +227,7 @@ fn load(
             };
             Ok((scene, "developable".to_owned()))
         }
+        AnyDesign::Trimmed(_) => Err(trimmed_design_refused(path, "render")),
     }
 }
 

@@ -17,3 +17,14 @@ pub enum Outcome {
     /// --tolerance: exit status 1.
     Failed,
 }
+
+/// The error of a command that works on a whole grid given a trimmed design (a design
+/// and the outline its mesh is cut by, as `monge approximate` writes a trimmed result).
+pub fn trimmed_design_refused(path: &std::path::Path, command: &str) -> anyhow::Error {
+    anyhow::anyhow!(
+        "`{}` is a trimmed design (a design and the outline its mesh is cut by): `monge {command}` \
+         works on a whole grid. `monge generate` writes its mesh trimmed; for `{command}`, give \
+         the design before trimming (the file's `design`) as a file of its own",
+        path.display()
+    )
+}

@@ -116,6 +116,7 @@ mod error;
 mod fit_guide;
 mod index;
 mod layout;
+mod outline;
 mod patches;
 mod quadric;
 mod report;
@@ -134,9 +135,10 @@ pub use index::{TargetCloud, SCAN_EDGE_OVERREAD};
 pub use layout::PatchLayout;
 pub use patches::{approximate_patches, PatchApproximation, PatchFit};
 
+pub use outline::{Outline, OutlineError, OUTLINE_FRAME_TOL};
 pub use report::{fit_report, target_distances, FitReport};
 pub use tolerance::*;
-pub use trim::{trim, Outline, TrimmedMesh};
+pub use trim::{trim, TrimmedMesh};
 
 /// Free numbers of a design: corner (3), rotation (3), plane tilts (2), θ, and per guide
 /// the second control point's distance and two coordinates of each later one.

@@ -40,9 +40,8 @@
 use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
-use super::trim::{
-    measured, resolved, trim, trimmed_deviation_below, Outline, ResultFaces, TrimmedMesh,
-};
+use super::outline::Outline;
+use super::trim::{measured, resolved, trim, trimmed_deviation_below, ResultFaces, TrimmedMesh};
 use super::{
     sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
     TargetCloud, OBJECTIVE_POINTS,

@@ -1,0 +1,159 @@
+//! Trimmed designs (a design and the outline its mesh is cut by): `monge generate`
+//! writes the mesh cut by the outline, measured here by hand; the commands that work on
+//! a whole grid refuse one and say what to do.
+
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+use serde_json::{json, Value};
+use tempfile::TempDir;
+
+use crate::common::{example, monge, monge_to, obj_faces, refuses};
+
+/// The hexagon of the trimmed design, in plan: centre (8, 5), radius 3.
+const CENTRE: [f64; 2] = [8.0, 5.0];
+const RADIUS: f64 = 3.0;
+
+/// `examples/fig13-freeform.json` (16 × 10 in plan) trimmed to a hexagon in its middle,
+/// seen from above, written as `name` in `dir`.
+fn trimmed_design(dir: &TempDir, name: &str) -> PathBuf {
+    let design: Value =
+        serde_json::from_str(&std::fs::read_to_string(example("fig13-freeform.json")).unwrap())
+            .unwrap();
+    let polygon: Vec<[f64; 2]> = (0..6)
+        .map(|k| {
+            let a = k as f64 * PI / 3.0;
+            [RADIUS * a.cos(), RADIUS * a.sin()]
+        })
+        .collect();
+    let file = json!({
+        "design": design,
+        "trim": {
+            "origin": [CENTRE[0], CENTRE[1], 0.0],
+            "axes": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            "up": [0.0, 0.0, 1.0],
+            "polygon": polygon,
+        }
+    });
+    let path = dir.path().join(name);
+    std::fs::write(&path, serde_json::to_string_pretty(&file).unwrap()).unwrap();
+    path
+}
+
+/// Whether the plan point `p` lies inside the hexagon or on it (within `eps`).
+fn in_hexagon(p: [f64; 2], eps: f64) -> bool {
+    let (x, y) = (p[0] - CENTRE[0], p[1] - CENTRE[1]);
+    // Inside each side's half-plane: the side's normal at angle 30° + 60° k, the
+    // apothem R cos 30°.
+    (0..6).all(|k| {
+        let a = PI / 6.0 + k as f64 * PI / 3.0;
+        x * a.cos() + y * a.sin() <= RADIUS * (PI / 6.0).cos() + eps
+    })
+}
+
+#[test]
+fn generate_cuts_a_trimmed_designs_mesh_by_its_outline_into_planar_panels() {
+    let dir = TempDir::new().unwrap();
+    let design = trimmed_design(&dir, "trimmed.json");
+    let (whole, cut) = (dir.path().join("whole.obj"), dir.path().join("cut.obj"));
+    monge_to("generate", example("fig13-freeform.json"), &whole)
+        .assert()
+        .success();
+    let stderr = monge_to("generate", &design, &cut)
+        .assert()
+        .success()
+        .get_output()
+        .stderr
+        .clone();
+    let stderr = String::from_utf8(stderr).unwrap();
+    assert!(
+        stderr.contains("trimmed to the design's outline"),
+        "{stderr}"
+    );
+    let (whole, faces) = (obj_faces(&whole), obj_faces(&cut));
+    assert!(
+        faces.len() < whole.len() / 2 && faces.len() > 10,
+        "{}",
+        faces.len()
+    );
+    let mut corners = 0;
+    for face in &faces {
+        // Every corner inside the hexagon, in plan (its cuts on it).
+        for p in face {
+            assert!(in_hexagon([p[0], p[1]], 1e-9), "{p:?} outside");
+        }
+        // Planar: every corner in the plane of its first three, within round-off
+        // (measured here, not by monge).
+        let [a, b, c] = [face[0], face[1], face[2]];
+        let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+        let (u, v) = (sub(b, a), sub(c, a));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        for p in &face[3..] {
+            let d = sub(*p, a);
+            let off = (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]).abs() / length;
+            assert!(off < 1e-9 * 16.0, "a panel {off:e} off its plane");
+        }
+        corners = corners.max(face.len());
+    }
+    // Some panels are cut into polygons of more than four corners.
+    assert!(corners > 4, "{corners}");
+    // The hexagon's area, covered: the panels' areas in plan add up to it (the grid
+    // covers it whole).
+    let area: f64 = faces
+        .iter()
+        .map(|f| {
+            let n = f.len();
+            0.5 * (0..n)
+                .map(|k| f[k][0] * f[(k + 1) % n][1] - f[(k + 1) % n][0] * f[k][1])
+                .sum::<f64>()
+                .abs()
+        })
+        .sum();
+    let hexagon = 1.5 * 3f64.sqrt() * RADIUS * RADIUS;
+    assert!((area - hexagon).abs() < 1e-9 * hexagon, "{area} {hexagon}");
+}
+
+#[test]
+fn a_trimmed_design_is_written_as_obj_only_and_refused_by_whole_grid_commands() {
+    let dir = TempDir::new().unwrap();
+    let design = trimmed_design(&dir, "trimmed.json");
+    let ply = dir.path().join("cut.ply");
+    refuses(
+        &mut monge_to("generate", &design, &ply),
+        &["is a trimmed design", "`.obj`"],
+        &[&ply],
+    );
+    let obj = dir.path().join("cut.obj");
+    refuses(
+        monge_to("generate", &design, &obj).args(["--offset", "0.1"]),
+        &["--offset and --base-point work on a whole grid"],
+        &[&obj],
+    );
+    for command in ["info", "render"] {
+        let mut cmd = monge();
+        cmd.arg(command).arg(&design);
+        if command == "render" {
+            cmd.arg("-o").arg(dir.path().join("x.png"));
+        }
+        refuses(
+            &mut cmd,
+            &[
+                "is a trimmed design",
+                &format!("`monge {command}` works on a whole grid"),
+                "the file's `design`",
+            ],
+            &[],
+        );
+    }
+    let out: &Path = &dir.path().join("fab");
+    refuses(
+        monge().arg("fabricate").arg(&design).arg("-o").arg(out),
+        &["is a trimmed design", "not a design", "`monge generate`"],
+        &[out],
+    );
+}
