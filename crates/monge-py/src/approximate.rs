@@ -4,13 +4,14 @@
 
 use monge_core::approximate::{
     approximate as core_approximate, approximate_patches, approximate_to_tolerance, deadline_after,
-    fit_report, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, FitReport,
+    fit_report, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, FitReport, Outline,
     PatchApproximation, PatchLayout, Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
     TrimmedMesh, PATCHES_GAIN,
 };
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::multipatch::{build, MultiPatchDesign};
 use monge_core::{GenerateOptions, MeshKind, QuadGrid};
+use monge_io::Trimmable;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use pythonize::pythonize;
@@ -20,6 +21,7 @@ use crate::design::{kind_name, parse_kind, Design, PatchesDesign};
 use crate::errors::{py_float, OptimiseError};
 use crate::mesh::{faces_array, measurements, Mesh};
 use crate::target::{points_array, points_of};
+use crate::trimmed::TrimmedDesign;
 
 /// The design whose exact mesh is nearest to a target, as `monge approximate`
 /// (monge's extension of the method). `target` is what a designer has: any
@@ -42,10 +44,10 @@ use crate::target::{points_array, points_of};
 /// polygons) and `cut` (per face, whether the outline cut it), and `after` measures
 /// it; otherwise None.
 ///
-/// Returns the `design` found (a `Design`, or a `PatchesDesign` of several patches:
-/// `design.to_file(path)` writes it as the command does; of a trimmed result, the
-/// design before trimming, which the command's file holds as its key `design` beside
-/// the outline `trim`), the `initial` guess (a
+/// Returns the `design` found (a `Design`, or a `PatchesDesign` of several patches,
+/// or of a trimmed result a `TrimmedDesign`, the design before trimming and the
+/// target's outline: `design.to_file(path)` writes it as the command does), the
+/// `initial` guess (a
 /// `Design`), its `mesh` (a `Mesh`, for `monge.rhino.write_3dm`,
 /// `monge.compas.to_mesh`, `monge.blender.add_mesh`; None for several patches), its
 /// `kind`, `vertices` (rows, cols, 3), `normals` (its node axes, (rows, cols, 3);
@@ -239,6 +241,22 @@ pub fn approximate<'py>(
             d.set_item("mesh", py.None())?;
         }
     }
+    // A trimmed result's design is the command's trimmed design: the design before
+    // trimming and the target's outline, which the fit cut it by.
+    if design.trimmed().is_some() {
+        let cloud = TargetCloud::new(&points).map_err(|e| error(&e))?;
+        let trim = Outline::of(&cloud).map_err(|e| error(&e))?;
+        let design = match &design {
+            FitDesign::Single(inner) | FitDesign::Trimmed(inner, _) => {
+                Trimmable::Surface(Box::new(inner.clone()))
+            }
+            FitDesign::Patches(inner) | FitDesign::TrimmedPatches(inner, _) => {
+                Trimmable::Patches(inner.clone())
+            }
+        };
+        let inner = monge_io::TrimmedDesign { design, trim };
+        d.set_item("design", Bound::new(py, TrimmedDesign { inner })?)?;
+    }
     match &fit {
         Fit::Single(r) => {
             d.set_item("evaluations", r.evaluations)?;
@@ -286,7 +304,10 @@ pub fn approximate<'py>(
 
 /// A trimmed mesh as a dict: its `vertices` (n, 3), `faces` (lists of vertex indices)
 /// and `cut` (per face, whether the outline cut it).
-fn trimmed_dict<'py>(py: Python<'py>, mesh: &TrimmedMesh) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn trimmed_dict<'py>(
+    py: Python<'py>,
+    mesh: &TrimmedMesh,
+) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
     dict.set_item(
         "vertices",

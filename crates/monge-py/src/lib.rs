@@ -17,6 +17,7 @@ mod errors;
 mod mesh;
 mod target;
 mod tools;
+mod trimmed;
 
 /// The native module `monge._monge`, re-exported by the package `monge`.
 #[pymodule]
@@ -25,6 +26,7 @@ fn _monge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<design::Design>()?;
     m.add_class::<design::PatchesDesign>()?;
+    m.add_class::<trimmed::TrimmedDesign>()?;
     m.add_class::<mesh::Mesh>()?;
     m.add_function(wrap_pyfunction!(mesh::generate, m)?)?;
     m.add_function(wrap_pyfunction!(tools::info, m)?)?;

@@ -199,14 +199,23 @@ def test_approximate_node_types_group_nodes_within_the_designers_tolerance(cli, 
     assert f"distinct node types {exact['node_types']} (beam angles within 0.0001°" in text
 
 
-def assert_design_before_trimming(design, out, tmp_path):
-    """`design` is the command's trimmed design `out` before trimming (its key `design`),
-    to the bit, and `out` has the outline it is cut by (its key `trim`)."""
+def assert_trimmed_design(design, out, mesh, tmp_path):
+    """`design` is the command's trimmed design `out` to the bit (the design before
+    trimming, its key `design`, and the target's outline, `trim`), read back equal, and
+    its mesh is the command's trimmed mesh `mesh` (the OBJ's vertices and faces)."""
+    assert isinstance(design, monge.TrimmedDesign)
     mine = tmp_path / "py.json"
     design.to_file(mine)
+    assert mine.read_bytes() == out.read_bytes()
+    assert monge.TrimmedDesign.from_file(out) == design
     theirs = json.loads(out.read_text())
-    assert set(theirs) == {"design", "trim"} and len(theirs["trim"]["polygon"]) >= 3
-    assert json.loads(mine.read_text()) == theirs["design"]
+    assert json.loads(json.dumps(design.design.to_dict())) == theirs["design"]
+    assert design.outline.shape == (len(theirs["trim"]["polygon"]), 3)
+    lines = mesh.read_text().splitlines()
+    vertices = np.array([[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")])
+    faces = [[int(x) - 1 for x in l.split()[1:]] for l in lines if l.startswith("f ")]
+    m = design.mesh()
+    assert np.array_equal(m["vertices"], vertices) and m["faces"] == faces
 
 
 def test_approximate_trim_equals_the_command_and_its_panels_are_planar(cli, tmp_path):
@@ -216,7 +225,7 @@ def test_approximate_trim_equals_the_command_and_its_panels_are_planar(cli, tmp_
     out, mesh = tmp_path / "cli.json", tmp_path / "cli.obj"
     cli("approximate", PARABOLOID, "-o", out, *SEARCH_ARGS, "--trim", mesh)
     r = monge.approximate(paraboloid_points(), **SEARCH, trim=True)
-    assert_design_before_trimming(r["design"], out, tmp_path)
+    assert_trimmed_design(r["design"], out, mesh, tmp_path)
     t = r["trimmed"]
     lines = mesh.read_text().splitlines()
     vertices = np.array([[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")])
@@ -242,7 +251,8 @@ def test_approximate_trimmed_patches_equal_the_command(cli, tmp_path):
     cli("approximate", PARABOLOID, "-o", out, *SEARCH_ARGS, "--trim", mesh, "--patches", "2x2")
     r = monge.approximate(paraboloid_points(), **SEARCH, trim=True, patches="2x2")
     assert r["patches"] == 4
-    assert_design_before_trimming(r["design"], out, tmp_path)
+    assert_trimmed_design(r["design"], out, mesh, tmp_path)
+    assert isinstance(r["design"].design, monge.PatchesDesign)
     lines = mesh.read_text().splitlines()
     vertices = np.array([[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")])
     faces = [[int(x) - 1 for x in l.split()[1:]] for l in lines if l.startswith("f ")]

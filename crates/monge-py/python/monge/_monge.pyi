@@ -24,6 +24,7 @@ __all__ = [
     "InexactWarning",
     "Design",
     "PatchesDesign",
+    "TrimmedDesign",
     "Mesh",
     "generate",
     "info",
@@ -114,6 +115,27 @@ class PatchesDesign:
     def to_file(self, path: _PathLike) -> None:
         """Writes the multi-patch design file, pretty JSON or TOML by the extension, atomically."""
     def __len__(self) -> int: ...
+
+@final
+class TrimmedDesign:
+    """A design (or a multi-patch design) and the outline its mesh is cut by, as
+    ``monge approximate`` writes a trimmed result and ``monge generate`` reads it
+    (``approximate`` returns one where its result is trimmed)."""
+
+    @staticmethod
+    def from_file(path: _PathLike) -> "TrimmedDesign":
+        """Reads a trimmed design file (the keys ``design`` and ``trim``), JSON or TOML."""
+    def to_file(self, path: _PathLike) -> None:
+        """Writes the trimmed design file, pretty JSON or TOML by the extension, atomically, as the command does."""
+    @property
+    def design(self) -> Union[Design, PatchesDesign]:
+        """The design before trimming."""
+    @property
+    def outline(self) -> _Array:
+        """(n, 3): the outline's corners in space, a polygon in a plane seen along its normal."""
+    def mesh(self) -> Dict[str, Any]:
+        """The mesh cut by the outline, as ``monge generate`` writes it: ``vertices``, ``faces`` (polygons), ``cut``, ``from``, ``mesh_faces``."""
+    def __eq__(self, value: object, /) -> bool: ...
 
 @final
 class Mesh:
@@ -243,7 +265,7 @@ def approximate(
     its points tell its edge: ``stop`` is "scan_edge" where only that edge reads above it); its report's
     ``node_types`` group nodes whose angles agree within ``angle_tol_deg`` degrees (default 0.5);
     it is None, and ``node_types_why_not`` says why, when fabrication refuses the mesh found.
-    ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches.
+    ``design`` is a ``Design``, or a ``PatchesDesign`` of several patches; of a trimmed result, a ``TrimmedDesign`` (the command's file).
     ``trim=True`` (as ``--trim``) fits a mesh that covers the target and cuts it by the
     target's outline (with ``patches``, the patches cover it too and are cut where kept): ``trimmed`` holds its ``vertices``, ``faces`` (planar polygons),
     ``cut`` (per face, whether the outline cut it), ``from`` (per face, the grid's face

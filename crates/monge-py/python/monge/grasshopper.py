@@ -13,7 +13,7 @@ a target goes to ``monge.approximate`` as it is.
 """
 
 
-from ._monge import Design, DesignError, check, generate, info
+from ._monge import Design, DesignError, TrimmedDesign, check, generate, info
 from ._monge import approximate as _approximate
 
 
@@ -95,6 +95,11 @@ def _outputs(mesh, metrics):
     }
 
 
+def _untrimmed(design):
+    """The design before trimming of a ``TrimmedDesign``; any other design as it is."""
+    return design.design if isinstance(design, TrimmedDesign) else design
+
+
 def approximation_text(result):
     """What a designer looks at in ``monge.approximate``'s ``result``, as lines of
     text: the panels and node types, the largest and RMS deviation both ways in
@@ -105,7 +110,7 @@ def approximation_text(result):
     if result["patches"] == 1:
         shape = f"θ = {result['theta_deg']:g}°"
     else:
-        thetas = ", ".join(f"{t:g}°" for t in result["design"].theta_deg)
+        thetas = ", ".join(f"{t:g}°" for t in _untrimmed(result["design"]).theta_deg)
         shape = f"{result['patches']} patches (§4.7), θ = {thetas}"
     lines = [
         f"panels: {result['panels']}, {shape}",
@@ -152,19 +157,26 @@ def approximate(geometry, **options):
     and ``metrics`` (the deviation, ``approximation_text``, then for one patch the
     mesh's metrics, ``metrics_text``), with the ``design`` found
     (``design.to_file(path)`` saves it) and ``result``, ``monge.approximate``'s
-    whole answer."""
+    whole answer (of a result trimmed to the target's outline, ``design`` is a
+    ``monge.TrimmedDesign``, the file ``monge generate`` cuts as the fit did)."""
     result = _approximate(geometry, **options)
     mesh, design, trimmed = result["mesh"], result["design"], result.get("trimmed")
     metrics = approximation_text(result)
     if trimmed is not None:
         # The result is the mesh trimmed to the target's outline: its panels as
         # triangles and quads (each cut one split in its plane); `mesh` is the design's.
+        # Of several patches, each is exact on its own grid.
+        exactness = (
+            metrics_text(mesh, _untrimmed(design))
+            if mesh is not None
+            else [f"exactness (each patch measured on its own grid): {result['max_error']:.2e}"]
+        )
         outputs = {
             "mesh": mesh,
             "vertices": trimmed["vertices"].tolist(),
             "faces": trimmed["mesh_faces"],
             "gauss": None,
-            "metrics": metrics + metrics_text(mesh, design),
+            "metrics": metrics + exactness,
         }
     elif mesh is not None:
         outputs = _outputs(mesh, metrics + metrics_text(mesh, design))
