@@ -157,3 +157,70 @@ fn a_trimmed_design_is_written_as_obj_only_and_refused_by_whole_grid_commands() 
         &[out],
     );
 }
+
+#[test]
+fn check_measures_a_trimmed_mesh_for_the_planarity_of_its_panels() {
+    let dir = TempDir::new().unwrap();
+    let design = trimmed_design(&dir, "trimmed.json");
+    let cut = dir.path().join("cut.obj");
+    monge_to("generate", &design, &cut).assert().success();
+    let out = monge()
+        .arg("check")
+        .arg(&cut)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["pass"], true);
+    assert!(report["max_error"].as_f64().unwrap() < 1e-12, "{report}");
+    assert_eq!(report["polygons"], obj_faces(&cut).len());
+    // One corner of a five-cornered panel moved off its plane by 1e-3: it fails there.
+    let text = std::fs::read_to_string(&cut).unwrap();
+    let faces: Vec<Vec<usize>> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("f "))
+        .map(|l| l.split_whitespace().map(|k| k.parse().unwrap()).collect())
+        .collect();
+    let (f, face) = faces
+        .iter()
+        .enumerate()
+        .find(|(_, f)| f.len() >= 5)
+        .unwrap();
+    let moved = face[2];
+    let mut v = 0;
+    let bent: String = text
+        .lines()
+        .map(|l| {
+            if let Some(rest) = l.strip_prefix("v ") {
+                v += 1;
+                if v == moved {
+                    let c: Vec<f64> = rest
+                        .split_whitespace()
+                        .map(|x| x.parse().unwrap())
+                        .collect();
+                    return format!("v {} {} {}\n", c[0], c[1], c[2] + 1e-3);
+                }
+            }
+            format!("{l}\n")
+        })
+        .collect();
+    let bent_path = dir.path().join("bent.obj");
+    std::fs::write(&bent_path, bent).unwrap();
+    let out = monge().arg("check").arg(&bent_path).output().unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("not a quad grid") && stdout.contains(&format!("at face {f},")),
+        "{stdout}"
+    );
+    assert!(stdout.contains("FAIL: a face's corner"), "{stdout}");
+    refuses(
+        monge().arg("check").arg(&cut).args(["--kind", "conical"]),
+        &[
+            "is a mesh of polygons",
+            "--kind and --offset-from need a quad grid",
+        ],
+        &[],
+    );
+}

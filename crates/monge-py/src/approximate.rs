@@ -6,7 +6,7 @@ use monge_core::approximate::{
     approximate as core_approximate, approximate_patches, approximate_to_tolerance, deadline_after,
     fit_report, ApproxOptions, Approximation, Chosen, Deviation, FitDesign, FitReport, Outline,
     PatchApproximation, PatchLayout, Stop, TargetCloud, Tolerance, ToleranceFit, ToleranceOptions,
-    TrimmedMesh, PATCHES_GAIN,
+    PATCHES_GAIN,
 };
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::multipatch::{build, MultiPatchDesign};
@@ -21,7 +21,7 @@ use crate::design::{kind_name, parse_kind, Design, PatchesDesign};
 use crate::errors::{py_float, OptimiseError};
 use crate::mesh::{faces_array, measurements, Mesh};
 use crate::target::{points_array, points_of};
-use crate::trimmed::TrimmedDesign;
+use crate::trimmed::{trimmed_dict, TrimmedDesign};
 
 /// The design whose exact mesh is nearest to a target, as `monge approximate`
 /// (monge's extension of the method). `target` is what a designer has: any
@@ -300,24 +300,6 @@ pub fn approximate<'py>(
         }
     }
     Ok(d)
-}
-
-/// A trimmed mesh as a dict: its `vertices` (n, 3), `faces` (lists of vertex indices)
-/// and `cut` (per face, whether the outline cut it).
-pub(crate) fn trimmed_dict<'py>(
-    py: Python<'py>,
-    mesh: &TrimmedMesh,
-) -> PyResult<Bound<'py, PyDict>> {
-    let dict = PyDict::new(py);
-    dict.set_item(
-        "vertices",
-        points_array(py, &mesh.vertices, &[mesh.vertices.len()])?,
-    )?;
-    dict.set_item("faces", mesh.faces.clone())?;
-    dict.set_item("cut", mesh.cut.clone())?;
-    dict.set_item("from", mesh.from.clone())?;
-    dict.set_item("mesh_faces", mesh.mesh_faces())?;
-    Ok(dict)
 }
 
 /// What `approximate` found: one patch; one patch and the fit of patches

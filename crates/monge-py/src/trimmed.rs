@@ -3,12 +3,12 @@
 
 use std::path::PathBuf;
 
+use monge_core::approximate::TrimmedMesh;
 use monge_core::GenerateOptions;
 use monge_io::{read_any_design, write_trimmed_into, AnyDesign, Outputs, Trimmable};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::approximate::trimmed_dict;
 use crate::design::{Design, PatchesDesign};
 use crate::errors::{io_error, DesignError};
 use crate::target::points_array;
@@ -98,4 +98,22 @@ impl TrimmedDesign {
     fn __eq__(&self, other: &TrimmedDesign) -> bool {
         self.inner == other.inner
     }
+}
+
+/// A trimmed mesh as a dict: its `vertices` (n, 3), `faces` (lists of vertex indices)
+/// and `cut` (per face, whether the outline cut it).
+pub(crate) fn trimmed_dict<'py>(
+    py: Python<'py>,
+    mesh: &TrimmedMesh,
+) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item(
+        "vertices",
+        points_array(py, &mesh.vertices, &[mesh.vertices.len()])?,
+    )?;
+    dict.set_item("faces", mesh.faces.clone())?;
+    dict.set_item("cut", mesh.cut.clone())?;
+    dict.set_item("from", mesh.from.clone())?;
+    dict.set_item("mesh_faces", mesh.mesh_faces())?;
+    Ok(dict)
 }

@@ -6,11 +6,14 @@ use std::path::PathBuf;
 use anyhow::{bail, Context};
 use glam::DVec3;
 use monge_core::conical::conical_folds;
-use monge_core::measure::{conical_error, largest, measurable, measure, Measurements, Worst};
+use monge_core::measure::{
+    conical_error, largest, measurable, measure, measure_polygons, Measurements, Worst,
+};
 use monge_core::{MeshKind, QuadGrid};
 use monge_io::generated::kind_name;
 use monge_io::{
-    is_stdio, read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, MeshFormat,
+    is_stdio, read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from,
+    read_polygons_obj, MeshFormat,
 };
 use serde_json::{json, Map, Value};
 
@@ -34,7 +37,10 @@ use crate::shared::Outcome;
          torsion (|det(edge, n_p, n_q)| over edges, also relative to the diagonal: 0 when the \
          node axes at both ends of every edge are coplanar) and normal length (| |n| − 1 |). \
          A conical mesh (--kind conical; by default the `kind` a JSON mesh names) has the \
-         conical condition at every vertex instead of circularity, torsion and normal length."
+         conical condition at every vertex instead of circularity, torsion and normal length. An \
+         OBJ of polygons that is not a quad grid (a mesh trimmed to an outline, as `monge \
+         generate` writes a trimmed design) is measured for the planarity of its faces only \
+         (the distance of a corner from the plane fitted to its face's corners)."
     ),
     after_help = format!(
         "Examples:\n  \
@@ -77,7 +83,17 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let (grid, named_kind) = match (is_stdio(path), args.format) {
         (true, Some(f)) => read_mesh_and_kind_from(io::stdin().lock(), f)?,
         (true, None) => bail!("`-` (standard input) needs --format obj, ply or json"),
-        (false, None) => read_mesh_and_kind(path)?,
+        (false, None) => match read_mesh_and_kind(path) {
+            Ok(read) => read,
+            // Not a quad grid, but perhaps a mesh of polygons (a trimmed mesh).
+            Err(e) => match MeshFormat::from_path(path) {
+                Ok(MeshFormat::Obj) => match read_polygons_obj(path) {
+                    Ok((vertices, faces)) => return run_polygons(args, &e, &vertices, &faces),
+                    Err(_) => return Err(e.into()),
+                },
+                _ => return Err(e.into()),
+            },
+        },
         (false, Some(_)) => bail!(
             "--format is only for `-` (standard input); `{}` is read in the format of its extension",
             path.display()
@@ -152,6 +168,76 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         });
     }
     Ok(if report.passes() {
+        Outcome::Success
+    } else {
+        Outcome::Failed
+    })
+}
+
+/// `monge check` of an OBJ mesh of polygons that is not a quad grid (`not_grid` says
+/// why), such as a grid trimmed to an outline: the planarity of its faces, which is what
+/// trimming keeps (a cut panel is no longer circular).
+fn run_polygons(
+    args: &CheckArgs,
+    not_grid: &monge_io::IoError,
+    vertices: &[DVec3],
+    faces: &[Vec<usize>],
+) -> anyhow::Result<Outcome> {
+    let name = args.mesh.display();
+    if args.kind.is_some() || args.offset_from.is_some() {
+        bail!(
+            "`{name}` is a mesh of polygons, not a quad grid ({not_grid}): it is measured for \
+             the planarity of its faces only; --kind and --offset-from need a quad grid"
+        );
+    }
+    let m = measure_polygons(vertices, faces);
+    let pass = passes(m.planarity.value, args.tol);
+    let (face, corner) = m.planarity.at;
+    let corners = |n: usize| faces.iter().filter(|f| f.len() == n).count();
+    if args.json {
+        let planarity = json!({"value": m.planarity.value, "at": [face, corner], "pass": pass});
+        print(&format!(
+            "{}\n",
+            json!({
+                "file": name.to_string(),
+                "polygons": faces.len(),
+                "vertices": vertices.len(),
+                "scale": m.scale,
+                "tol": args.tol,
+                "max_error": m.planarity.value,
+                "pass": pass,
+                "metrics": { "face_planarity": planarity },
+            })
+        ))?;
+    } else {
+        let at = format!("at face {face}, corner {corner}");
+        let verdict_line = if pass {
+            format!("PASS: every face planar within {:e}", args.tol)
+        } else {
+            format!(
+                "FAIL: a face's corner {:e} off its plane (must be ≤ {:e})",
+                m.planarity.value, args.tol
+            )
+        };
+        print(&format!(
+            "{name}: not a quad grid ({not_grid}): measured as a mesh of polygons, each face's \
+             planarity only (a panel cut by an outline keeps its plane, not its circle)\n\
+             {} vertices, {} faces ({} triangles, {} quads, {} of five corners or more); lengths \
+             relative to the bounding-box diagonal {}\n\
+             {:<17} {:>10}  {at:<23} {}\n{verdict_line}\n",
+            vertices.len(),
+            faces.len(),
+            corners(3),
+            corners(4),
+            faces.len() - corners(3) - corners(4),
+            num(m.scale),
+            "face planarity",
+            format!("{:.3e}", m.planarity.value),
+            verdict(pass),
+        ))?;
+    }
+    eprint(&far_from_origin_warning(vertices).unwrap_or_default());
+    Ok(if pass {
         Outcome::Success
     } else {
         Outcome::Failed

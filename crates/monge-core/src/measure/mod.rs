@@ -1,4 +1,5 @@
-//! Measuring any quad grid independently of how it was made (§2.2, §2.3).
+//! Measuring any quad grid independently of how it was made (§2.2, §2.3), and the
+//! planarity of any mesh of polygons (a grid trimmed to an outline).
 //!
 //! This module shares no code with the generator: it takes a finished
 //! [`QuadGrid`] and measures, with elementary and numerically careful formulas,
@@ -22,12 +23,14 @@ use crate::QuadGrid;
 mod conical;
 mod faces;
 mod lines;
+mod polygons;
 #[cfg(test)]
 mod tests;
 
 pub use conical::conical_error;
 pub use faces::{circularity, face_planarity};
 pub use lines::polyline_planarity;
+pub use polygons::{measure_polygons, PolygonMeasurements};
 
 /// Where a measurement is worst, and its value (§2.2).
 ///

@@ -401,3 +401,29 @@ fn measure_conical_error_on_torus_and_perturbed() {
         "{c:?}"
     );
 }
+
+#[test]
+fn a_mesh_of_polygons_reports_its_least_planar_face_and_never_hides_a_nan() {
+    use super::measure_polygons;
+    // A unit square and a hexagon beside it, planar, then the hexagon's fourth corner
+    // lifted by 0.01: the plane fitted to its corners is off each corner by less.
+    let mut vertices = vec![
+        v(0.0, 0.0, 0.0),
+        v(1.0, 0.0, 0.0),
+        v(1.0, 1.0, 0.0),
+        v(0.0, 1.0, 0.0),
+    ];
+    vertices.extend((0..6).map(|k| {
+        let a = k as f64 * std::f64::consts::PI / 3.0;
+        v(3.0 + a.cos(), 0.5 + a.sin(), 0.0)
+    }));
+    let faces = vec![vec![0, 1, 2, 3], (4..10).collect::<Vec<_>>()];
+    assert_eq!(measure_polygons(&vertices, &faces).planarity.value, 0.0);
+    vertices[7].z = 0.01;
+    let m = measure_polygons(&vertices, &faces);
+    assert_eq!(m.planarity.at.0, 1);
+    let off = m.planarity.value * m.scale;
+    assert!(off > 0.001 && off < 0.01, "{off}");
+    vertices[1].x = f64::NAN;
+    assert!(measure_polygons(&vertices, &faces).planarity.value.is_nan());
+}
