@@ -134,22 +134,41 @@ fn a_trimmed_design_is_written_as_obj_only_and_refused_by_whole_grid_commands() 
         &["--offset and --base-point work on a whole grid"],
         &[&obj],
     );
-    for command in ["info", "render"] {
-        let mut cmd = monge();
-        cmd.arg(command).arg(&design);
-        if command == "render" {
-            cmd.arg("-o").arg(dir.path().join("x.png"));
-        }
-        refuses(
-            &mut cmd,
-            &[
-                "is a trimmed design",
-                &format!("`monge {command}` works on a whole grid"),
-                "the file's `design`",
-            ],
-            &[],
-        );
-    }
+    // info tells what the outline keeps.
+    let out = monge().arg("info").arg(&design).output().unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success(), "{stdout}");
+    let panels = obj_faces(&{
+        let cut = dir.path().join("for-info.obj");
+        monge_to("generate", &design, &cut).assert().success();
+        cut
+    })
+    .len();
+    assert!(
+        stdout.contains(&format!("trimmed to an outline of 6 corners enclosing 23.3827 square model units: {panels} panels")),
+        "{stdout}"
+    );
+    let out = monge()
+        .arg("info")
+        .arg(&design)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["trim"]["panels"], panels);
+    let png = dir.path().join("x.png");
+    refuses(
+        monge_to("render", &design, &png).args(["--theta-sweep", "10,20"]),
+        &["is a trimmed design", "the file's `design`"],
+        &[&png],
+    );
+    refuses(
+        monge_to("render", &design, &png)
+            .arg("--deviation")
+            .arg(example("targets/paraboloid.obj")),
+        &["is a trimmed design", "monge approximate --picture"],
+        &[&png],
+    );
     let out: &Path = &dir.path().join("fab");
     refuses(
         monge().arg("fabricate").arg(&design).arg("-o").arg(out),
@@ -223,4 +242,22 @@ fn check_measures_a_trimmed_mesh_for_the_planarity_of_its_panels() {
         ],
         &[],
     );
+}
+
+#[test]
+fn render_draws_a_trimmed_design_with_its_cut() {
+    let dir = TempDir::new().unwrap();
+    let design = trimmed_design(&dir, "trimmed.json");
+    let svg = dir.path().join("trimmed.svg");
+    let out = monge_to("render", &design, &svg).output().unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    // The cut, in black: one closed polyline round the hexagon.
+    let cuts: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#000000\""))
+        .collect();
+    assert_eq!(cuts.len(), 1, "{cuts:?}");
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("wrote"), "{stderr}");
 }

@@ -77,8 +77,8 @@ impl FileKind {
             FileKind::Planes => "`monge align`",
             FileKind::Mesh => "`monge check` (or `monge smooth --mesh`)",
             FileKind::Trimmed => {
-                "`monge generate`, which writes its mesh trimmed (its `design` is the design \
-                 before trimming, for the other commands)"
+                "`monge generate`, which writes its mesh trimmed (or `info`, `render`; its \
+                 `design` is the design before trimming, for the other commands)"
             }
         }
     }

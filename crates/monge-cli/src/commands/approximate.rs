@@ -26,7 +26,7 @@ use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 use crate::shared::args::{parse_non_negative, Named, KINDS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{num, print};
-use crate::shared::picture::{deviation_caption, distance_panel, sheet, Picture};
+use crate::shared::picture::{cut_highlights, deviation_caption, distance_panel, sheet, Picture};
 use crate::shared::Outcome;
 use glam::DVec3;
 
@@ -185,10 +185,6 @@ fn line(name: &str, d: &Deviation) -> String {
 /// Colour of the boundaries between patches on the result.
 const PATCH_BOUNDARY_COLOR: Rgb = Rgb::new(0, 150, 80);
 
-/// Colour of the edges of a mesh trimmed to the target's outline, on the mesh before
-/// trimming.
-const TRIM_COLOR: Rgb = Rgb::new(0, 0, 0);
-
 /// The lines where the patches of `mp` meet (§4.7), in the assembled grid: each
 /// patch's first row and first column where another patch lies before it.
 fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
@@ -246,15 +242,9 @@ fn picture_bytes(
     let mut scene = Scene::new(result.clone());
     scene.highlights.extend(boundaries);
     // A trimmed result: the mesh before trimming, the cut drawn on it.
-    scene.highlights.extend(
-        trimmed
-            .iter()
-            .flat_map(|t| t.0.edges())
-            .map(|points| Highlight {
-                points,
-                color: TRIM_COLOR,
-            }),
-    );
+    scene
+        .highlights
+        .extend(trimmed.iter().flat_map(|t| cut_highlights(t.0)));
     let label = if trimmed.is_some() {
         "result, trimmed along the black line"
     } else {

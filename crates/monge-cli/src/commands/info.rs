@@ -7,7 +7,7 @@ use monge_core::developable::{developable, DevelopableSpec};
 use monge_core::guide::Guide;
 use monge_core::{inspect, DesignInfo, GenerateOptions, GuideSpec, Mode};
 use monge_io::generated::{mode_name, near_singular, SINGULAR_DEG};
-use monge_io::{read_any_design, AnyDesign};
+use monge_io::{read_any_design, AnyDesign, Trimmable};
 use serde_json::{json, Value};
 
 use crate::shared::help::{EXIT, THETA};
@@ -51,10 +51,14 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
     let options = GenerateOptions {
         max_vertices: args.max_vertices,
     };
-    let design = match read_any_design(&args.design)? {
-        AnyDesign::Surface(design) => *design,
+    let (design, trimmed) = match read_any_design(&args.design)? {
+        AnyDesign::Surface(design) => (*design, None),
         AnyDesign::Developable(d) => return developable_info(args, &d.developable, &options),
-        AnyDesign::Trimmed(_) => return Err(trimmed_design_refused(&args.design, "info")),
+        AnyDesign::Trimmed(t) => match &t.design {
+            // One patch: its information, and what the outline keeps of its mesh.
+            Trimmable::Surface(d) => ((**d).clone(), Some(t)),
+            Trimmable::Patches(_) => return Err(trimmed_design_refused(&args.design, "info")),
+        },
     };
     let info = inspect(&design, &options).with_context(|| args.design.display().to_string())?;
     let report = Report {
@@ -66,10 +70,38 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
             ("guide_v", &design.guide_v, &info.guide_v),
         ],
     };
-    let text = if args.json {
-        format!("{}\n", report.json())
-    } else {
-        report.text()
+    // A trimmed design: its outline, and the panels it keeps of the mesh.
+    let trim = match &trimmed {
+        Some(t) => {
+            let (_, mesh) = t
+                .mesh(&options)
+                .with_context(|| args.design.display().to_string())?;
+            Some(json!({
+                "corners": t.trim.polygon().len(),
+                "area": t.trim.area(),
+                "panels": mesh.faces.len(),
+                "cut": mesh.cut.iter().filter(|c| **c).count(),
+            }))
+        }
+        None => None,
+    };
+    let text = match (args.json, &trim) {
+        (true, None) => format!("{}\n", report.json()),
+        (true, Some(trim)) => {
+            let mut json = report.json();
+            json["trim"] = trim.clone();
+            format!("{json}\n")
+        }
+        (false, None) => report.text(),
+        (false, Some(trim)) => format!(
+            "{}trimmed to an outline of {} corners enclosing {} square model units: {} panels, \
+             {} of them cut (`monge generate` writes them as OBJ polygons)\n",
+            report.text(),
+            trim["corners"],
+            num(trim["area"].as_f64().unwrap_or(f64::NAN)),
+            trim["panels"],
+            trim["cut"]
+        ),
     };
     print(&text)?;
     let guide_points = [info.guide_u.points.as_slice(), &info.guide_v.points].concat();

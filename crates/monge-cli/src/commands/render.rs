@@ -18,8 +18,7 @@ use monge_render::{
 use crate::shared::args::parse_finite;
 use crate::shared::help::{EXIT, THETA};
 use crate::shared::output::{eprint, num};
-use crate::shared::picture::{distance_panel, sheet, Picture};
-use crate::shared::trimmed_design_refused;
+use crate::shared::picture::{cut_highlights, distance_panel, sheet, Picture};
 use crate::shared::Outcome;
 
 /// Draw designs as a shaded picture (PNG or SVG), or a sheet of θ values.
@@ -131,7 +130,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
                 "--theta-sweep varies the θ of a design with two guides; `{}` is a developable design (no θ)",
                 path.display()
             ),
-            AnyDesign::Trimmed(_) => return Err(trimmed_design_refused(path, "render")),
+            AnyDesign::Trimmed(_) => bail!(
+                "--theta-sweep varies the θ of one design; `{}` is a trimmed design: give the \
+                 design before trimming (the file's `design`) as a file of its own",
+                path.display()
+            ),
         };
         let panels: Vec<Panel> = thetas
             .iter()
@@ -161,6 +164,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
         );
         (sheet(&panels, args.columns, &options, format)?, what)
     } else if let (Some(target), [path]) = (&args.deviation, args.designs.as_slice()) {
+        if let AnyDesign::Trimmed(_) = read_any_design(path)? {
+            bail!(
+                "--deviation colours a whole grid by its distance to a target; `{}` is a trimmed \
+                 design, whose distances `monge approximate --picture` draws (the target by its \
+                 distance to the trimmed mesh)",
+                path.display()
+            );
+        }
         let (scene, _) = load(path, args.gauss, args.smooth, &generate_options)?;
         let (panel, what) = deviation_panel(scene, target)?;
         let what = format!("`{}` coloured by {what}", path.display());
@@ -227,7 +238,26 @@ fn load(
             };
             Ok((scene, "developable".to_owned()))
         }
-        AnyDesign::Trimmed(_) => Err(trimmed_design_refused(path, "render")),
+        AnyDesign::Trimmed(t) => {
+            if smooth.is_some() {
+                bail!(
+                    "{}: --smooth draws the cyclidic net of a whole grid; this is a trimmed design",
+                    path.display()
+                );
+            }
+            let (grid, trimmed) = t.mesh(options).with_context(context)?;
+            let mut scene = Scene::new(grid);
+            scene.highlights = cut_highlights(&trimmed);
+            if gauss {
+                scene.gauss = gauss_net(&scene.mesh);
+            }
+            let what = format!(
+                "trimmed along the black line: {} panels, {} of them cut",
+                trimmed.faces.len(),
+                trimmed.cut.iter().filter(|c| **c).count()
+            );
+            Ok((scene, what))
+        }
     }
 }
 

@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use anyhow::bail;
-use monge_core::approximate::{Deviation, TargetCloud};
-use monge_render::{heat, sheet_png, sheet_svg, Panel, RenderOptions, Scene};
+use monge_core::approximate::{Deviation, TargetCloud, TrimmedMesh};
+use monge_render::{heat, sheet_png, sheet_svg, Highlight, Panel, RenderOptions, Rgb, Scene};
 
 use crate::shared::output::num;
 
@@ -31,6 +31,23 @@ impl Picture {
             ),
         }
     }
+}
+
+/// Colour of the edges of a mesh trimmed to an outline, drawn on the mesh before
+/// trimming.
+const TRIM_COLOR: Rgb = Rgb::new(0, 0, 0);
+
+/// The edges of the trimmed mesh `trimmed` (the cut, where its panels meet the
+/// outline), to draw on the mesh before trimming.
+pub fn cut_highlights(trimmed: &TrimmedMesh) -> Vec<Highlight> {
+    trimmed
+        .edges()
+        .into_iter()
+        .map(|points| Highlight {
+            points,
+            color: TRIM_COLOR,
+        })
+        .collect()
 }
 
 /// `scene` with its mesh coloured by each vertex's distance to `target`
