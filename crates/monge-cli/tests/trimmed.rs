@@ -149,9 +149,8 @@ fn a_trimmed_design_is_written_as_obj_only_and_refused_by_whole_grid_commands() 
         "{stdout}"
     );
     let out = monge()
-        .arg("info")
+        .args(["info", "--json"])
         .arg(&design)
-        .arg("--json")
         .output()
         .unwrap();
     let json: Value = serde_json::from_slice(&out.stdout).unwrap();

@@ -81,4 +81,4 @@ pub use schedule::{
     write_schedule_json, write_segments_csv, ScheduleJson,
 };
 pub use svg::write_overview_svg;
-pub use trimmed::{write_trimmed_into, Trimmable, TrimmedDesign, TrimmedMeshError};
+pub use trimmed::{write_trimmed, write_trimmed_into, Trimmable, TrimmedDesign, TrimmedMeshError};

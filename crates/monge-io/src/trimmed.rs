@@ -107,6 +107,14 @@ pub(crate) fn parse_trimmed(
     }
 }
 
+/// Writes a trimmed design file, pretty JSON or TOML by the path's extension, atomically
+/// ([`write_trimmed_into`] alone).
+pub fn write_trimmed(trimmed: &TrimmedDesign, path: &Path) -> Result<(), IoError> {
+    let mut out = Outputs::new();
+    write_trimmed_into(trimmed, path, &mut out)?;
+    out.commit()
+}
+
 /// Writes a trimmed design to `path` (pretty JSON or TOML by its extension) as one of
 /// several files of `out`, put in place by its commit. Refuses a design's non-finite
 /// numbers ([`IoError::NonFinite`]), as [`crate::write_design`] does.

@@ -6,8 +6,8 @@ use monge_core::approximate::{Outline, TargetCloud};
 use monge_core::multipatch::build;
 use monge_core::{generate, GenerateOptions, QuadGrid};
 use monge_io::{
-    parse_design, parse_multipatch, read_any_design, read_design, write_trimmed_into, AnyDesign,
-    DesignFormat, IoError, Outputs, Trimmable, TrimmedDesign,
+    parse_design, parse_multipatch, read_any_design, read_design, write_trimmed, AnyDesign,
+    DesignFormat, IoError, Trimmable, TrimmedDesign,
 };
 
 /// The outline of 400 points over a flat disc round the centre of `grid`'s plan, of a
@@ -84,9 +84,7 @@ fn trimmed_designs_read_back_to_the_bit_in_both_formats() {
         for ext in ["json", "toml"] {
             let trimmed = trimmed(design.clone());
             let path = dir.path().join(format!("t{k}.{ext}"));
-            let mut out = Outputs::new();
-            write_trimmed_into(&trimmed, &path, &mut out).unwrap();
-            out.commit().unwrap();
+            write_trimmed(&trimmed, &path).unwrap();
             let text = std::fs::read_to_string(&path).unwrap();
             assert!(text.contains("polygon"), "{text}");
             assert_eq!(
@@ -102,10 +100,7 @@ fn trimmed_designs_read_back_to_the_bit_in_both_formats() {
 fn a_trimmed_design_given_where_a_design_is_read_says_which_command_reads_it() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("t.json");
-    let mut out = Outputs::new();
-    let trimmed = trimmed(surface());
-    write_trimmed_into(&trimmed, &path, &mut out).unwrap();
-    out.commit().unwrap();
+    write_trimmed(&trimmed(surface()), &path).unwrap();
     let e = read_design(&path).unwrap_err();
     assert!(matches!(e, IoError::WrongKind { .. }), "{e}");
     let text = e.to_string();
@@ -119,10 +114,7 @@ fn a_trimmed_design_given_where_a_design_is_read_says_which_command_reads_it() {
 fn a_trimmed_design_whose_outline_is_not_one_says_why_and_where() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("t.json");
-    let mut out = Outputs::new();
-    let trimmed = trimmed(surface());
-    write_trimmed_into(&trimmed, &path, &mut out).unwrap();
-    out.commit().unwrap();
+    write_trimmed(&trimmed(surface()), &path).unwrap();
     // The outline's corners reversed: clockwise.
     let mut value: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use monge_core::approximate::TrimmedMesh;
 use monge_core::GenerateOptions;
-use monge_io::{read_any_design, write_trimmed_into, AnyDesign, Outputs, Trimmable};
+use monge_io::{read_any_design, write_trimmed, AnyDesign, Trimmable};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -42,9 +42,7 @@ impl TrimmedDesign {
     /// Writes the trimmed design file, pretty JSON or TOML by the extension,
     /// atomically, as `monge approximate` writes it.
     fn to_file(&self, path: PathBuf) -> PyResult<()> {
-        let mut out = Outputs::new();
-        write_trimmed_into(&self.inner, &path, &mut out).map_err(io_error)?;
-        out.commit().map_err(io_error)
+        write_trimmed(&self.inner, &path).map_err(io_error)
     }
 
     /// The design before trimming: a `Design`, or a `PatchesDesign` of several patches.
