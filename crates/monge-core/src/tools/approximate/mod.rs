@@ -297,14 +297,16 @@ fn refine_guides(x: &[f64]) -> Vec<f64> {
     out
 }
 
-/// The mesh of `design` if it can be generated without folds.
-fn fair_mesh(design: &Design) -> Option<QuadGrid> {
+/// The mesh of `design` if it can be generated without folds (§5.2): of a mesh to be
+/// trimmed to `outline`, without folds where the trimming keeps it ([`trim::kept_folds`]).
+fn fair_mesh(design: &Design, outline: Option<&Outline>) -> Option<QuadGrid> {
     let g = generate(design, &GenerateOptions::default()).ok()?;
     let grid = match design.mesh {
         MeshKind::Circular => g.grid,
         MeshKind::Conical => conical_dual(&g.grid).grid,
     };
-    (grid.folds().count() == 0 && grid.vertices.iter().all(|v| v.is_finite())).then_some(grid)
+    (grid.vertices.iter().all(|v| v.is_finite()) && trim::kept_folds(&grid, outline) == 0)
+        .then_some(grid)
 }
 
 /// Samples per guide for `faces` faces of the mesh of `kind`.
@@ -352,8 +354,9 @@ struct Search<'a> {
     /// Faces of the mesh asked for, whose samples of the guides the search's coarser
     /// meshes must not step over ([`hooked`]).
     faces: (usize, usize),
-    /// Whether the mesh is to cover the target and be trimmed ([`ApproxOptions::trim`]).
-    cover: bool,
+    /// The target's outline where the mesh is to cover the target and be trimmed to it
+    /// ([`ApproxOptions::trim`]).
+    outline: Option<&'a Outline>,
 }
 
 impl Search<'_> {
@@ -364,7 +367,7 @@ impl Search<'_> {
             kind: self.kind,
             stride: self.stride,
             faces: self.faces,
-            cover: self.cover,
+            outline: self.outline,
             evaluations: 0,
             budget: self.budget,
             total: self.total,
@@ -398,12 +401,10 @@ impl Search<'_> {
         if faces != self.faces && hooked(&design_of(start, x, full, self.kind)) {
             return None;
         }
-        fair_mesh(&design_of(
-            start,
-            x,
-            samples_for(faces, self.kind),
-            self.kind,
-        ))
+        fair_mesh(
+            &design_of(start, x, samples_for(faces, self.kind), self.kind),
+            self.outline,
+        )
     }
 
     /// The residuals at `x` (real units) from `start` on a grid of `faces`
@@ -423,7 +424,7 @@ impl Search<'_> {
     /// The residuals of `grid` against `matches`: [`TargetCloud::residuals`], or
     /// [`TargetCloud::cover_residuals`] for a mesh to be trimmed.
     fn residuals_against(&self, grid: &QuadGrid, matches: &Matches) -> Vec<f64> {
-        if self.cover {
+        if self.outline.is_some() {
             self.target.cover_residuals(grid, matches)
         } else {
             self.target.residuals(grid, matches)
@@ -603,7 +604,7 @@ pub(super) fn approximate_target(
         kind: options.kind,
         stride: points.len().div_ceil(EDGE_POINTS),
         faces: options.faces,
-        cover: options.trim,
+        outline: outline.as_ref(),
         evaluations: 0,
         budget,
         total: guesses.len() * 35 + (starts_wanted + 1) * budget,
@@ -693,7 +694,13 @@ pub(super) fn approximate_target(
             if f.is_finite() {
                 return Some((&guesses[*g], fine));
             }
-            let fair = || fair_mesh(&design_of(&guesses[*g], x, samples, options.kind)).is_some();
+            let fair = || {
+                fair_mesh(
+                    &design_of(&guesses[*g], x, samples, options.kind),
+                    outline.as_ref(),
+                )
+                .is_some()
+            };
             (search.timed_out && fair()).then(|| (&guesses[*g], x.clone()))
         })
         .ok_or(if search.timed_out {
@@ -725,9 +732,9 @@ pub(super) fn approximate_target(
     let initial = design_of(&guesses[first], &initial_x, samples, options.kind);
     // Measured as trimmed, where trimmed.
     let measure = |grid: &QuadGrid| trim::measured(target, grid, outline.as_ref(), 1);
-    let before = fair_mesh(&initial).map(|g| measure(&g).0);
+    let before = fair_mesh(&initial, outline.as_ref()).map(|g| measure(&g).0);
     let design = design_of(start, &fine, samples, options.kind);
-    let grid = fair_mesh(&design).expect("the refined design was generated fair");
+    let grid = fair_mesh(&design, outline.as_ref()).expect("the refined design was generated fair");
     let (after, trimmed) = measure(&grid);
     let nan = Deviation {
         mesh_to_target_max: f64::NAN,

@@ -41,7 +41,9 @@ use glam::DVec3;
 
 use super::cut::{Pieces, PER_GUIDE};
 use super::outline::Outline;
-use super::trim::{measured, resolved, trim, trimmed_deviation_below, ResultFaces, TrimmedMesh};
+use super::trim::{
+    kept_folds, measured, resolved, trim, trimmed_deviation_below, ResultFaces, TrimmedMesh,
+};
 use super::{
     sum_of_squares, ApproxError, ApproxOptions, Approximation, Deviation, PatchLayout, Progress,
     TargetCloud, OBJECTIVE_POINTS,
@@ -117,10 +119,11 @@ impl PatchApproximation {
     }
 }
 
-/// Folded faces of a mesh (§5.2), all of them if a vertex is not finite.
-fn folds(grid: &QuadGrid) -> usize {
+/// Folded faces of a mesh (§5.2), where a mesh trimmed to `outline` keeps them
+/// ([`kept_folds`]); all of them if a vertex is not finite.
+fn folds(grid: &QuadGrid, outline: Option<&Outline>) -> usize {
     if grid.vertices.iter().all(|v| v.is_finite()) {
-        grid.folds().count()
+        kept_folds(grid, outline)
     } else {
         (grid.rows - 1) * (grid.cols - 1)
     }
@@ -282,7 +285,7 @@ pub(super) fn patches_of(
         }
         evaluations += 1;
         let (folded, f) = match setup.build(x, fit) {
-            Some((_, mp)) => match folds(&mp.grid) {
+            Some((_, mp)) => match folds(&mp.grid, outline.as_ref()) {
                 0 => {
                     let (d, f) = measure(&mp.grid, closest.0.max());
                     if let Some(d) = d.filter(|d| d.closer_than(&closest.0)) {

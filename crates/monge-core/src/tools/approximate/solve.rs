@@ -285,7 +285,8 @@ impl Search<'_> {
     ) -> Vec<f64> {
         let samples = samples_for(faces, self.kind);
         let reading = |s: &Self, x: &[f64]| {
-            fair_mesh(&design_of(start, x, samples, s.kind)).map(|m| s.target.deviation(&m))
+            fair_mesh(&design_of(start, x, samples, s.kind), s.outline)
+                .map(|m| s.target.deviation(&m))
         };
         // The current design's objective and reading, each measured once.
         let (mut f, mut read) = (None, None);

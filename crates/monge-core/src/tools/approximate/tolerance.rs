@@ -526,7 +526,8 @@ pub fn approximate_to_tolerance(
         Chosen::OnePatch,
     );
     let mut steps = vec![Step::of(&best, 1, false)];
-    if let Some(grid) = fair_mesh(&single.initial) {
+    // The initial guess as it is (never trimmed).
+    if let Some(grid) = fair_mesh(&single.initial, None) {
         let initial = Seen::new(
             &target,
             FitDesign::Single(single.initial.clone()),

@@ -288,6 +288,25 @@ pub fn trim(grid: &QuadGrid, outline: &Outline) -> TrimmedMesh {
     out
 }
 
+/// Folded faces (§5.2) of `grid` that its mesh trimmed to `outline` keeps a piece of;
+/// without an outline, all of them. A mesh fitted to cover a target may fold where the
+/// trimming cuts it away: that is not in the result.
+pub(super) fn kept_folds(grid: &QuadGrid, outline: Option<&Outline>) -> usize {
+    let folded = grid.folded_faces();
+    match outline {
+        _ if !folded.contains(&true) => 0,
+        None => folded.iter().filter(|f| **f).count(),
+        Some(outline) => {
+            // The pieces of one face are consecutive in the trimmed mesh.
+            let mut kept = trim(grid, outline).from;
+            kept.dedup();
+            kept.iter()
+                .filter(|(i, j)| folded[i * (grid.cols - 1) + j])
+                .count()
+        }
+    }
+}
+
 /// The faces a fit's result is measured against, for a target point's distance to it
 /// and that distance's part along the nearest face's plane: `grid`'s faces, or where the
 /// result is `trimmed`, the trimmed mesh's. One measure for the deviation
@@ -448,6 +467,43 @@ mod tests {
         for c in crate::approximate::target_distances(&cloud, &grid, Some(&trimmed)) {
             assert!((c - 0.5).abs() < 1e-9, "{c}");
         }
+    }
+
+    #[test]
+    fn only_the_folds_a_trimmed_mesh_keeps_count() {
+        // A flat 11 × 11 grid over [−5, 5]², its node axes up, and the outline of a disc
+        // of radius 4 round the origin.
+        let disc: Vec<DVec3> = (0..2000)
+            .map(|k| {
+                let (r, a) = (
+                    4.0 * ((k as f64 + 0.5) / 2000.0).sqrt(),
+                    k as f64 * 2.399963,
+                );
+                DVec3::new(r * a.cos(), r * a.sin(), 0.01 * r * r)
+            })
+            .collect();
+        let outline = Outline::of(&TargetCloud::new(&disc).unwrap()).unwrap();
+        let vertices: Vec<DVec3> = (0..121)
+            .map(|k| DVec3::new((k / 11) as f64 - 5.0, (k % 11) as f64 - 5.0, 0.0))
+            .collect();
+        // Face (i, j) folded: three of its node axes turned down, its fourth's
+        // neighbours' faces keeping three up.
+        let folded_at = |i: usize, j: usize| {
+            let mut normals = vec![DVec3::Z; 121];
+            for (a, b) in [(i, j), (i + 1, j), (i, j + 1)] {
+                normals[a * 11 + b] = -DVec3::Z;
+            }
+            QuadGrid::new(11, 11, vertices.clone(), normals)
+        };
+        // At the grid's corner, beyond the disc: cut away.
+        let corner = folded_at(0, 0);
+        assert_eq!(corner.folds().count(), 1);
+        assert_eq!(kept_folds(&corner, None), 1);
+        assert_eq!(kept_folds(&corner, Some(&outline)), 0);
+        // In its middle: kept.
+        let middle = folded_at(5, 5);
+        assert_eq!(kept_folds(&middle, Some(&outline)), middle.folds().count());
+        assert!(middle.folds().count() >= 1);
     }
 
     #[test]
