@@ -58,7 +58,8 @@
 //!    other parameters kept): they settle in the basin of their θ, which the scan
 //!    leaves (not for a mesh to be trimmed, whose least squares were not tried so).
 //!    Designs that cannot be generated or whose mesh folds
-//!    ([`QuadGrid::folds`], §5.2) are infeasible. The least squares then run again with
+//!    ([`QuadGrid::folds`], §5.2; a mesh to be trimmed, where the trimming keeps it)
+//!    are infeasible. The least squares then run again with
 //!    finer guides (knot insertion: 7, then 11 control points, the same curves), kept
 //!    only when closer to the target by the largest distance both ways: five control
 //!    points may not follow a profile with an inflection as closely as the rest of the
