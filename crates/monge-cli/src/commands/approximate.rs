@@ -401,19 +401,22 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
             Trimmable::Surface(Box::new(r.design.clone())),
         ),
     };
-    write_result_into(args, design, trimmed.is_some(), &points, &mut out)?;
+    // The target indexed once, for the outline of a trimmed result and the picture.
+    let target = (trimmed.is_some() || picture.is_some())
+        .then(|| TargetCloud::new(&points))
+        .transpose()
+        .with_context(|| file.clone())?;
+    let outline_of = trimmed.and(target.as_ref());
+    write_result_into(args, design, outline_of, &mut out)?;
     if let (Some(path), Some((mesh, _))) = (&args.trim, trimmed) {
         write_trimmed_obj_into(mesh, path, &file, &mut out)?;
     }
-    if let Some((path, format)) = picture {
-        let target = TargetCloud::new(&points).with_context(|| file.clone())?;
+    if let (Some((path, format)), Some(target)) = (picture, &target) {
         let boundaries = match better {
             Some(p) => patch_boundaries(&build(&p.design, &GenerateOptions::default())?),
             None => Vec::new(),
         };
-        let bytes = picture_bytes(
-            &r, grid, boundaries, &points, &target, None, format, trimmed,
-        )?;
+        let bytes = picture_bytes(&r, grid, boundaries, &points, target, None, format, trimmed)?;
         out.write(path, |w| w.write_all(&bytes))?;
     }
     out.commit()?;
@@ -511,20 +514,17 @@ const TRIMMED_DESIGN: &str =
     "a trimmed design: the design and the target's outline; `monge generate` writes its mesh trimmed";
 
 /// Queues DESIGN: the result's design, one patch or several, and where the result is
-/// `trimmed`, the outline of the target `points` with it (a trimmed design, whose mesh
-/// `monge generate` cuts by it as the fit did: the same outline of the same points).
+/// trimmed, the outline of the target `trimmed_to` with it (a trimmed design, whose
+/// mesh `monge generate` cuts by it as the fit did: the same outline of the same points).
 fn write_result_into(
     args: &ApproximateArgs,
     design: Trimmable,
-    trimmed: bool,
-    points: &[DVec3],
+    trimmed_to: Option<&TargetCloud>,
     out: &mut Outputs,
 ) -> anyhow::Result<()> {
     let path = &args.output;
-    if trimmed {
-        let context = || args.target.display().to_string();
-        let target = TargetCloud::new(points).with_context(context)?;
-        let trim = Outline::of(&target).with_context(context)?;
+    if let Some(target) = trimmed_to {
+        let trim = Outline::of(target).with_context(|| args.target.display().to_string())?;
         write_trimmed_into(&TrimmedDesign { design, trim }, path, out)?;
     } else {
         match design {
@@ -622,13 +622,8 @@ fn finish_tolerance(
             patch_boundaries(&build(d, &GenerateOptions::default())?),
         ),
     };
-    write_result_into(
-        args,
-        design,
-        fit.design.trimmed().is_some(),
-        points,
-        &mut out,
-    )?;
+    let outline_of = fit.design.trimmed().and(Some(&target));
+    write_result_into(args, design, outline_of, &mut out)?;
     if let Some(mesh) = fit.design.trimmed() {
         write_trimmed_obj_into(mesh, &trimmed_path, &file, &mut out)?;
     }
