@@ -15,7 +15,7 @@ use monge_core::symmetry::{assemble, isometries};
 use monge_core::{generate, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{
     parse_any_design, parse_multipatch, parse_planes, read_iges_surfaces, read_mesh_from,
-    AnyDesign, DesignFormat, FileKind, MeshFormat,
+    write_trimmed_mesh_to, AnyDesign, DesignFormat, FileKind, MeshFormat,
 };
 
 /// The grid limit the targets generate with (the documented
@@ -87,6 +87,13 @@ pub fn design(data: &[u8], format: DesignFormat) {
                 if let Ok((grid, trimmed)) = t.mesh(&options()) {
                     assert_grid("trimmed design", &grid);
                     assert_finite("trimmed", &trimmed.vertices);
+                    // Written in every mesh format `monge generate` writes it in (glTF
+                    // may refuse coordinates beyond f32's range).
+                    for format in [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Json] {
+                        write_trimmed_mesh_to(&trimmed, format, "", &mut Vec::new())
+                            .expect("a trimmed mesh is written");
+                    }
+                    let _ = write_trimmed_mesh_to(&trimmed, MeshFormat::Glb, "", &mut Vec::new());
                 }
             }
             Err(_) => {}

@@ -118,16 +118,152 @@ fn generate_cuts_a_trimmed_designs_mesh_by_its_outline_into_planar_panels() {
     assert!((area - hexagon).abs() < 1e-9 * hexagon, "{area} {hexagon}");
 }
 
+/// The faces of the JSON mesh of polygons at `path` (`vertices`, `faces`), each its
+/// corners' coordinates.
+fn json_faces(path: &Path) -> Vec<Vec<[f64; 3]>> {
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let vertices: Vec<[f64; 3]> = serde_json::from_value(json["vertices"].clone()).unwrap();
+    let faces: Vec<Vec<usize>> = serde_json::from_value(json["faces"].clone()).unwrap();
+    faces
+        .into_iter()
+        .map(|f| f.into_iter().map(|k| vertices[k]).collect())
+        .collect()
+}
+
+/// The faces of the ASCII PLY mesh at `path`, each its corners' coordinates (read here:
+/// `x y z` vertices, then each face's count and corners).
+fn ply_faces(path: &Path) -> Vec<Vec<[f64; 3]>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let (header, body) = text.split_once("end_header\n").unwrap();
+    let count = |element: &str| -> usize {
+        header
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("element {element} ")))
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let mut lines = body.lines();
+    let vertices: Vec<[f64; 3]> = (0..count("vertex"))
+        .map(|_| {
+            let x: Vec<f64> = lines
+                .next()
+                .unwrap()
+                .split(' ')
+                .map(|w| w.parse().unwrap())
+                .collect();
+            [x[0], x[1], x[2]]
+        })
+        .collect();
+    (0..count("face"))
+        .map(|_| {
+            let words: Vec<usize> = lines
+                .next()
+                .unwrap()
+                .split(' ')
+                .map(|w| w.parse().unwrap())
+                .collect();
+            assert_eq!(words[0], words.len() - 1);
+            words[1..].iter().map(|k| vertices[*k]).collect()
+        })
+        .collect()
+}
+
 #[test]
-fn a_trimmed_design_is_written_as_obj_only_and_refused_by_whole_grid_commands() {
+fn a_trimmed_designs_mesh_is_written_in_every_mesh_format_with_the_same_panels() {
     let dir = TempDir::new().unwrap();
     let design = trimmed_design(&dir, "trimmed.json");
-    let ply = dir.path().join("cut.ply");
+    let path = |name: &str| dir.path().join(name);
+    for name in ["cut.obj", "cut.ply", "cut.json", "cut.glb"] {
+        let stderr = monge_to("generate", &design, path(name))
+            .assert()
+            .success()
+            .get_output()
+            .stderr
+            .clone();
+        let format = name.rsplit('.').next().unwrap().to_uppercase();
+        assert!(
+            String::from_utf8(stderr)
+                .unwrap()
+                .contains(&format!("wrote {format} `")),
+            "{name}"
+        );
+    }
+    // The same panels, corner for corner, to the bit.
+    let obj = obj_faces(&path("cut.obj"));
+    assert!(obj.iter().any(|f| f.len() > 4));
+    assert_eq!(ply_faces(&path("cut.ply")), obj);
+    assert_eq!(json_faces(&path("cut.json")), obj);
+    let glb = std::fs::read(path("cut.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    // check measures the PLY meshes, ASCII and binary, as the OBJ.
+    monge_to("generate", &design, path("binary.ply"))
+        .args(["--format", "ply-binary"])
+        .assert()
+        .success();
+    for name in ["cut.ply", "binary.ply"] {
+        let out = monge()
+            .arg("check")
+            .arg(path(name))
+            .arg("--json")
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{name}: {out:?}");
+        let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(report["polygons"], obj.len(), "{name}");
+        assert!(report["max_error"].as_f64().unwrap() < 1e-12, "{report}");
+    }
+}
+
+#[test]
+fn approximate_writes_a_trimmed_mesh_in_the_format_of_its_extension() {
+    let dir = TempDir::new().unwrap();
+    let path = |name: &str| dir.path().join(name);
+    let target = example("targets/paraboloid.obj");
+    let fit = |trimmed: &Path| {
+        let mut cmd = monge();
+        cmd.arg("approximate")
+            .arg(&target)
+            .arg("-o")
+            .arg(path("fit.json"))
+            .arg("--trim")
+            .arg(trimmed)
+            .args([
+                "--grid",
+                "12x12",
+                "--starts",
+                "1",
+                "--max-evaluations",
+                "60",
+            ]);
+        cmd
+    };
+    fit(&path("fit.ply")).assert().success();
+    // As `monge generate` writes the trimmed design, but for its header's comment.
+    monge_to("generate", path("fit.json"), path("again.ply"))
+        .assert()
+        .success();
+    let body = |name: &str| {
+        let text = std::fs::read_to_string(path(name)).unwrap();
+        text.lines()
+            .filter(|l| !l.starts_with("comment"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert_eq!(body("fit.ply"), body("again.ply"));
+    // An extension that is not a mesh format's is refused before the fit, nothing written.
+    std::fs::remove_file(path("fit.json")).unwrap();
     refuses(
-        &mut monge_to("generate", &design, &ply),
-        &["is a trimmed design", "`.obj`"],
-        &[&ply],
+        &mut fit(&path("fit.stl")),
+        &["--trim", "`.stl`", "`.obj`, `.ply`, `.json` or `.glb`"],
+        &[&path("fit.stl"), &path("fit.json")],
     );
+}
+
+#[test]
+fn a_trimmed_design_is_refused_by_whole_grid_commands() {
+    let dir = TempDir::new().unwrap();
+    let design = trimmed_design(&dir, "trimmed.json");
     let obj = dir.path().join("cut.obj");
     refuses(
         monge_to("generate", &design, &obj).args(["--offset", "0.1"]),

@@ -444,20 +444,22 @@ fn grid_part(name: String, material: u32, g: &QuadGrid) -> Part<'_> {
     }
 }
 
-/// A part of `vertices` and the quads that `quads` yields, two triangles a quad.
-fn quads_part<'a, I: IntoIterator<Item = [usize; 4]>>(
+/// A part of `vertices` and the faces that `faces` yields (triangles, quads, or convex
+/// polygons), each a fan of triangles from its first corner: two triangles a quad.
+fn faces_part<'a, F: AsRef<[usize]>, I: IntoIterator<Item = F>>(
     name: String,
     material: u32,
     vertices: &'a [DVec3],
-    quads: impl Fn() -> I + 'a,
+    faces: impl Fn() -> I + 'a,
 ) -> Part<'a> {
     let positions =
         Box::new(move |emit: &mut dyn FnMut(DVec3)| vertices.iter().for_each(|p| emit(*p)));
     let triangles = Box::new(move |emit: &mut dyn FnMut([u32; 3])| {
-        for q in quads() {
-            let [a, b, c, d] = q.map(|v| v as u32);
-            emit([a, b, c]);
-            emit([a, c, d]);
+        for face in faces() {
+            let f = face.as_ref();
+            for k in 1..f.len().saturating_sub(1) {
+                emit([f[0], f[k], f[k + 1]].map(|v| v as u32));
+            }
         }
     });
     Part {
@@ -488,7 +490,19 @@ pub fn write_quads_glb<W: Write + ?Sized>(
     quads: impl IntoIterator<Item = [usize; 4]> + Clone,
     w: &mut W,
 ) -> io::Result<()> {
-    let part = quads_part("surface".to_owned(), 0, vertices, move || quads.clone());
+    let part = faces_part("surface".to_owned(), 0, vertices, move || quads.clone());
+    surface_glb(part, None, w)
+}
+
+/// A mesh of triangles and quads (a trimmed mesh's
+/// [`TrimmedMesh::mesh_faces`](monge_core::approximate::TrimmedMesh::mesh_faces)) as
+/// binary glTF, as [`write_quads_glb`] writes quads.
+pub(crate) fn write_faces_glb<W: Write + ?Sized>(
+    vertices: &[DVec3],
+    faces: &[Vec<usize>],
+    w: &mut W,
+) -> io::Result<()> {
+    let part = faces_part("surface".to_owned(), 0, vertices, move || faces.iter());
     surface_glb(part, None, w)
 }
 

@@ -42,6 +42,7 @@ mod mesh_write;
 mod multipatch;
 mod net;
 mod points_read;
+mod polygons;
 mod read;
 mod scan;
 mod schedule;
@@ -63,11 +64,11 @@ pub use gltf::{write_glb, write_grid_glb, write_quads_glb};
 pub use iges::{read_iges_surfaces, write_iges, IgesSurface, NurbsColumn, NurbsColumns};
 pub use mesh_read::{
     read_face_normals, read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from,
-    read_polygons_obj,
+    read_polygons,
 };
 pub use mesh_write::{
     write_mesh, write_mesh_at, write_mesh_json, write_mesh_to, write_obj, write_ply,
-    write_ply_binary, write_polygons_obj, BASE_POINT, MESH_JSON_KEYS,
+    write_ply_binary, BASE_POINT, MESH_JSON_KEYS,
 };
 pub use multipatch::{
     parse_multipatch, parse_planes, read_multipatch, read_planes, write_multipatch,
@@ -75,6 +76,7 @@ pub use multipatch::{
 };
 pub use net::{conical_has_no_net, write_net_json};
 pub use points_read::{read_points, surface_parameters, IGES_TARGET_POINTS};
+pub use polygons::{write_polygons_obj, write_trimmed_mesh_to, MAX_CORNERS};
 pub use scan::{write_scan_csv, write_scan_svg, SCAN_CSV_HEADER};
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,

@@ -127,56 +127,6 @@ pub fn write_obj<W: Write + ?Sized>(grid: &QuadGrid, w: &mut W) -> io::Result<()
     grid_quads(grid, None)?.obj(w)
 }
 
-/// Writes a mesh of polygons (a grid trimmed to a target's outline) as OBJ: the
-/// header comment `# COMMENT`, `v x y z` per vertex and `f a b c …` per face, 1-based.
-/// Fails with [`io::ErrorKind::InvalidInput`] on a non-finite coordinate, a face of
-/// fewer than three corners or a corner out of range, before writing anything.
-///
-/// ```
-/// # use glam::DVec3;
-/// let vertices = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.5, 1.5, 0.0), DVec3::ONE];
-/// let mut out = Vec::new();
-/// monge_io::write_polygons_obj(&vertices, &[vec![0, 1, 4, 3, 2]], "a pentagon", &mut out)
-///     .unwrap();
-/// assert!(String::from_utf8(out).unwrap().ends_with("v 1 1 1\nf 1 2 5 4 3\n"));
-/// ```
-pub fn write_polygons_obj<W: Write + ?Sized>(
-    vertices: &[DVec3],
-    faces: &[Vec<usize>],
-    comment: &str,
-    w: &mut W,
-) -> io::Result<()> {
-    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
-    if let Some(k) = vertices.iter().position(|v| !v.is_finite()) {
-        return Err(invalid(format!(
-            "vertex {k} is not finite: {:?}",
-            vertices[k]
-        )));
-    }
-    if let Some(k) = faces
-        .iter()
-        .position(|f| f.len() < 3 || f.iter().any(|c| *c >= vertices.len()))
-    {
-        return Err(invalid(format!(
-            "face {k} has corners {:?}, not three or more of the {} vertices",
-            faces[k],
-            vertices.len()
-        )));
-    }
-    let mut text = format!("# {comment}\n");
-    for v in vertices {
-        text += &format!("v {} {} {}\n", v.x, v.y, v.z);
-    }
-    for f in faces {
-        text.push('f');
-        for c in f {
-            text += &format!(" {}", c + 1);
-        }
-        text.push('\n');
-    }
-    w.write_all(text.as_bytes())
-}
-
 /// Writes a grid as ASCII PLY.
 ///
 /// Vertices with `double` `x y z` (and `nx ny nz` if the grid has normals),
@@ -269,7 +219,7 @@ impl<F: Faces> Quads<'_, F> {
             }
             self.faces.each(out, |o, corners| {
                 o.push(b'f');
-                for c in corners {
+                for &c in corners.as_ref() {
                     o.push(b' ');
                     o.int(c + 1);
                     if with_normals {
@@ -296,8 +246,9 @@ impl<F: Faces> Quads<'_, F> {
                 o.push(b'\n');
             })?;
             self.faces.each(out, |o, corners| {
-                o.push(b'4');
-                for c in corners {
+                let corners = corners.as_ref();
+                o.int(corners.len());
+                for &c in corners {
                     o.push(b' ');
                     o.int(c);
                 }
@@ -341,8 +292,10 @@ impl<F: Faces> Quads<'_, F> {
                 }
             })?;
             self.faces.each(out, |o, corners| {
-                o.push(4);
-                for c in corners {
+                let corners = corners.as_ref();
+                // At most 255 corners: checked by the writers of polygons.
+                o.push(corners.len() as u8);
+                for &c in corners {
                     // In range: checked above.
                     o.bytes(&(c as i32).to_le_bytes());
                 }

@@ -18,8 +18,8 @@ use monge_core::measure::{conical_error, measure};
 use monge_core::multipatch::{build, MultiPatch, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{
-    check_output, read_points, write_design_into, write_multipatch_into, write_polygons_obj,
-    write_trimmed_into, Outputs, Trimmable, TrimmedDesign,
+    check_output, read_points, write_design_into, write_multipatch_into, write_trimmed_into,
+    write_trimmed_mesh_to, MeshFormat, Outputs, Trimmable, TrimmedDesign,
 };
 use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 
@@ -81,12 +81,14 @@ pub struct ApproximateArgs {
     #[arg(long)]
     pub keep_boundary: bool,
     /// Fit a mesh that covers the target, not one whose boundary follows its edges, and
-    /// write it trimmed to the target's outline (seen along its normal) to TRIMMED
-    /// (`.obj`, faces as polygons): for a target whose edges are not curvature lines (a
-    /// roof over a rectangle whose curvature lines run askew). The panels cut by the
-    /// outline stay planar, no longer circular; the distances printed are the trimmed
-    /// mesh's; --picture draws the mesh before trimming with the cut on it. DESIGN is the
-    /// untrimmed design.
+    /// write it trimmed to the target's outline (seen along its normal) to TRIMMED, its
+    /// faces polygons, in the format of its extension (`.obj`, `.ply`, `.json` with
+    /// `vertices`, `faces` and `cut`, `.glb` as triangles): for a target whose edges are
+    /// not curvature lines (a roof over a rectangle whose curvature lines run askew). The
+    /// panels cut by the outline stay planar, no longer circular; the distances printed
+    /// are the trimmed mesh's; --picture draws the mesh before trimming with the cut on
+    /// it. DESIGN is a trimmed design: the design and the target's outline, which `monge
+    /// generate` writes trimmed as TRIMMED is.
     /// With --patches, the patches cover the target too and are trimmed, where they
     /// follow it closer. With --tolerance, where that fit chooses a trimmed mesh (it
     /// tries one after one patch), it goes to TRIMMED (by default beside DESIGN:
@@ -306,6 +308,10 @@ fn patches_exactness(design: &MultiPatchDesign) -> anyhow::Result<f64> {
 pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
     let file = args.target.display().to_string();
     check_output(&args.output, &[&args.target])?;
+    trimmed_output(args)?;
+    if let Some(path) = &args.trim {
+        check_output(path, &[&args.target, &args.output])?;
+    }
     let picture = match &args.picture {
         Some(path) => {
             check_output(path, &[&args.target, &args.output])?;
@@ -408,8 +414,9 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         .with_context(|| file.clone())?;
     let outline_of = trimmed.and(target.as_ref());
     write_result_into(args, design, outline_of, &mut out)?;
-    if let (Some(path), Some((mesh, _))) = (&args.trim, trimmed) {
-        write_trimmed_obj_into(mesh, path, &file, &mut out)?;
+    if let (Some(_), Some((mesh, _))) = (&args.trim, trimmed) {
+        let (path, format) = trimmed_output(args)?;
+        write_trimmed_mesh_into(mesh, (&path, format), &file, &mut out)?;
     }
     if let (Some((path, format)), Some(target)) = (picture, &target) {
         let boundaries = match better {
@@ -543,18 +550,25 @@ fn trimmed_path(args: &ApproximateArgs) -> PathBuf {
         .unwrap_or_else(|| args.output.with_extension("trimmed.obj"))
 }
 
-/// Queues the trimmed mesh `mesh` of the target `file` for `path` (OBJ, faces as
-/// polygons).
-fn write_trimmed_obj_into(
+/// [`trimmed_path`] and the mesh format of its extension (an error naming `--trim`).
+fn trimmed_output(args: &ApproximateArgs) -> anyhow::Result<(PathBuf, MeshFormat)> {
+    let path = trimmed_path(args);
+    let format = MeshFormat::from_path(&path).context("--trim")?;
+    Ok((path, format))
+}
+
+/// Queues the trimmed mesh `mesh` of the target `file` for `path`, in `format` (faces as
+/// polygons: [`write_trimmed_mesh_to`]).
+fn write_trimmed_mesh_into(
     mesh: &TrimmedMesh,
-    path: &Path,
+    (path, format): (&Path, MeshFormat),
     file: &str,
     out: &mut Outputs,
 ) -> anyhow::Result<()> {
     out.write(path, |w| {
-        write_polygons_obj(
-            &mesh.vertices,
-            &mesh.faces,
+        write_trimmed_mesh_to(
+            mesh,
+            format,
             &format!(
                 "monge approximate: {} faces trimmed to the outline of {file}",
                 mesh.faces.len()
@@ -612,7 +626,7 @@ fn finish_tolerance(
     let report = fit_report(&target, &fit.design, args.angle_tol.to_radians())
         .with_context(|| file.clone())?;
     let mut out = Outputs::new();
-    let trimmed_path = trimmed_path(args);
+    let (trimmed_path, trimmed_format) = trimmed_output(args)?;
     let (design, boundaries) = match &fit.design {
         FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
             (Trimmable::Surface(Box::new(d.clone())), Vec::new())
@@ -625,7 +639,7 @@ fn finish_tolerance(
     let outline_of = fit.design.trimmed().and(Some(&target));
     write_result_into(args, design, outline_of, &mut out)?;
     if let Some(mesh) = fit.design.trimmed() {
-        write_trimmed_obj_into(mesh, &trimmed_path, &file, &mut out)?;
+        write_trimmed_mesh_into(mesh, (&trimmed_path, trimmed_format), &file, &mut out)?;
     }
     if let Some((path, format)) = picture {
         let tolerance = Some(fit.limit * fit.deviation.size);

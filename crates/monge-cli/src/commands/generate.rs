@@ -10,7 +10,7 @@ use monge_core::multipatch::build;
 use monge_core::{generate, BasePoint, GenerateOptions, Generated, MeshKind};
 use monge_io::generated::{json_extras, layers, max_error, node_offset, Layer};
 use monge_io::{
-    check_output, is_stdio, read_any_design, write_mesh_at, write_output, write_polygons_obj,
+    check_output, is_stdio, read_any_design, write_mesh_at, write_output, write_trimmed_mesh_to,
     AnyDesign, MeshFormat, Outputs, Trimmable, TrimmedDesign,
 };
 use serde_json::{json, Map, Value};
@@ -36,7 +36,11 @@ use crate::shared::Outcome;
          both `theta_deg`, `mode` and `report` (folded faces, first fold, smallest crossing \
          sine); a developable mesh (§3.3) adds `normals` and its slope `alpha_deg`. A one-paragraph summary (grid \
          size, mode, θ, admissible range, time taken, warnings about folds and pinches) goes \
-         to stderr.\n\n{THETA}"
+         to stderr.\n\n\
+         A trimmed design (`monge approximate --trim`'s: a design or a multi-patch design and \
+         the target's outline) is written cut by its outline: its panels are polygons of 3 to 8 \
+         corners in their faces' planes, as they are in OBJ and PLY, with the key `cut` (which \
+         panels the outline cut) in JSON, as triangles in glTF (`.glb`).\n\n{THETA}"
     ),
     after_help = format!(
         "Examples:\n  \
@@ -251,7 +255,8 @@ fn run_developable(
 }
 
 /// `monge generate` of a trimmed design: its design's mesh (one patch or several) cut
-/// by its outline, as OBJ polygons (the cut panels keep their faces' planes).
+/// by its outline, as polygons (the cut panels keep their faces' planes) in any mesh
+/// format ([`write_trimmed_mesh_to`]).
 fn run_trimmed(
     args: &GenerateArgs,
     format: MeshFormat,
@@ -259,12 +264,6 @@ fn run_trimmed(
     options: &GenerateOptions,
 ) -> anyhow::Result<Outcome> {
     let file = args.design.display();
-    if format != MeshFormat::Obj {
-        bail!(
-            "{file} is a trimmed design: its panels along the outline are polygons of 3 to 8 \
-             corners, which monge writes as OBJ: give OUT the extension `.obj` (or --format obj)"
-        );
-    }
     if args.base_point.is_some() || !args.offsets.is_empty() {
         bail!(
             "--offset and --base-point work on a whole grid; {file} is a trimmed design: \
@@ -277,9 +276,9 @@ fn run_trimmed(
     let start = Instant::now();
     let out = &args.out.output;
     write_output(out, |w| {
-        write_polygons_obj(
-            &mesh.vertices,
-            &mesh.faces,
+        write_trimmed_mesh_to(
+            &mesh,
+            format,
             &format!(
                 "monge generate: {} faces of {file} trimmed to its outline",
                 mesh.faces.len()
@@ -300,12 +299,13 @@ fn run_trimmed(
     eprint(&format!(
         "{file}: {patches} of {} × {} vertices trimmed to the design's outline: {} \
          faces, {} of them cut (their new corners in their faces' planes). Generated in {} ms; \
-         wrote OBJ `{}` in {} ms.\n",
+         wrote {} `{}` in {} ms.\n",
         grid.rows,
         grid.cols,
         mesh.faces.len(),
         mesh.cut.iter().filter(|c| **c).count(),
         millis(generation),
+        format.extension().to_uppercase(),
         out.display(),
         millis(start.elapsed().as_secs_f64()),
     ));

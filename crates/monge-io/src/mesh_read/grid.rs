@@ -195,7 +195,7 @@ pub(super) enum Keep {
     Grid,
     /// The points only (`monge approximate`'s targets): faces of any shape are read past.
     Points,
-    /// The vertices and faces of any number of corners (a trimmed mesh), OBJ only.
+    /// The vertices and faces of any number of corners (a trimmed mesh), OBJ or PLY.
     Polygons,
 }
 

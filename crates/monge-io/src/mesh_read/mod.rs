@@ -17,5 +17,5 @@ mod read;
 pub use json::read_face_normals;
 pub(crate) use read::read_vertices;
 pub use read::{
-    read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from, read_polygons_obj,
+    read_mesh, read_mesh_and_kind, read_mesh_and_kind_from, read_mesh_from, read_polygons,
 };

@@ -235,8 +235,9 @@ enum Slots {
         xyz: [usize; 3],
         normal: Option<[usize; 3]>,
     },
-    /// The `face` element of a mesh: where its corner list is.
-    Face { indices: usize },
+    /// The `face` element of a mesh: where its corner list is, and whether its faces
+    /// are polygons of any number of corners ([`Keep::Polygons`]) rather than quads.
+    Face { indices: usize, polygons: bool },
     /// Any other element, or the faces of a point cloud: read past.
     Other,
 }
@@ -291,7 +292,7 @@ impl Slots {
                 let normal = three(["nx", "ny", "nz"])?;
                 Ok(Slots::Vertex { xyz, normal })
             }
-            "face" if keep == Keep::Grid => {
+            "face" if keep != Keep::Points => {
                 let Some(k) = find("vertex_indices").or_else(|| find("vertex_index")) else {
                     return Err(syntax(
                         element.line,
@@ -309,7 +310,10 @@ impl Slots {
                         ),
                     ));
                 }
-                Ok(Slots::Face { indices: k })
+                Ok(Slots::Face {
+                    indices: k,
+                    polygons: keep == Keep::Polygons,
+                })
             }
             _ => Ok(Slots::Other),
         }
@@ -342,8 +346,29 @@ impl Slots {
                     raw.normals.push(point(normal)?);
                 }
             }
-            Slots::Face { indices } => {
+            Slots::Face { indices, polygons } => {
                 let corners = &values[ranges[indices].0..ranges[indices].1];
+                let corner = |c: f64| {
+                    if c < 0.0 || c.fract() != 0.0 {
+                        Err(format!("expected a vertex index, found `{c}`"))
+                    } else {
+                        Ok(c as usize)
+                    }
+                };
+                if polygons {
+                    let face = corners
+                        .iter()
+                        .map(|c| corner(*c))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    if face.len() < 3 || face.iter().any(|k| *k >= raw.vertices.len()) {
+                        return Err(format!(
+                            "a face with corners {face:?} (0-based), not three or more of the {} vertices",
+                            raw.vertices.len()
+                        ));
+                    }
+                    raw.polygons.push(face);
+                    return Ok(());
+                }
                 if corners.len() != 4 {
                     return Err(format!(
                         "a face with {} corners; a quad grid has faces with 4",
@@ -352,10 +377,7 @@ impl Slots {
                 }
                 let mut face = [0; 4];
                 for (slot, &c) in face.iter_mut().zip(corners) {
-                    if c < 0.0 || c.fract() != 0.0 {
-                        return Err(format!("expected a vertex index, found `{c}`"));
-                    }
-                    *slot = c as usize;
+                    *slot = corner(c)?;
                 }
                 raw.faces.push(face);
             }

@@ -15,6 +15,7 @@ use super::obj::parse_obj;
 use super::ply::parse_ply;
 use crate::error::IoError;
 use crate::format::MeshFormat;
+use crate::kind::unknown_extension;
 use crate::read::{path_name, read_error};
 
 /// Reads a quad grid from a `.json`, `.obj` or `.ply` file (by its extension).
@@ -79,8 +80,9 @@ pub(crate) fn read_vertices(path: &Path, format: MeshFormat) -> Result<Vec<DVec3
     Ok(raw.vertices)
 }
 
-/// The vertices and polygons of an OBJ file of faces of any number of corners (0-based
-/// corners), as [`crate::write_polygons_obj`] writes a trimmed mesh.
+/// The vertices and polygons of an OBJ or PLY file (by its extension) of faces of any
+/// number of corners (0-based corners), as [`crate::write_trimmed_mesh_to`] writes a
+/// trimmed mesh; other formats are refused ([`IoError::UnknownExtension`]).
 ///
 /// ```
 /// # use glam::DVec3;
@@ -92,12 +94,22 @@ pub(crate) fn read_vertices(path: &Path, format: MeshFormat) -> Result<Vec<DVec3
 /// let mut text = Vec::new();
 /// monge_io::write_polygons_obj(&vertices, &faces, "a pentagon", &mut text).unwrap();
 /// std::fs::write(&path, text).unwrap();
-/// assert_eq!(monge_io::read_polygons_obj(&path).unwrap(), (vertices.to_vec(), faces));
+/// assert_eq!(monge_io::read_polygons(&path).unwrap(), (vertices.to_vec(), faces));
 /// # std::fs::remove_dir_all(&dir).unwrap();
 /// ```
-pub fn read_polygons_obj(path: &Path) -> Result<(Vec<DVec3>, Vec<Vec<usize>>), IoError> {
-    let (reader, _) = open(path)?;
-    let raw = parse_obj(reader, &path_name(path), Keep::Polygons)?;
+pub fn read_polygons(path: &Path) -> Result<(Vec<DVec3>, Vec<Vec<usize>>), IoError> {
+    let format = MeshFormat::from_path(path)?;
+    let (reader, size) = open(path)?;
+    let file = path_name(path);
+    let raw = match format {
+        MeshFormat::Obj => parse_obj(reader, &file, Keep::Polygons)?,
+        MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
+            parse_ply(reader, &file, size, Keep::Polygons)?
+        }
+        MeshFormat::Json | MeshFormat::Glb => {
+            return Err(unknown_extension(path, "`.obj` or `.ply`"))
+        }
+    };
     Ok((raw.vertices, raw.polygons))
 }
 
