@@ -26,7 +26,9 @@ use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 use crate::shared::args::{parse_non_negative, Named, KINDS};
 use crate::shared::help::EXIT;
 use crate::shared::output::{num, print};
-use crate::shared::picture::{cut_highlights, deviation_caption, distance_panel, sheet, Picture};
+use crate::shared::picture::{
+    cut_highlights, distance_panel, sheet, trimmed_distance_panel, Picture,
+};
 use crate::shared::Outcome;
 use glam::DVec3;
 
@@ -247,22 +249,10 @@ fn picture_bytes(
     scene
         .highlights
         .extend(trimmed.iter().flat_map(|t| cut_highlights(t.0)));
-    let label = if trimmed.is_some() {
-        "result, trimmed along the black line"
-    } else {
-        "result"
+    let after = match trimmed {
+        Some((_, d)) => trimmed_distance_panel(scene, target, "result", Some(scale), &d).0,
+        None => distance_panel(scene, target, "result", Some(scale)).0,
     };
-    let (mut after, _, _) = distance_panel(scene, target, label, Some(scale));
-    if let Some((_, d)) = trimmed {
-        // The figures of the result, the trimmed mesh (the colours: the mesh before).
-        after.caption = deviation_caption(
-            &format!(
-                "{label}\nwhite 0, dark red from {}; figures trimmed",
-                num(scale)
-            ),
-            &d,
-        );
-    }
     let distances = target_distances(target, result, trimmed.map(|(mesh, _)| mesh));
     let largest = distances.iter().copied().fold(0.0, f64::max);
     let dots = points

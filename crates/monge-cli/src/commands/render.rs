@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use glam::DVec3;
-use monge_core::approximate::TargetCloud;
+use monge_core::approximate::{TargetCloud, TrimmedMesh};
 use monge_core::conical::conical_dual;
 use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 use monge_core::developable::developable;
@@ -18,7 +18,9 @@ use monge_render::{
 use crate::shared::args::parse_finite;
 use crate::shared::help::{EXIT, THETA};
 use crate::shared::output::{eprint, num};
-use crate::shared::picture::{cut_highlights, distance_panel, sheet, Picture};
+use crate::shared::picture::{
+    cut_highlights, distance_panel, sheet, trimmed_distance_panel, Picture,
+};
 use crate::shared::Outcome;
 
 /// Draw designs as a shaded picture (PNG or SVG), or a sheet of θ values.
@@ -89,7 +91,9 @@ pub struct RenderArgs {
     /// Colour the mesh by its distance to TARGET (a mesh or point cloud: .obj, .ply,
     /// .json), as `monge approximate` measures it: white on the target, dark red at the
     /// 95th percentile (at least 1e-6 of the target's size) and beyond; the caption
-    /// gives the scale and the deviation both ways. One DESIGN only.
+    /// gives the scale and the deviation both ways. One DESIGN only. Of a trimmed design,
+    /// the mesh before trimming is coloured with the cut drawn on it, and the deviation is
+    /// the trimmed mesh's (as `monge approximate --picture` draws its result).
     #[arg(long, value_name = "TARGET")]
     pub deviation: Option<PathBuf>,
 }
@@ -164,20 +168,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
         );
         (sheet(&panels, args.columns, &options, format)?, what)
     } else if let (Some(target), [path]) = (&args.deviation, args.designs.as_slice()) {
-        if let AnyDesign::Trimmed(_) = read_any_design(path)? {
-            bail!(
-                "--deviation colours a whole grid by its distance to a target; `{}` is a trimmed \
-                 design, whose distances `monge approximate --picture` draws (the target by its \
-                 distance to the trimmed mesh)",
-                path.display()
-            );
-        }
-        let (scene, _) = load(path, args.gauss, args.smooth, &generate_options)?;
-        let (panel, what) = deviation_panel(scene, target)?;
+        let (scene, _, trimmed) = load(path, args.gauss, args.smooth, &generate_options)?;
+        let (panel, what) = deviation_panel(scene, target, trimmed.as_ref())?;
         let what = format!("`{}` coloured by {what}", path.display());
         (sheet(&[panel], 1, &options, format)?, what)
     } else if let [path] = args.designs.as_slice() {
-        let (scene, _) = load(path, args.gauss, args.smooth, &generate_options)?;
+        let (scene, _, _) = load(path, args.gauss, args.smooth, &generate_options)?;
         let bytes = match format {
             Picture::Png => render_png(&scene, &options)?,
             Picture::Svg => render_svg(&scene, &options)?.into_bytes(),
@@ -188,7 +184,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
             .designs
             .iter()
             .map(|path| {
-                let (scene, what) = load(path, args.gauss, args.smooth, &generate_options)?;
+                let (scene, what, _) = load(path, args.gauss, args.smooth, &generate_options)?;
                 let stem = path.file_stem().unwrap_or_default().to_string_lossy();
                 Ok(Panel {
                     scene: Some(scene),
@@ -208,8 +204,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
-/// The scene of the design at `path` (with its Gauss map if `gauss`), and a
-/// few words on it for a caption (`θ = 30°`, or `developable`).
+/// The scene of the design at `path` (with its Gauss map if `gauss`), a few words on
+/// it for a caption (`θ = 30°`, or `developable`), and of a trimmed design its mesh
+/// trimmed (the scene draws the mesh before trimming, the cut on it).
 ///
 /// A developable design (§3.3) is drawn with its helix in red and its first
 /// curvature line in a cutting plane (column 0) in blue.
@@ -218,13 +215,13 @@ fn load(
     gauss: bool,
     smooth: Option<u32>,
     options: &GenerateOptions,
-) -> anyhow::Result<(Scene, String)> {
+) -> anyhow::Result<(Scene, String, Option<TrimmedMesh>)> {
     let context = || path.display().to_string();
     match read_any_design(path)? {
         AnyDesign::Surface(design) => {
             let g = generate(&design, options).with_context(context)?;
             let what = format!("θ = {}°", num(g.info.theta_deg));
-            Ok((scene(&g, design.mesh, gauss, smooth, path)?, what))
+            Ok((scene(&g, design.mesh, gauss, smooth, path)?, what, None))
         }
         AnyDesign::Developable(d) => {
             let mesh = developable(&d.developable, options).with_context(context)?;
@@ -236,7 +233,7 @@ fn load(
                 vertex_colors: None,
                 dots: Vec::new(),
             };
-            Ok((scene, "developable".to_owned()))
+            Ok((scene, "developable".to_owned(), None))
         }
         AnyDesign::Trimmed(t) => {
             if smooth.is_some() {
@@ -256,26 +253,45 @@ fn load(
                 trimmed.faces.len(),
                 trimmed.cut.iter().filter(|c| **c).count()
             );
-            Ok((scene, what))
+            Ok((scene, what, Some(trimmed)))
         }
     }
 }
 
 /// `scene` with its mesh coloured by the distance of each vertex to the target at
 /// `path` ([`TargetCloud::distances`]), captioned with the colour scale and the
-/// deviation both ways; and a few words on it.
-fn deviation_panel(scene: Scene, path: &Path) -> anyhow::Result<(Panel, String)> {
+/// deviation both ways (of a trimmed design, its mesh `trimmed`'s,
+/// [`trimmed_distance_panel`]); and a few words on it.
+fn deviation_panel(
+    scene: Scene,
+    path: &Path,
+    trimmed: Option<&TrimmedMesh>,
+) -> anyhow::Result<(Panel, String)> {
     let points = read_points(path)?;
     let target =
         TargetCloud::new(&points).with_context(|| format!("target `{}`", path.display()))?;
     let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let (panel, scale, d) = distance_panel(scene, &target, &format!("distance to {name}"), None);
-    let what = format!(
-        "its distance to `{}` (95th percentile {}, largest {})",
-        path.display(),
-        num(scale),
-        num(d.mesh_to_target_max * d.size)
-    );
+    let title = format!("distance to {name}");
+    let (panel, figures) = match trimmed {
+        // Dark red from the trimmed mesh's largest distance: the overhang, cut away, is
+        // farther, and a percentile of the whole grid's would leave what is built white.
+        Some(mesh) => {
+            let d = mesh.deviation(&target);
+            let largest = d.mesh_to_target_max.max(d.target_to_mesh_max) * d.size;
+            let scale = largest.max(1e-6 * d.size);
+            let (panel, _) = trimmed_distance_panel(scene, &target, &title, Some(scale), &d);
+            (panel, format!("trimmed, largest {}", num(largest)))
+        }
+        None => {
+            let (panel, scale, d) = distance_panel(scene, &target, &title, None);
+            let largest = d.mesh_to_target_max * d.size;
+            (
+                panel,
+                format!("95th percentile {}, largest {}", num(scale), num(largest)),
+            )
+        }
+    };
+    let what = format!("its distance to `{}` ({figures})", path.display());
     Ok((panel, what))
 }
 

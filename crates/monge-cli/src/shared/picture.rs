@@ -88,6 +88,29 @@ pub fn distance_panel(
     )
 }
 
+/// [`distance_panel`] of a trimmed mesh: `scene`, the mesh before trimming with the cut
+/// drawn on it ([`cut_highlights`]), coloured by its vertices' distances to `target`;
+/// captioned `title, trimmed along the black line` with the figures of `trimmed`, the
+/// deviation of the mesh trimmed (what is built).
+pub fn trimmed_distance_panel(
+    scene: Scene,
+    target: &TargetCloud,
+    title: &str,
+    scale: Option<f64>,
+    trimmed: &Deviation,
+) -> (Panel, f64) {
+    let title = format!("{title}, trimmed along the black line");
+    let (mut panel, scale, _) = distance_panel(scene, target, &title, scale);
+    panel.caption = deviation_caption(
+        &format!(
+            "{title}\nwhite 0, dark red from {}; figures trimmed",
+            num(scale)
+        ),
+        trimmed,
+    );
+    (panel, scale)
+}
+
 /// A panel's caption: `head`, then the deviation `d` both ways in model units, in the
 /// caption font's characters (capitals, digits, some punctuation).
 pub fn deviation_caption(head: &str, d: &Deviation) -> String {

@@ -96,6 +96,32 @@ impl TrimmedMesh {
         out
     }
 
+    /// Its distances both ways to `target`, relative to the target's size: from every
+    /// vertex (its cuts too) to the target, from every target point to its faces, as a
+    /// trimmed fit is measured.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::{TargetCloud, TrimmedMesh};
+    /// // A unit square 0.1 above a target on the plane z = 0 over the same square.
+    /// let v = |x: f64, y: f64| DVec3::new(x, y, 0.1);
+    /// let mesh = TrimmedMesh {
+    ///     vertices: vec![v(0., 0.), v(1., 0.), v(1., 1.), v(0., 1.)],
+    ///     faces: vec![vec![0, 1, 2, 3]],
+    ///     from: vec![(0, 0)],
+    ///     cut: vec![false],
+    /// };
+    /// let points: Vec<DVec3> = (0..121)
+    ///     .map(|k| DVec3::new((k / 11) as f64 / 10.0, (k % 11) as f64 / 10.0, 0.0))
+    ///     .collect();
+    /// let target = TargetCloud::new(&points).unwrap();
+    /// let d = mesh.deviation(&target);
+    /// assert!((d.target_to_mesh_max * d.size - 0.1).abs() < 1e-12);
+    /// ```
+    pub fn deviation(&self, target: &TargetCloud) -> Deviation {
+        trimmed_deviation(target, self, 1)
+    }
+
     /// Its edges, each a closed polyline (the first point again at the end): the loops of
     /// the edges in one face only, each run as the faces run (the outline's cuts, and
     /// the grid's sides where it stops short of the outline).
