@@ -281,8 +281,14 @@ fn approximate_writes_a_trimmed_mesh_in_the_format_of_its_extension() {
             .join("\n")
     };
     assert_eq!(body("fit.ply"), body("again.ply"));
-    // An extension that is not a mesh format's is refused before the fit, nothing written.
+    // Standard output, which carries the report, and an extension that is not a mesh
+    // format's are refused before the fit, nothing written.
     std::fs::remove_file(path("fit.json")).unwrap();
+    refuses(
+        &mut fit(Path::new("-")),
+        &["--trim writes the trimmed mesh to a file"],
+        &[&path("fit.json")],
+    );
     refuses(
         &mut fit(&path("fit.stl")),
         &["--trim", "`.stl`", "`.obj`, `.ply`, `.json` or `.glb`"],

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use monge_core::approximate::{
     approximate, approximate_patches, approximate_to_tolerance, deadline_after, fit_report,
@@ -18,8 +18,8 @@ use monge_core::measure::{conical_error, measure};
 use monge_core::multipatch::{build, MultiPatch, MultiPatchDesign};
 use monge_core::{generate, Design, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{
-    check_output, read_points, write_design_into, write_multipatch_into, write_trimmed_into,
-    write_trimmed_mesh_to, MeshFormat, Outputs, Trimmable, TrimmedDesign,
+    check_output, is_stdio, read_points, write_design_into, write_multipatch_into,
+    write_trimmed_into, write_trimmed_mesh_to, MeshFormat, Outputs, Trimmable, TrimmedDesign,
 };
 use monge_render::{heat, Dot, Highlight, Panel, RenderOptions, Rgb, Scene};
 
@@ -543,6 +543,12 @@ fn trimmed_path(args: &ApproximateArgs) -> PathBuf {
 /// [`trimmed_path`] and the mesh format of its extension (an error naming `--trim`).
 fn trimmed_output(args: &ApproximateArgs) -> anyhow::Result<(PathBuf, MeshFormat)> {
     let path = trimmed_path(args);
+    if is_stdio(&path) {
+        bail!(
+            "--trim writes the trimmed mesh to a file (standard output carries the report): \
+             give a path ending in `.obj`, `.ply`, `.json` or `.glb`"
+        );
+    }
     let format = MeshFormat::from_path(&path).context("--trim")?;
     Ok((path, format))
 }
