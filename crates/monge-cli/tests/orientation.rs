@@ -101,32 +101,10 @@ fn check_obj(path: &Path) {
 
 /// An ASCII PLY with `x y z nx ny nz` vertices and polygon faces, parsed here.
 fn check_ply(path: &Path) {
-    let text = fs::read_to_string(path).unwrap();
-    let (header, body) = text.split_once("end_header\n").unwrap();
-    let count = |element: &str| -> usize {
-        header
-            .lines()
-            .find_map(|l| l.strip_prefix(&format!("element {element} ")))
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
-    let (nv, nf) = (count("vertex"), count("face"));
+    let (header, lines, faces) = common::ply_ascii(path);
     assert!(header.contains("property double nx"), "{}", path.display());
-    let lines: Vec<Vec<f64>> = body
-        .lines()
-        .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
-        .collect();
-    assert_eq!(lines.len(), nv + nf);
-    let vertices: Vec<V3> = lines[..nv].iter().map(|l| [l[0], l[1], l[2]]).collect();
-    let normals: Vec<V3> = lines[..nv].iter().map(|l| [l[3], l[4], l[5]]).collect();
-    let faces: Vec<Vec<usize>> = lines[nv..]
-        .iter()
-        .map(|l| {
-            assert_eq!(l[0] as usize, l.len() - 1);
-            l[1..].iter().map(|&k| k as usize).collect()
-        })
-        .collect();
+    let vertices: Vec<V3> = lines.iter().map(|l| [l[0], l[1], l[2]]).collect();
+    let normals: Vec<V3> = lines.iter().map(|l| [l[3], l[4], l[5]]).collect();
     assert_oriented(&path.display().to_string(), &vertices, &faces, |f, c| {
         normals[faces[f][c]]
     });

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use serde_json::{json, Value};
 use tempfile::TempDir;
 
-use crate::common::{example, monge, monge_to, obj_faces, refuses};
+use crate::common::{example, monge, monge_to, obj_faces, ply_ascii, refuses};
 
 /// The hexagon of the trimmed design, in plan: centre (8, 5), radius 3.
 const CENTRE: [f64; 2] = [8.0, 5.0];
@@ -130,41 +130,15 @@ fn json_faces(path: &Path) -> Vec<Vec<[f64; 3]>> {
         .collect()
 }
 
-/// The faces of the ASCII PLY mesh at `path`, each its corners' coordinates (read here:
-/// `x y z` vertices, then each face's count and corners).
+/// The faces of the ASCII PLY mesh at `path`, each its corners' coordinates.
 fn ply_faces(path: &Path) -> Vec<Vec<[f64; 3]>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let (header, body) = text.split_once("end_header\n").unwrap();
-    let count = |element: &str| -> usize {
-        header
-            .lines()
-            .find_map(|l| l.strip_prefix(&format!("element {element} ")))
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
-    let mut lines = body.lines();
-    let vertices: Vec<[f64; 3]> = (0..count("vertex"))
-        .map(|_| {
-            let x: Vec<f64> = lines
-                .next()
-                .unwrap()
-                .split(' ')
-                .map(|w| w.parse().unwrap())
-                .collect();
-            [x[0], x[1], x[2]]
-        })
-        .collect();
-    (0..count("face"))
-        .map(|_| {
-            let words: Vec<usize> = lines
-                .next()
-                .unwrap()
-                .split(' ')
-                .map(|w| w.parse().unwrap())
-                .collect();
-            assert_eq!(words[0], words.len() - 1);
-            words[1..].iter().map(|k| vertices[*k]).collect()
+    let (_, vertices, faces) = ply_ascii(path);
+    faces
+        .into_iter()
+        .map(|f| {
+            f.into_iter()
+                .map(|k| [0, 1, 2].map(|c| vertices[k][c]))
+                .collect()
         })
         .collect()
 }

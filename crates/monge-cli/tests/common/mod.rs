@@ -89,6 +89,35 @@ pub fn obj_faces(path: &Path) -> Vec<Vec<[f64; 3]>> {
         .collect()
 }
 
+/// An ASCII PLY, parsed here: its header, each vertex's numbers (`x y z`, then any
+/// others) and each face's corners (its count checked).
+pub fn ply_ascii(path: &Path) -> (String, Vec<Vec<f64>>, Vec<Vec<usize>>) {
+    let text = fs::read_to_string(path).unwrap();
+    let (header, body) = text.split_once("end_header\n").unwrap();
+    let count = |element: &str| -> usize {
+        header
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("element {element} ")))
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let (nv, nf) = (count("vertex"), count("face"));
+    let lines: Vec<Vec<f64>> = body
+        .lines()
+        .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(lines.len(), nv + nf, "{}", path.display());
+    let faces = lines[nv..]
+        .iter()
+        .map(|l| {
+            assert_eq!(l[0] as usize, l.len() - 1);
+            l[1..].iter().map(|&k| k as usize).collect()
+        })
+        .collect();
+    (header.to_owned(), lines[..nv].to_vec(), faces)
+}
+
 /// Area of a planar polygon without crossings: half the length of its vector
 /// area `½ Σ p_k × p_{k+1}` (the shoelace formula in 3D), relative to the first corner.
 pub fn shoelace_area(polygon: &[[f64; 3]]) -> f64 {
