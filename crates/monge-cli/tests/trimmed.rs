@@ -170,12 +170,12 @@ fn a_trimmed_designs_mesh_is_written_in_every_mesh_format_with_the_same_panels()
     assert_eq!(json_faces(&path("cut.json")), obj);
     let glb = std::fs::read(path("cut.glb")).unwrap();
     assert_eq!(&glb[..4], b"glTF");
-    // check measures the PLY meshes, ASCII and binary, as the OBJ.
+    // check measures the PLY meshes, ASCII and binary, and the JSON one as the OBJ.
     monge_to("generate", &design, path("binary.ply"))
         .args(["--format", "ply-binary"])
         .assert()
         .success();
-    for name in ["cut.ply", "binary.ply"] {
+    for name in ["cut.ply", "binary.ply", "cut.json"] {
         let out = monge()
             .arg("check")
             .arg(path(name))

@@ -356,7 +356,7 @@ fn a_trimmed_mesh_that_is_not_one_is_refused_before_anything_is_written() {
 }
 
 #[test]
-fn polygons_are_read_from_obj_and_ply_and_bad_ones_are_refused_where_they_are() {
+fn polygons_are_read_from_obj_ply_and_json_and_bad_ones_are_refused_where_they_are() {
     use monge_io::{read_polygons, write_trimmed_mesh_to, MeshFormat};
     let (_, mesh) = trimmed(surface())
         .mesh(&GenerateOptions::default())
@@ -366,6 +366,7 @@ fn polygons_are_read_from_obj_and_ply_and_bad_ones_are_refused_where_they_are() 
         ("m.obj", MeshFormat::Obj),
         ("m.ply", MeshFormat::Ply),
         ("b.ply", MeshFormat::PlyBinary),
+        ("m.json", MeshFormat::Json),
     ] {
         let path = dir.path().join(name);
         let mut bytes = Vec::new();
@@ -388,9 +389,17 @@ fn polygons_are_read_from_obj_and_ply_and_bad_ones_are_refused_where_they_are() 
     .unwrap();
     let e = read_polygons(&path).unwrap_err().to_string();
     assert!(e.contains("two.ply:13: a face with corners [0, 1]"), "{e}");
-    // JSON is not read as polygons.
-    let path = dir.path().join("m.json");
-    std::fs::write(&path, "{}").unwrap();
+    // A JSON face of two corners, by its index; glTF is not read.
+    let path = dir.path().join("two.json");
+    std::fs::write(
+        &path,
+        r#"{"vertices": [[0,0,0],[1,0,0],[0,1,0]], "faces": [[0,1,2],[2,0]]}"#,
+    )
+    .unwrap();
     let e = read_polygons(&path).unwrap_err().to_string();
-    assert!(e.contains("`.obj` or `.ply`"), "{e}");
+    assert!(e.contains("two.json: faces[1] has corners [2, 0]"), "{e}");
+    let path = dir.path().join("m.glb");
+    std::fs::write(&path, "glTF").unwrap();
+    let e = read_polygons(&path).unwrap_err().to_string();
+    assert!(e.contains("`.obj`, `.ply` or `.json`"), "{e}");
 }

@@ -38,7 +38,7 @@ use crate::shared::Outcome;
          node axes at both ends of every edge are coplanar) and normal length (| |n| − 1 |). \
          A conical mesh (--kind conical; by default the `kind` a JSON mesh names) has the \
          conical condition at every vertex instead of circularity, torsion and normal length. An \
-         OBJ or PLY of polygons that is not a quad grid (a mesh trimmed to an outline, as `monge \
+         OBJ, PLY or JSON (`vertices`, `faces`) of polygons that is not a quad grid (a mesh trimmed to an outline, as `monge \
          generate` writes a trimmed design) is measured for the planarity of its faces only \
          (the distance of a corner from the plane fitted to its face's corners)."
     ),
@@ -87,7 +87,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
             Ok(read) => read,
             // Not a quad grid, but perhaps a mesh of polygons (a trimmed mesh).
             Err(e) => match MeshFormat::from_path(path) {
-                Ok(MeshFormat::Obj | MeshFormat::Ply) => match read_polygons(path) {
+                Ok(MeshFormat::Obj | MeshFormat::Ply | MeshFormat::Json) => match read_polygons(path) {
                     Ok((vertices, faces)) => return run_polygons(args, &e, &vertices, &faces),
                     Err(_) => return Err(e.into()),
                 },
@@ -174,7 +174,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     })
 }
 
-/// `monge check` of an OBJ or PLY mesh of polygons that is not a quad grid (`not_grid` says
+/// `monge check` of an OBJ, PLY or JSON mesh of polygons that is not a quad grid (`not_grid` says
 /// why), such as a grid trimmed to an outline: the planarity of its faces, which is what
 /// trimming keeps (a cut panel is no longer circular).
 fn run_polygons(

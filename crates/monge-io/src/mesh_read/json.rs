@@ -35,6 +35,42 @@ pub(super) fn parse_json(text: &str, file: &str) -> Result<(QuadGrid, Option<Mes
     Ok((grid(file, m.rows, m.cols, vertices, normals)?, kind))
 }
 
+/// A mesh of polygons as JSON (`vertices`, `faces` of 0-based corners, as
+/// [`write_trimmed_mesh_to`](crate::write_trimmed_mesh_to) writes a trimmed mesh; other
+/// keys are read past): each face of three or more of the vertices.
+pub(super) fn parse_polygons_json(
+    text: &str,
+    file: &str,
+) -> Result<(Vec<DVec3>, Vec<Vec<usize>>), IoError> {
+    #[derive(Deserialize)]
+    struct PolygonsJson {
+        vertices: Vec<[f64; 3]>,
+        faces: Vec<Vec<usize>>,
+    }
+    let m: PolygonsJson = parse_as(text, DesignFormat::Json, file)?;
+    let n = m.vertices.len();
+    if let Some(k) = m
+        .faces
+        .iter()
+        .position(|f| f.len() < 3 || f.iter().any(|c| *c >= n))
+    {
+        return Err(IoError::Parse {
+            file: file.to_owned(),
+            line: 0,
+            column: 0,
+            message: format!(
+                "faces[{k}] has corners {:?} (0-based), not three or more of the {n} vertices",
+                m.faces[k]
+            ),
+            snippet: String::new(),
+        });
+    }
+    Ok((
+        m.vertices.into_iter().map(DVec3::from_array).collect(),
+        m.faces,
+    ))
+}
+
 /// The `face_normals` of a conical mesh's JSON file (§2.3, as `monge generate`
 /// writes them), one per face of `grid` (the mesh read from it); `None` for a
 /// file of another format or without the key.

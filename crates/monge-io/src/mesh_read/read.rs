@@ -9,7 +9,7 @@ use glam::DVec3;
 use monge_core::{MeshKind, QuadGrid};
 
 use super::grid::Keep;
-use super::json::parse_json;
+use super::json::{parse_json, parse_polygons_json};
 use super::lines::read_failed;
 use super::obj::parse_obj;
 use super::ply::parse_ply;
@@ -80,9 +80,10 @@ pub(crate) fn read_vertices(path: &Path, format: MeshFormat) -> Result<Vec<DVec3
     Ok(raw.vertices)
 }
 
-/// The vertices and polygons of an OBJ or PLY file (by its extension) of faces of any
-/// number of corners (0-based corners), as [`crate::write_trimmed_mesh_to`] writes a
-/// trimmed mesh; other formats are refused ([`IoError::UnknownExtension`]).
+/// The vertices and polygons of an OBJ, PLY or JSON file (by its extension; JSON with
+/// `vertices` and `faces`) of faces of any number of corners (0-based corners), as
+/// [`crate::write_trimmed_mesh_to`] writes a trimmed mesh; glTF is refused
+/// ([`IoError::UnknownExtension`]).
 ///
 /// ```
 /// # use glam::DVec3;
@@ -106,9 +107,15 @@ pub fn read_polygons(path: &Path) -> Result<(Vec<DVec3>, Vec<Vec<usize>>), IoErr
         MeshFormat::Ply | MeshFormat::PlyBinary | MeshFormat::PlyF32 => {
             parse_ply(reader, &file, size, Keep::Polygons)?
         }
-        MeshFormat::Json | MeshFormat::Glb => {
-            return Err(unknown_extension(path, "`.obj` or `.ply`"))
+        MeshFormat::Json => {
+            let mut text = String::new();
+            let mut reader = reader;
+            reader
+                .read_to_string(&mut text)
+                .map_err(|source| read_error(path, source))?;
+            return parse_polygons_json(&text, &file);
         }
+        MeshFormat::Glb => return Err(unknown_extension(path, "`.obj`, `.ply` or `.json`")),
     };
     Ok((raw.vertices, raw.polygons))
 }
