@@ -87,3 +87,15 @@ def torus_patch_brep():
     axis = rhino3dm.Line(rhino3dm.Point3d(0, 0, 0), rhino3dm.Point3d(0, 0, 1))
     surface = rhino3dm.RevSurface.Create(arc.ToNurbsCurve(), axis, 0.0, 1.2)
     return rhino3dm.Brep.CreateFromRevSurface(surface, False, False)
+
+
+@pytest.fixture(scope="session")
+def trimmed_result():
+    """`monge.approximate`'s result for the shipped paraboloid's vertices, trimmed to
+    its outline (trim=True; a quick search on an 8 × 8 grid)."""
+    import monge
+
+    points = np.array(
+        [[float(x) for x in line.split()[1:4]] for line in open(example("targets/paraboloid.obj")) if line.startswith("v ")]
+    )
+    return monge.approximate(points, grid=(8, 8), starts=1, max_evaluations=60, trim=True)

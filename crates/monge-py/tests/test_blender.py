@@ -72,3 +72,20 @@ def test_the_example_script_saves_a_blend_file(tmp_path):
     mesh = monge.generate(monge.Design.from_file(DUPIN))
     v = vectors(objects["monge"].data.vertices, "co", mesh.rows * mesh.cols)
     assert np.abs(v - mesh.vertices.reshape(-1, 3)).max() <= FLOAT32 * mnp.scale(mesh.vertices)
+
+
+def test_a_trimmed_result_in_blender(trimmed_result):
+    """add_mesh(mesh, trimmed=…): the panels of a mesh trimmed to a target's outline, as
+    Blender polygons with the face attribute `cut`; no Gauss map of its own."""
+    mesh, t = trimmed_result["mesh"], trimmed_result["trimmed"]
+    obj = monge.blender.add_mesh(mesh, name="trimmed", trimmed=t)
+    data = obj.data
+    n = len(t["vertices"])
+    assert len(data.vertices) == n and len(data.polygons) == len(t["faces"])
+    assert [list(p.vertices) for p in data.polygons] == [list(f) for f in t["faces"]]
+    v = np.asarray(t["vertices"])
+    assert np.abs(vectors(data.vertices, "co", n) - v).max() <= FLOAT32 * mnp.scale(v)
+    cut = [bool(x.value) for x in data.attributes["cut"].data]
+    assert cut == [bool(c) for c in t["cut"]] and 0 < sum(cut) < len(cut)
+    with pytest.raises(monge.MeshError, match="no Gauss map of its own"):
+        monge.blender.add_mesh(mesh, gauss=True, trimmed=t)

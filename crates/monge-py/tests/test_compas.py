@@ -74,3 +74,20 @@ def test_errors():
         plain.vertex_attributes(key, ["i", "j"], [0, 0])
     with pytest.raises(monge.MeshError, match="do not cover the grid"):
         monge.compas.from_mesh(plain)
+
+
+def test_a_trimmed_result_is_its_planar_panels(trimmed_result):
+    """to_mesh(mesh, trimmed=…): the panels of a mesh trimmed to a target's outline, each
+    a COMPAS face as the polygon it is, flat by COMPAS's own measure, with its cut."""
+    t = trimmed_result["trimmed"]
+    c = monge.compas.to_mesh(trimmed_result["mesh"], trimmed=t)
+    assert c.number_of_vertices() == len(t["vertices"]) and c.number_of_faces() == len(t["faces"])
+    assert c.attributes["trimmed"] is True
+    v = np.asarray(t["vertices"])
+    for key, face, cut, (i, j) in zip(c.faces(), t["faces"], t["cut"], t["from"]):
+        assert c.face_vertices(key) == list(face)
+        assert c.face_attributes(key, ["cut", "i", "j"]) == [cut, i, j]
+        assert compas.geometry.is_coplanar(c.face_coordinates(key), tol=1e-9)
+        assert np.array_equal(np.array(c.face_coordinates(key)), v[face])
+    assert 0 < sum(c.face_attribute(key, "cut") for key in c.faces()) < c.number_of_faces()
+    assert max(len(c.face_vertices(key)) for key in c.faces()) > 4

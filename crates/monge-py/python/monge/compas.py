@@ -7,7 +7,11 @@ circular mesh, ``normal`` and ``node_axis`` (the same unit node axis, §2.2);
 for a conical mesh each face has ``normal`` (its unit face normal, §2.3). The
 mesh attributes say ``rows``, ``cols``, ``kind``, ``theta_deg`` and
 ``offset_distance``. ``from_mesh`` reads such a mesh back as numpy arrays
-(rows, cols, 3) that ``monge.check`` measures: ``monge.check(*from_mesh(c))``. Only data is converted here.
+(rows, cols, 3) that ``monge.check`` measures: ``monge.check(*from_mesh(c))``.
+``to_mesh(mesh, trimmed=t)`` gives instead the mesh trimmed to a target's outline
+(``monge.approximate``'s ``trimmed``): its planar panels as COMPAS faces of 3 to 8
+corners, each with the attributes ``cut`` (whether the outline cut it) and ``i``,
+``j`` (the grid face it was cut from). Only data is converted here.
 """
 
 import numpy as np
@@ -20,10 +24,14 @@ except ImportError as _missing:  # pragma: no cover - depends on the environment
 from ._monge import Mesh, MeshError
 
 
-def to_mesh(mesh):
-    """A ``compas.datastructures.Mesh`` of a ``monge.Mesh`` (quad faces, node axes)."""
+def to_mesh(mesh, trimmed=None):
+    """A ``compas.datastructures.Mesh`` of a ``monge.Mesh`` (quad faces, node axes);
+    with ``trimmed`` (``monge.approximate``'s ``trimmed``: ``mesh`` trimmed to a
+    target's outline), of the trimmed panels (polygons, no node axes)."""
     if not isinstance(mesh, Mesh):
         raise MeshError(f"to_mesh needs a monge.Mesh, got {type(mesh).__name__}")
+    if trimmed is not None:
+        return _trimmed_mesh(mesh, trimmed)
     c = CompasMesh.from_vertices_and_faces(mesh.vertices.reshape(-1, 3).tolist(), mesh.faces.tolist())
     c.attributes.update(
         rows=mesh.rows,
@@ -41,6 +49,16 @@ def to_mesh(mesh):
     if mesh.face_normals is not None:
         for key, n in zip(c.faces(), mesh.face_normals.reshape(-1, 3).tolist()):
             c.face_attribute(key, "normal", n)
+    return c
+
+
+def _trimmed_mesh(mesh, trimmed):
+    """The panels of ``trimmed`` as a COMPAS mesh (see ``to_mesh``)."""
+    vertices = np.asarray(trimmed["vertices"], dtype=float).tolist()
+    c = CompasMesh.from_vertices_and_faces(vertices, [list(f) for f in trimmed["faces"]])
+    c.attributes.update(kind=mesh.kind, theta_deg=mesh.theta_deg, trimmed=True)
+    for key, cut, (i, j) in zip(c.faces(), trimmed["cut"], trimmed["from"]):
+        c.face_attributes(key, ["cut", "i", "j"], [bool(cut), i, j])
     return c
 
 
