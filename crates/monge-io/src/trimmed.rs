@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use monge_core::approximate::{trim, Outline, TrimmedMesh};
+use monge_core::approximate::{trim, FitDesign, Outline, TrimmedMesh};
 use monge_core::design::Design;
 use monge_core::multipatch::{build, MultiPatchDesign, MultiPatchError};
 use monge_core::{generate, GenerateError, GenerateOptions, QuadGrid};
@@ -64,6 +64,39 @@ pub enum Trimmable {
     Surface(Box<Design>),
     /// Several patches (§4.7): a design file's `design` with the key `patches`.
     Patches(MultiPatchDesign),
+}
+
+impl Trimmable {
+    /// The design of a fit's result before any trimming: what a trimmed design file holds
+    /// as its `design` (one patch, or several, §4.7).
+    ///
+    /// ```
+    /// use monge_core::approximate::FitDesign;
+    /// use monge_core::multipatch::MultiPatchDesign;
+    /// use monge_io::Trimmable;
+    /// let patches = MultiPatchDesign { patches: vec![], tolerance: None, fit: None, symmetry: vec![] };
+    /// let fit = FitDesign::TrimmedPatches(patches.clone(), Default::default());
+    /// assert_eq!(Trimmable::of_fit(&fit), Trimmable::Patches(patches));
+    /// ```
+    pub fn of_fit(fit: &FitDesign) -> Trimmable {
+        match fit {
+            FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
+                Trimmable::Surface(Box::new(d.clone()))
+            }
+            FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => {
+                Trimmable::Patches(d.clone())
+            }
+        }
+    }
+
+    /// The fit's result this design is, its mesh trimmed being `mesh`
+    /// ([`TrimmedDesign::mesh`]): the inverse of [`Trimmable::of_fit`] for a trimmed fit.
+    pub fn into_fit(self, mesh: TrimmedMesh) -> FitDesign {
+        match self {
+            Trimmable::Surface(d) => FitDesign::Trimmed(*d, mesh),
+            Trimmable::Patches(d) => FitDesign::TrimmedPatches(d, mesh),
+        }
+    }
 }
 
 /// A trimmed design as its file has it (read with `O` an [`Outline`], written with

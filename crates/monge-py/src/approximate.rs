@@ -246,15 +246,10 @@ pub fn approximate<'py>(
     if design.trimmed().is_some() {
         let cloud = TargetCloud::new(&points).map_err(|e| error(&e))?;
         let trim = Outline::of(&cloud).map_err(|e| error(&e))?;
-        let design = match &design {
-            FitDesign::Single(inner) | FitDesign::Trimmed(inner, _) => {
-                Trimmable::Surface(Box::new(inner.clone()))
-            }
-            FitDesign::Patches(inner) | FitDesign::TrimmedPatches(inner, _) => {
-                Trimmable::Patches(inner.clone())
-            }
+        let inner = monge_io::TrimmedDesign {
+            design: Trimmable::of_fit(&design),
+            trim,
         };
-        let inner = monge_io::TrimmedDesign { design, trim };
         d.set_item("design", Bound::new(py, TrimmedDesign { inner })?)?;
     }
     match &fit {

@@ -623,14 +623,10 @@ fn finish_tolerance(
         .with_context(|| file.clone())?;
     let mut out = Outputs::new();
     let (trimmed_path, trimmed_format) = trimmed_output(args)?;
-    let (design, boundaries) = match &fit.design {
-        FitDesign::Single(d) | FitDesign::Trimmed(d, _) => {
-            (Trimmable::Surface(Box::new(d.clone())), Vec::new())
-        }
-        FitDesign::Patches(d) | FitDesign::TrimmedPatches(d, _) => (
-            Trimmable::Patches(d.clone()),
-            patch_boundaries(&build(d, &GenerateOptions::default())?),
-        ),
+    let design = Trimmable::of_fit(&fit.design);
+    let boundaries = match &design {
+        Trimmable::Surface(_) => Vec::new(),
+        Trimmable::Patches(d) => patch_boundaries(&build(d, &GenerateOptions::default())?),
     };
     let outline_of = fit.design.trimmed().and(Some(&target));
     write_result_into(args, design, outline_of, &mut out)?;

@@ -9,7 +9,7 @@ use glam::DVec3;
 use monge_core::approximate::{fit_report, FitDesign, TargetCloud};
 use monge_core::fabrication::DESIGN_ANGLE_TOL_DEG;
 use monge_core::{generate, Design, GenerateOptions, GuideSpec};
-use monge_io::{read_any_design, read_multipatch, read_points, AnyDesign, Trimmable};
+use monge_io::{read_any_design, read_multipatch, read_points, AnyDesign};
 
 use crate::shared::help::EXIT;
 use crate::shared::output::print;
@@ -259,10 +259,7 @@ fn run_free_form(
         Ok(AnyDesign::Surface(d)) => FitDesign::Single(*d),
         Ok(AnyDesign::Trimmed(t)) => {
             let (_, mesh) = t.mesh(&GenerateOptions::default()).with_context(context)?;
-            match t.design {
-                Trimmable::Surface(d) => FitDesign::Trimmed(*d, mesh),
-                Trimmable::Patches(d) => FitDesign::TrimmedPatches(d, mesh),
-            }
+            t.design.into_fit(mesh)
         }
         _ => FitDesign::Patches(read_multipatch(&design)?),
     };
