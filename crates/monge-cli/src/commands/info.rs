@@ -95,7 +95,7 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<Outcome> {
         (false, None) => report.text(),
         (false, Some(trim)) => format!(
             "{}trimmed to an outline of {} corners enclosing {} square model units: {} panels, \
-             {} of them cut (`monge generate` writes them as OBJ polygons)\n",
+             {} of them cut (`monge generate` writes them)\n",
             report.text(),
             trim["corners"],
             num(trim["area"].as_f64().unwrap_or(f64::NAN)),
