@@ -15,7 +15,8 @@ use serde::{Serialize, Serializer};
 /// ```
 /// use monge_core::cyclidic::{CyclidicNet, CyclidicOptions};
 /// use monge_core::{generate, Design, GenerateOptions};
-/// let design: Design = serde_json::from_str(include_str!("../../../examples/fig13-freeform.json")).unwrap();
+/// let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/fig13-freeform.json");
+/// let design: Design = serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
 /// let grid = generate(&design, &GenerateOptions::default()).unwrap().grid;
 /// let net = CyclidicNet::from_normals(&grid, &CyclidicOptions::default()).unwrap();
 /// let mut out = Vec::new();
