@@ -137,7 +137,7 @@ fn a_file_size_limit_is_a_clear_error_and_leaves_no_file() {
     assert_eq!(output.status.code(), Some(2), "{stderr}");
     let expected = format!(
         "cannot write `{}`: the file system refused to write more: File too large (os error 27); \
-         free some space (or raise the quota or the file-size limit, `ulimit -f`) or choose another -o",
+         free some space (or raise the quota or the file-size limit, `ulimit -f`) or choose another output path",
         out.display()
     );
     assert!(stderr.contains(&expected), "{stderr}");

@@ -89,7 +89,7 @@ fn every_command_refuses_a_missing_output_directory_plainly() {
         let path = out.replace("OUT", "missing/x");
         let expected = format!(
             "error: cannot write `{path}`: the directory `missing` does not exist (create it \
-             first, or choose another -o)\n"
+             first, or choose another output path)\n"
         );
         let stderr = refuses(
             &mut with_output(dir.path(), &args, "missing/x"),
@@ -124,7 +124,7 @@ fn every_command_refuses_to_write_over_its_input() {
             stderr,
             format!(
                 "error: `./input.{ext}` is an input of this command and cannot also be its \
-                 output: choose another -o (monge never writes over its input)\n"
+                 output: choose another output path (monge never writes over its input)\n"
             ),
             "{name}"
         );

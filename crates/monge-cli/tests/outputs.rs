@@ -125,3 +125,25 @@ fn scan_writes_its_table_and_plot_together() {
     refuses(&mut scan("k.csv", "k.csv"), &["written twice"], &[]);
     assert_eq!(snapshot(d), before);
 }
+
+#[test]
+fn approximate_never_writes_its_trimmed_mesh_over_its_target() {
+    // The trimmed mesh is an output as -o is: the message names no option.
+    let dir = TempDir::new().unwrap();
+    let target = dir.path().join("roof.obj");
+    fs::copy(example("targets/paraboloid.obj"), &target).unwrap();
+    let before = snapshot(dir.path());
+    let stderr = refuses(
+        monge()
+            .arg("approximate")
+            .arg(&target)
+            .arg("-o")
+            .arg(dir.path().join("fit.json"))
+            .arg("--trim")
+            .arg(&target),
+        &["is an input of this command", "choose another output path"],
+        &[],
+    );
+    assert!(!stderr.contains("-o"), "{stderr}");
+    assert_eq!(snapshot(dir.path()), before);
+}

@@ -42,7 +42,7 @@ pub enum IoError {
     /// (`ulimit -f`, `EFBIG`); an existing file at the path is left as it was.
     #[error(
         "cannot write `{}`: the file system refused to write more: {source}; free some space \
-         (or raise the quota or the file-size limit, `ulimit -f`) or choose another -o \
+         (or raise the quota or the file-size limit, `ulimit -f`) or choose another output path \
          (nothing was written: an existing `{}` is left as it was)",
         path.display(),
         path.display()
@@ -73,7 +73,7 @@ pub enum IoError {
 
     /// The directory of an output file does not exist.
     #[error(
-        "cannot write `{}`: the directory `{}` does not exist (create it first, or choose another -o)",
+        "cannot write `{}`: the directory `{}` does not exist (create it first, or choose another output path)",
         path.display(),
         dir.display()
     )]
@@ -98,7 +98,7 @@ pub enum IoError {
 
     /// An output path is one of the command's input files.
     #[error(
-        "`{}` is an input of this command and cannot also be its output: choose another -o \
+        "`{}` is an input of this command and cannot also be its output: choose another output path \
          (monge never writes over its input)",
         path.display()
     )]

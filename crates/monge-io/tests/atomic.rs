@@ -89,7 +89,7 @@ fn failing_closure_leaves_an_existing_file_untouched() {
 fn missing_directory_is_said_plainly() {
     let path = Path::new("/nonexistent-monge-dir/out.ply");
     let expected = "cannot write `/nonexistent-monge-dir/out.ply`: the directory \
-                    `/nonexistent-monge-dir` does not exist (create it first, or choose another -o)";
+                    `/nonexistent-monge-dir` does not exist (create it first, or choose another output path)";
     let err = write_atomic(path, |w| w.write_all(b"x")).unwrap_err();
     assert!(matches!(err, IoError::NoDirectory { .. }), "{err:?}");
     assert_eq!(err.to_string(), expected);
@@ -111,7 +111,10 @@ fn an_output_that_is_an_input_is_refused_however_it_is_spelled() {
     ] {
         let err = check_output(&same, &[Path::new("-"), &input]).unwrap_err();
         assert!(matches!(err, IoError::OutputIsInput { .. }), "{err:?}");
-        assert!(err.to_string().contains("choose another -o"), "{err}");
+        assert!(
+            err.to_string().contains("choose another output path"),
+            "{err}"
+        );
     }
     #[cfg(unix)]
     {

@@ -172,7 +172,7 @@ pub fn text(context: Option<&str>, message: impl std::fmt::Display) -> String {
 pub fn io_error(e: IoError) -> PyErr {
     let message = e.to_string();
     match e {
-        // The command's message says "choose another -o".
+        // In Python's words: how to make the folder.
         IoError::NoDirectory { path, dir } => FileError::new_err(format!(
             "cannot write `{}`: the folder `{}` does not exist: create it first (e.g. \
              os.makedirs), or give a path in a folder that exists",
