@@ -11,10 +11,10 @@
 # New inputs go to fuzz/target/corpus/TARGET (not committed); crashes to
 # fuzz/artifacts/TARGET/. FUZZ_PROFILE=quick builds with less optimisation (for
 # short runs; see Cargo.toml). Targets: design_json design_toml mesh_obj mesh_ply
-# mesh_json iges.
+# mesh_json iges points.
 set -euo pipefail
 cd "$(dirname "$0")"
-TARGETS="design_json design_toml mesh_obj mesh_ply mesh_json iges"
+TARGETS="design_json design_toml mesh_obj mesh_ply mesh_json iges points"
 TRIPLE="$(rustc -vV | sed -n 's/^host: //p')"
 PROFILE="${FUZZ_PROFILE:-release}"
 # Per-input limits: 64 KB inputs, 1 s, 512 MB in one allocation, 2 GB RSS.

@@ -15,7 +15,8 @@ use monge_core::symmetry::{assemble, isometries};
 use monge_core::{generate, GenerateOptions, MeshKind, QuadGrid};
 use monge_io::{
     parse_any_design, parse_multipatch, parse_planes, read_iges_surfaces, read_mesh_from,
-    write_trimmed_mesh_to, AnyDesign, DesignFormat, FileKind, MeshFormat,
+    read_stl_points, read_text_points, write_trimmed_mesh_to, AnyDesign, DesignFormat, FileKind,
+    MeshFormat,
 };
 
 /// The grid limit the targets generate with (the documented
@@ -136,6 +137,19 @@ pub fn iges(data: &[u8]) {
                 numbers.copied().all(f64::is_finite),
                 "IGES: non-finite knot or weight"
             );
+        }
+    }
+}
+
+/// A target's points read as an STL (ASCII or binary) and as a text file of points:
+/// every point finite.
+pub fn points(data: &[u8]) {
+    if let Ok(points) = read_stl_points(data, "fuzz.stl") {
+        assert_finite("STL points", &points);
+    }
+    if let Ok(text) = std::str::from_utf8(data) {
+        if let Ok(points) = read_text_points(text, "fuzz.xyz") {
+            assert_finite("text points", &points);
         }
     }
 }

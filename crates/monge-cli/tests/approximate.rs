@@ -225,6 +225,59 @@ fn approximate_reads_an_iges_surface_as_target() {
     generate_and_check(&design, &dir.path().join("fit.obj"));
 }
 
+#[test]
+fn approximate_reads_a_scans_points_and_an_stl_as_the_mesh_they_hold() {
+    // The shipped paraboloid target (41 × 41 points, no faces) as a scan's text export and
+    // as a binary STL of its grid's triangles, written here byte by byte.
+    let dir = TempDir::new().unwrap();
+    let obj = examples().join("targets/paraboloid.obj");
+    let points = obj_points(&obj);
+    let xyz = dir.path().join("roof.xyz");
+    let text: String = points
+        .iter()
+        .map(|[x, y, z]| format!("{x},{y},{z},0.5\n"))
+        .collect();
+    fs::write(&xyz, format!("x,y,z,intensity\n{text}")).unwrap();
+    let n: usize = 41;
+    let mut stl = vec![b' '; 80];
+    stl.extend(u32::try_from(2 * (n - 1) * (n - 1)).unwrap().to_le_bytes());
+    let corner = |a: usize, b: usize| points[a * n + b];
+    for i in 0..n - 1 {
+        for j in 0..n - 1 {
+            for t in [
+                [corner(i, j), corner(i, j + 1), corner(i + 1, j + 1)],
+                [corner(i, j), corner(i + 1, j + 1), corner(i + 1, j)],
+            ] {
+                stl.extend([0.0f32; 3].iter().flat_map(|c| c.to_le_bytes()));
+                stl.extend(t.iter().flatten().flat_map(|c| (*c as f32).to_le_bytes()));
+                stl.extend([0u8; 2]);
+            }
+        }
+    }
+    let stl_path = dir.path().join("roof.stl");
+    fs::write(&stl_path, stl).unwrap();
+    let fit = |target: &std::path::Path, name: &str| {
+        let design = dir.path().join(name);
+        monge()
+            .arg("approximate")
+            .arg(target)
+            .arg("-o")
+            .arg(&design)
+            .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+            .assert()
+            .success()
+            .stdout(predicate::str::contains("target: 1681 points"));
+        design
+    };
+    // The scan's points are the OBJ's: the same design, byte for byte.
+    let from_obj = fit(&obj, "obj.json");
+    let from_xyz = fit(&xyz, "xyz.json");
+    assert_eq!(fs::read(&from_obj).unwrap(), fs::read(&from_xyz).unwrap());
+    // The STL's distinct corners are the grid's points (in single precision).
+    let from_stl = fit(&stl_path, "stl.json");
+    generate_and_check(&from_stl, &dir.path().join("stl.obj"));
+}
+
 /// The points of an OBJ file's `v` lines, read by hand.
 fn obj_points(path: &std::path::Path) -> Vec<[f64; 3]> {
     fs::read_to_string(path)

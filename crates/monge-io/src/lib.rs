@@ -46,6 +46,7 @@ mod polygons;
 mod read;
 mod scan;
 mod schedule;
+mod stl;
 mod svg;
 mod text;
 mod trimmed;
@@ -75,12 +76,13 @@ pub use multipatch::{
     write_multipatch_into, write_quad_mesh, write_quad_mesh_to,
 };
 pub use net::{conical_has_no_net, write_net_json};
-pub use points_read::{read_points, surface_parameters, IGES_TARGET_POINTS};
+pub use points_read::{read_points, read_text_points, surface_parameters, IGES_TARGET_POINTS};
 pub use polygons::{write_polygons_obj, write_trimmed_mesh_to, MAX_CORNERS};
 pub use scan::{write_scan_csv, write_scan_svg, SCAN_CSV_HEADER};
 pub use schedule::{
     beam_label, panel_label, write_beams_csv, write_nodes_csv, write_panels_csv,
     write_schedule_json, write_segments_csv, ScheduleJson,
 };
+pub use stl::read_stl_points;
 pub use svg::write_overview_svg;
 pub use trimmed::{write_trimmed, write_trimmed_into, Trimmable, TrimmedDesign, TrimmedMeshError};

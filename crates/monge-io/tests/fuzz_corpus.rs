@@ -16,13 +16,14 @@ use monge_io::{DesignFormat, MeshFormat};
 type Target = (&'static str, fn(&[u8]));
 
 /// Every fuzz target.
-const TARGETS: [Target; 6] = [
+const TARGETS: [Target; 7] = [
     ("design_json", |d| properties::design(d, DesignFormat::Json)),
     ("design_toml", |d| properties::design(d, DesignFormat::Toml)),
     ("mesh_obj", |d| properties::mesh(d, MeshFormat::Obj)),
     ("mesh_ply", |d| properties::mesh(d, MeshFormat::Ply)),
     ("mesh_json", |d| properties::mesh(d, MeshFormat::Json)),
     ("iges", properties::iges),
+    ("points", properties::points),
 ];
 
 fn fuzz_dir() -> PathBuf {

@@ -29,7 +29,8 @@ use crate::trimmed::{trimmed_dict, TrimmedDesign};
 /// cloud); a Rhino mesh, point cloud, surface or Brep (RhinoCommon inside Rhino
 /// 8, or rhino3dm), a surface or Brep sampled at about 4000 points on a grid of
 /// its parameters as the command samples IGES surfaces; a COMPAS mesh (its
-/// vertices); or the path of a file the command reads (OBJ, PLY, JSON, IGES):
+/// vertices); or the path of a file the command reads (OBJ, PLY, JSON, STL, points one a
+/// line, IGES):
 /// `target_points(target)` gives the points taken.
 ///
 /// `patches` (`"2x3"`, `3` or `(2, 3)`, as `--patches`) then fits that many

@@ -16,7 +16,8 @@ use crate::errors::{io_error, OptimiseError};
 /// What `approximate` accepts, for its error messages.
 const ACCEPTED: &str = "give the target as an array of shape (..., 3) or a list of points, a \
                         Rhino or rhino3dm Mesh, PointCloud, Surface or Brep, a COMPAS Mesh, or \
-                        the path of an OBJ, PLY, JSON or IGES file";
+                        the path of a file `monge approximate` reads (OBJ, PLY, JSON, STL, \
+                        points one a line: .xyz, .pts, .csv, .txt; IGES)";
 
 /// `obj.X`, `obj.Y`, `obj.Z` (a RhinoCommon or rhino3dm `Point3d` or `Point3f`).
 fn xyz(p: &Bound<'_, PyAny>) -> PyResult<DVec3> {

@@ -131,8 +131,8 @@ def test_what_is_not_a_target_is_named():
             monge.target_points(target)
         assert str(e.value) == (
             f"the target is a {name}: give the target as an array of shape (..., 3) or a list of points, a "
-            "Rhino or rhino3dm Mesh, PointCloud, Surface or Brep, a COMPAS Mesh, or the path of an OBJ, PLY, "
-            "JSON or IGES file"
+            "Rhino or rhino3dm Mesh, PointCloud, Surface or Brep, a COMPAS Mesh, or the path of a file "
+            "`monge approximate` reads (OBJ, PLY, JSON, STL, points one a line: .xyz, .pts, .csv, .txt; IGES)"
         )
     with pytest.raises(monge.FileError, match="no-such-roof.obj"):
         monge.approximate("no-such-roof.obj")
@@ -252,3 +252,21 @@ def test_the_example_component_runs(monkeypatch):
     out = run_component(path.read_text(), str(path), monkeypatch, theta=30.0, samples=9, conical=False, **curves)
     assert out["error"] is None, out["error"]
     assert out["mesh"].Faces.QuadCount == 64 and len(out["gauss"].Vertices) == 81
+
+
+def test_a_scans_text_and_an_stl_are_targets_as_the_command_reads_them(points, tmp_path):
+    # The scan's points as a CSV with a header and an intensity column: the points to the
+    # bit. As a binary STL (written here with numpy's structured array): the distinct
+    # corners of its triangles, in single precision.
+    xyz = tmp_path / "scan.csv"
+    xyz.write_text("x,y,z,intensity\n" + "".join(f"{float(x)!r},{float(y)!r},{float(z)!r},0.5\n" for x, y, z in points))
+    assert np.array_equal(monge.target_points(xyz), np.asarray(points, dtype=float))
+    triangles = np.asarray(points[:30], dtype=np.float32).reshape(10, 3, 3)
+    record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    body = np.zeros(len(triangles), dtype=record)
+    body["corners"] = triangles
+    stl = tmp_path / "scan.stl"
+    stl.write_bytes(b"solid by numpy".ljust(80) + np.uint32(len(triangles)).tobytes() + body.tobytes())
+    read = monge.target_points(stl)
+    _, first = np.unique(triangles.reshape(-1, 3), axis=0, return_index=True)
+    assert np.array_equal(read, triangles.reshape(-1, 3)[np.sort(first)].astype(float))

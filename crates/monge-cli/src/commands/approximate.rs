@@ -50,8 +50,10 @@ use glam::DVec3;
     )
 )]
 pub struct ApproximateArgs {
-    /// The target: a mesh or point cloud (`.obj`, `.ply` ASCII or binary, or `.json` with `vertices` or
-    /// `points`), or NURBS surfaces (`.igs`/`.iges`, entity 128, sampled at about 4000 points).
+    /// The target: a mesh or point cloud (`.obj`, `.ply` ASCII or binary, `.json` with `vertices` or
+    /// `points`, `.stl` ASCII or binary), a scan's points one a line (`.xyz`, `.pts`, `.csv`,
+    /// `.txt`: `x y z`, further columns ignored), or NURBS surfaces (`.igs`/`.iges`, entity 128,
+    /// sampled at about 4000 points).
     #[arg(value_name = "TARGET")]
     pub target: PathBuf,
     /// Where to write the design found (`.json` or `.toml`).
