@@ -278,6 +278,65 @@ fn approximate_reads_a_scans_points_and_an_stl_as_the_mesh_they_hold() {
     generate_and_check(&from_stl, &dir.path().join("stl.obj"));
 }
 
+#[test]
+fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
+    // 1 500 random points of a paraboloid roof, and the same with three stray points
+    // among them: two above the roof (a bird, a crane), one far beyond its edge.
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut uniform = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let roof = |x: f64, y: f64| 0.04 * x * x + 0.1 * y * y;
+    let mut lines: Vec<String> = (0..1500)
+        .map(|_| {
+            let (x, y) = (10.0 * uniform(), 10.0 * uniform());
+            format!("{x} {y} {}", roof(x, y))
+        })
+        .collect();
+    let dir = TempDir::new().unwrap();
+    let clean = dir.path().join("clean.xyz");
+    fs::write(&clean, lines.join("\n")).unwrap();
+    for (at, point) in [
+        (100, format!("5 5 {}", roof(5.0, 5.0) + 1.5)),
+        (700, format!("2 8 {}", roof(2.0, 8.0) - 0.9)),
+        (1200, format!("16 5 {}", roof(16.0, 5.0))),
+    ] {
+        lines.insert(at, point);
+    }
+    let scan = dir.path().join("scan.xyz");
+    fs::write(&scan, lines.join("\n")).unwrap();
+    let fit = |target: &std::path::Path, name: &str| {
+        let design = dir.path().join(name);
+        let out = monge()
+            .arg("approximate")
+            .arg(target)
+            .arg("-o")
+            .arg(&design)
+            .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{out:?}");
+        (design, String::from_utf8(out.stdout).unwrap())
+    };
+    let (without, stdout) = fit(&clean, "clean.json");
+    assert!(!stdout.contains("stray"), "{stdout}");
+    let (with, stdout) = fit(&scan, "scan.json");
+    assert!(
+        stdout.contains(
+            "set aside 3 stray points (isolated from the rest, or off the surface their nearest \
+             others make; neither fitted nor measured): point 101 (5, 5, "
+        ),
+        "{stdout}"
+    );
+    assert!(stdout.contains(", point 701 (2, 8, "), "{stdout}");
+    assert!(stdout.contains(", point 1201 (16, 5, "), "{stdout}");
+    // Set aside, they change nothing: the scan's design without them, byte for byte.
+    assert_eq!(fs::read(&without).unwrap(), fs::read(&with).unwrap());
+}
+
 /// The points of an OBJ file's `v` lines, read by hand.
 fn obj_points(path: &std::path::Path) -> Vec<[f64; 3]> {
     fs::read_to_string(path)

@@ -77,7 +77,7 @@ const TARGET_ACCEPTED: &str = "a mesh (`.obj`, `.ply`, `.json`, `.stl`), points 
 /// The points of a text file of one point a line, as scanners and spreadsheets write
 /// them (`.xyz`, `.pts`, `.csv`, `.txt`), named `file` (for messages): on each line `x y z` and
 /// perhaps more columns (intensity, colour, normal: ignored), separated by spaces,
-/// tabs or commas, or by semicolons (then a decimal comma is read as a point). Blank
+/// tabs or commas, or by semicolons (then a decimal comma counts as a decimal point). Blank
 /// lines, lines beginning with `#` or `//`, a line of one whole number (the count a
 /// `.pts` file begins with) and, before the first point, one header line (`x,y,z`)
 /// are skipped.

@@ -59,7 +59,9 @@ use crate::trimmed::{trimmed_dict, TrimmedDesign};
 /// deviation `before` and `after` (dicts of distances relative to the target's
 /// `size`), `deviation` (`after` in model units) and `max_deviation` (the larger of
 /// its two largest distances, model units), `patches` (how many), `theta_deg` (None
-/// for several patches), `target_points`, `evaluations`, `starts` and `timed_out`.
+/// for several patches), `target_points`, `stray` (the indices of the target's stray
+/// points, set aside as the command sets them aside), `evaluations`, `starts` and
+/// `timed_out`.
 ///
 /// With `patches`: `patch_fit`, the fit of the patches (`design`, `after`,
 /// `per_patch`, `max_error`, `evaluations`, and `closer`, whether it is the
@@ -211,6 +213,8 @@ pub fn approximate<'py>(
     d.set_item("max_deviation", after.max() * after.size)?;
     d.set_item("patches", design.patches())?;
     d.set_item("target_points", points.len())?;
+    // The target's stray points, set aside as the command sets them aside.
+    d.set_item("stray", single.stray.clone())?;
     d.set_item("starts", single.starts)?;
     d.set_item("initial", Bound::new(py, plain(single.initial.clone()))?)?;
     let trimmed = design.trimmed();

@@ -270,3 +270,14 @@ def test_a_scans_text_and_an_stl_are_targets_as_the_command_reads_them(points, t
     read = monge.target_points(stl)
     _, first = np.unique(triangles.reshape(-1, 3), axis=0, return_index=True)
     assert np.array_equal(read, triangles.reshape(-1, 3)[np.sort(first)].astype(float))
+
+
+def test_stray_points_are_set_aside_as_the_command_sets_them_aside(points, reference):
+    # Two points far above the roof among its points: set aside, named by their index,
+    # and the result is the one without them.
+    assert reference["stray"] == []
+    top = points[:, 2].max() - points[:, 2].min()
+    with_stray = np.insert(points, [10, 500], [[5.0, 5.0, points[:, 2].max() + top], [2.0, 8.0, -top]], axis=0)
+    result = monge.approximate(with_stray, **SEARCH)
+    assert result["stray"] == [10, 501]
+    assert np.array_equal(result["vertices"], reference["vertices"])

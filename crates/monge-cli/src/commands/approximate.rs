@@ -425,13 +425,14 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         MeshKind::Conical => m.max_error_conical(conical_error(&r.grid)),
     };
     print(&format!(
-        "target: {} points, size {}; corner curvatures {} and {}\n{}{}\
+        "target: {} points, size {}; corner curvatures {} and {}\n{}{}{}\
          exactness of the result (generated, measured): {}\n\
          θ {}°; {} starts, {} meshes generated{}\n",
         points.len(),
         num(r.after.size),
         num(r.corner_curvatures.0),
         num(r.corner_curvatures.1),
+        stray_line(&points, &r.stray),
         line("initial guess", &r.before),
         line("result", &r.after),
         num(exactness),
@@ -506,6 +507,35 @@ pub fn run(args: &ApproximateArgs) -> anyhow::Result<Outcome> {
         ))?;
     }
     Ok(Outcome::Success)
+}
+
+/// The line that names the target's stray points, set aside (empty without any): how
+/// many, and the first few with their numbers in the file (from 1) and positions.
+fn stray_line(points: &[DVec3], stray: &[usize]) -> String {
+    const SHOWN: usize = 5;
+    if stray.is_empty() {
+        return String::new();
+    }
+    let named: Vec<String> = stray
+        .iter()
+        .take(SHOWN)
+        .map(|&k| {
+            let [x, y, z] = points[k].to_array().map(num);
+            format!("point {} ({x}, {y}, {z})", k + 1)
+        })
+        .collect();
+    format!(
+        "set aside {} stray point{} (isolated from the rest, or off the surface their nearest \
+         others make; neither fitted nor measured): {}{}\n",
+        stray.len(),
+        if stray.len() == 1 { "" } else { "s" },
+        named.join(", "),
+        if stray.len() > SHOWN {
+            format!(" and {} more", stray.len() - SHOWN)
+        } else {
+            String::new()
+        }
+    )
 }
 
 /// What DESIGN is where the result is trimmed.
@@ -652,11 +682,12 @@ fn finish_tolerance(
     out.commit()?;
     let size = fit.deviation.size;
     let mut text = format!(
-        "target: {} points, size {}; tolerance {} model units ({} of the size), both ways\n",
+        "target: {} points, size {}; tolerance {} model units ({} of the size), both ways\n{}",
         points.len(),
         num(size),
         num(fit.limit * size),
-        num(fit.limit)
+        num(fit.limit),
+        stray_line(points, &fit.single.stray)
     );
     for step in &fit.steps {
         let name = match (step.patches, step.trimmed) {

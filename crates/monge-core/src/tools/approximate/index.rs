@@ -13,12 +13,16 @@ use super::edge::{
 };
 use super::error::{ApproxError, MIN_POINTS};
 use super::quadric::{misfits, principal_axes, through_point_share, Quadric, SHARE_POINTS};
+use super::stray::stray_points;
 
 /// The target: its points, a spatial index, a normal for each point and an outward
 /// direction for each point of its boundary.
 #[derive(Clone, Debug)]
 pub struct TargetCloud {
+    /// The points kept: all but the stray ones.
     pub(super) points: Vec<DVec3>,
+    /// The indices of the stray points set aside ([`TargetCloud::stray`]).
+    stray: Vec<usize>,
     pub(super) tree: RTree<Indexed>,
     /// Unit normal of the plane fitted to each point's neighbours.
     pub(super) normals: Vec<DVec3>,
@@ -50,6 +54,17 @@ pub struct TargetCloud {
     edge_on_points: bool,
 }
 
+/// `points` indexed by their positions.
+pub(super) fn index_of(points: &[DVec3]) -> RTree<Indexed> {
+    RTree::bulk_load(
+        points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| Indexed::new(p.to_array(), i))
+            .collect(),
+    )
+}
+
 /// Neighbours used for each target point's normal.
 const NEIGHBOURS: usize = 8;
 
@@ -78,21 +93,39 @@ impl TargetCloud {
                 point: points[index].to_array(),
             });
         }
-        let size = bbox_diagonal(points);
-        if !(MIN_SIZE..=MAX_SIZE).contains(&size) {
-            return Err(ApproxError::ScaleOutOfRange {
-                size,
-                min: MIN_SIZE,
-                max: MAX_SIZE,
-            });
-        }
-        let tree = RTree::bulk_load(
+        let scale = |size: f64| {
+            if (MIN_SIZE..=MAX_SIZE).contains(&size) {
+                Ok(size)
+            } else {
+                Err(ApproxError::ScaleOutOfRange {
+                    size,
+                    min: MIN_SIZE,
+                    max: MAX_SIZE,
+                })
+            }
+        };
+        // The stray points set aside (their indices in `points`), the rest kept.
+        let stray = stray_points(points, &index_of(points), scale(bbox_diagonal(points))?);
+        let kept: Vec<DVec3>;
+        let points = if stray.is_empty() {
             points
+        } else {
+            kept = points
                 .iter()
                 .enumerate()
-                .map(|(i, p)| Indexed::new(p.to_array(), i))
-                .collect(),
-        );
+                .filter(|(k, _)| stray.binary_search(k).is_err())
+                .map(|(_, p)| *p)
+                .collect();
+            if kept.len() < MIN_POINTS {
+                return Err(ApproxError::TooFewPoints {
+                    found: kept.len(),
+                    needed: MIN_POINTS,
+                });
+            }
+            &kept
+        };
+        let size = scale(bbox_diagonal(points))?;
+        let tree = index_of(points);
         let mut normals = Vec::with_capacity(points.len());
         let mut patches = Vec::with_capacity(points.len());
         let mut outward = Vec::with_capacity(points.len());
@@ -159,6 +192,7 @@ impl TargetCloud {
             })
             .collect();
         Ok(TargetCloud {
+            stray,
             near_edge,
             edge_on_points,
             through,
@@ -170,7 +204,7 @@ impl TargetCloud {
             boundary,
             spacing,
             up: principal_axes(points).2,
-            size: bbox_diagonal(points),
+            size,
         })
     }
 
@@ -206,9 +240,31 @@ impl TargetCloud {
             .collect()
     }
 
-    /// The target's size: the diagonal of its bounding box.
+    /// The target's size: the diagonal of its bounding box (of the points it keeps).
     pub fn size(&self) -> f64 {
         self.size
+    }
+
+    /// The indices (in the points it was given, increasing) of the stray points the
+    /// target sets aside: points isolated from the rest, or off the surface their
+    /// nearest others make (a bird, a crane, a reflection in a scan). Every fit,
+    /// distance and outline is of the points it keeps.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::TargetCloud;
+    /// let mut points: Vec<DVec3> = (0..400)
+    ///     .map(|k| {
+    ///         let (x, y) = (f64::from(k % 20) * 0.5, f64::from(k / 20) * 0.5);
+    ///         DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+    ///     })
+    ///     .collect();
+    /// points.push(DVec3::new(5.0, 5.0, 6.0)); // 2.5 above the surface
+    /// let target = TargetCloud::new(&points).unwrap();
+    /// assert_eq!(target.stray(), &[400]);
+    /// ```
+    pub fn stray(&self) -> &[usize] {
+        &self.stray
     }
 
     /// Distance from `v` to the target: to the quadric fitted around the nearest target

@@ -123,6 +123,7 @@ mod quadric;
 mod report;
 mod solve;
 mod start;
+mod stray;
 mod tolerance;
 mod trim;
 
@@ -241,6 +242,9 @@ pub struct Approximation {
     /// With [`ApproxOptions::trim`], the result's mesh trimmed to the target's outline
     /// (what [`Approximation::after`] measures).
     pub trimmed: Option<TrimmedMesh>,
+    /// The target's stray points, set aside ([`TargetCloud::stray`]): their indices in
+    /// the points given.
+    pub stray: Vec<usize>,
 }
 
 /// What [`approximate`] reports while it runs.
@@ -758,5 +762,6 @@ pub(super) fn approximate_target(
         starts,
         timed_out: search.timed_out,
         trimmed,
+        stray: target.stray().to_vec(),
     })
 }
