@@ -31,6 +31,9 @@ const OFF_SURFACE: f64 = 20.0;
 /// the quadric of its neighbours by the surface's third-order terms, far less).
 const OFF_SURFACE_SIZE: f64 = 1e-2;
 
+/// Points closer than this share of the target's size are copies of one point.
+const COPIES: f64 = 1e-9;
+
 /// The indices of the stray points of `points` (indexed by `tree`, the target of size
 /// `size`), in increasing order: each point isolated from the others (see [`ISOLATED`])
 /// or off the surface its nearest others make (see [`OFF_SURFACE`]).
@@ -38,18 +41,23 @@ pub(super) fn stray_points(points: &[DVec3], tree: &RTree<Indexed>, size: f64) -
     if points.len() <= OTHERS {
         return Vec::new();
     }
-    // Each point's nearest others, nearest first.
+    // Each point's nearest others, nearest first: not its copies (a mesh whose faces
+    // do not share their vertices repeats each one).
+    let apart = COPIES * size;
     let others: Vec<Vec<usize>> = points
         .iter()
-        .enumerate()
-        .map(|(k, p)| {
+        .map(|p| {
             tree.nearest_neighbor_iter(p.to_array())
                 .map(|n| n.data)
-                .filter(|&j| j != k)
+                .filter(|&j| points[j].distance(*p) > apart)
                 .take(OTHERS)
                 .collect()
         })
         .collect();
+    if others.iter().any(|o| o.len() < OTHERS) {
+        // Fewer distinct points than that: nothing to compare with.
+        return Vec::new();
+    }
     let reach: Vec<f64> = points
         .iter()
         .zip(&others)
@@ -123,6 +131,26 @@ mod tests {
                 "seed {seed}"
             );
         }
+    }
+
+    #[test]
+    fn a_mesh_whose_faces_repeat_their_vertices_has_no_stray_point() {
+        // A 9 × 9 grid's quads each with its own four corners (as a mesh exported
+        // without shared vertices): inner vertices four times, edges twice, corners
+        // once; and a stray point, twice, above it.
+        let at = |i: i32, j: i32| {
+            let (x, y) = (f64::from(i), f64::from(j));
+            DVec3::new(x, y, 0.2 * x * x - 0.1 * x * y)
+        };
+        let mut points: Vec<DVec3> = (0..8)
+            .flat_map(|i| {
+                (0..8).flat_map(move |j| [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            })
+            .collect();
+        assert_eq!(stray(&points), Vec::<usize>::new());
+        let n = points.len();
+        points.extend([DVec3::new(4.0, 4.0, 9.0); 2]);
+        assert_eq!(stray(&points), vec![n, n + 1]);
     }
 
     #[test]
