@@ -6,7 +6,7 @@
 use glam::DVec3;
 use rstar::RTree;
 
-use super::distance::Indexed;
+use super::distance::{map_blocks, Indexed};
 use super::quadric::{principal_axes, Quadric};
 
 /// The other points each point is compared with: its nearest ones.
@@ -44,16 +44,14 @@ pub(super) fn stray_points(points: &[DVec3], tree: &RTree<Indexed>, size: f64) -
     // Each point's nearest others, nearest first: not its copies (a mesh whose faces
     // do not share their vertices repeats each one).
     let apart = COPIES * size;
-    let others: Vec<Vec<usize>> = points
-        .iter()
-        .map(|p| {
-            tree.nearest_neighbor_iter(p.to_array())
-                .map(|n| n.data)
-                .filter(|&j| points[j].distance(*p) > apart)
-                .take(OTHERS)
-                .collect()
-        })
-        .collect();
+    let others: Vec<Vec<usize>> = map_blocks(points.len(), |k| {
+        let p = points[k];
+        tree.nearest_neighbor_iter(p.to_array())
+            .map(|n| n.data)
+            .filter(|&j| points[j].distance(p) > apart)
+            .take(OTHERS)
+            .collect()
+    });
     if others.iter().any(|o| o.len() < OTHERS) {
         // Fewer distinct points than that: nothing to compare with.
         return Vec::new();
@@ -63,27 +61,26 @@ pub(super) fn stray_points(points: &[DVec3], tree: &RTree<Indexed>, size: f64) -
         .zip(&others)
         .map(|(p, o)| p.distance(points[o[ISOLATION_RANK - 1]]))
         .collect();
-    (0..points.len())
-        .filter(|&k| {
-            let mut around: Vec<f64> = others[k][..OTHERS / 2].iter().map(|&j| reach[j]).collect();
-            around.sort_by(f64::total_cmp);
-            let median = around[around.len() / 2];
-            if reach[k] > ISOLATED * median {
-                return true;
-            }
-            let near: Vec<DVec3> = others[k].iter().map(|&j| points[j]).collect();
-            let centre = near.iter().copied().sum::<DVec3>() / near.len() as f64;
-            let quadric = Quadric::fit(&near, centre, principal_axes(&near).2);
-            let rms = (near
-                .iter()
-                .map(|q| quadric.height_above(*q).powi(2))
-                .sum::<f64>()
-                / near.len() as f64)
-                .sqrt();
-            let height = quadric.height_above(points[k]).abs();
-            height > OFF_SURFACE * rms && height > OFF_SURFACE_SIZE * size
-        })
-        .collect()
+    let stray = map_blocks(points.len(), |k| {
+        let mut around: Vec<f64> = others[k][..OTHERS / 2].iter().map(|&j| reach[j]).collect();
+        around.sort_by(f64::total_cmp);
+        let median = around[around.len() / 2];
+        if reach[k] > ISOLATED * median {
+            return true;
+        }
+        let near: Vec<DVec3> = others[k].iter().map(|&j| points[j]).collect();
+        let centre = near.iter().copied().sum::<DVec3>() / near.len() as f64;
+        let quadric = Quadric::fit(&near, centre, principal_axes(&near).2);
+        let rms = (near
+            .iter()
+            .map(|q| quadric.height_above(*q).powi(2))
+            .sum::<f64>()
+            / near.len() as f64)
+            .sqrt();
+        let height = quadric.height_above(points[k]).abs();
+        height > OFF_SURFACE * rms && height > OFF_SURFACE_SIZE * size
+    });
+    (0..points.len()).filter(|&k| stray[k]).collect()
 }
 
 #[cfg(test)]
