@@ -335,6 +335,17 @@ fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
     assert!(stdout.contains(", point 1201 (16, 5, "), "{stdout}");
     // Set aside, they change nothing: the scan's design without them, byte for byte.
     assert_eq!(fs::read(&without).unwrap(), fs::read(&with).unwrap());
+    // `render --deviation` measures the design as the fit did, and says so.
+    monge()
+        .arg("render")
+        .arg(&with)
+        .arg("--deviation")
+        .arg(&scan)
+        .arg("-o")
+        .arg(dir.path().join("scan.png"))
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("; 3 stray points set aside)"));
 }
 
 /// The points of an OBJ file's `v` lines, read by hand.

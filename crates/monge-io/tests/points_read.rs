@@ -5,10 +5,7 @@ use crate::common;
 use monge_io::{read_points, write_mesh, IoError, MeshFormat};
 
 fn read(name: &str, text: &str) -> Result<Vec<glam::DVec3>, IoError> {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(name);
-    std::fs::write(&path, text).unwrap();
-    read_points(&path)
+    read_bytes(name, text.as_bytes())
 }
 
 #[test]

@@ -291,7 +291,13 @@ fn deviation_panel(
             )
         }
     };
-    let what = format!("its distance to `{}` ({figures})", path.display());
+    // Measured without the target's stray points, as `approximate` measures it.
+    let aside = match target.stray().len() {
+        0 => String::new(),
+        1 => "; 1 stray point set aside".to_owned(),
+        n => format!("; {n} stray points set aside"),
+    };
+    let what = format!("its distance to `{}` ({figures}{aside})", path.display());
     Ok((panel, what))
 }
 
