@@ -105,10 +105,11 @@ impl TargetCloud {
             }
         };
         // The stray points set aside (their indices in `points`), the rest kept.
-        let stray = stray_points(points, &index_of(points), scale(bbox_diagonal(points))?);
+        let all = index_of(points);
+        let stray = stray_points(points, &all, scale(bbox_diagonal(points))?);
         let kept: Vec<DVec3>;
-        let points = if stray.is_empty() {
-            points
+        let (points, tree) = if stray.is_empty() {
+            (points, all)
         } else {
             kept = points
                 .iter()
@@ -122,10 +123,9 @@ impl TargetCloud {
                     needed: MIN_POINTS,
                 });
             }
-            &kept
+            (&kept[..], index_of(&kept))
         };
         let size = scale(bbox_diagonal(points))?;
-        let tree = index_of(points);
         let mut normals = Vec::with_capacity(points.len());
         let mut patches = Vec::with_capacity(points.len());
         let mut outward = Vec::with_capacity(points.len());
