@@ -8,6 +8,7 @@ use rstar::RTree;
 
 use super::distance::{map_blocks, Indexed};
 use super::quadric::{principal_axes, Quadric};
+use crate::grid::bbox_diagonal;
 
 /// The other points each point is compared with: its nearest ones.
 const OTHERS: usize = 12;
@@ -26,7 +27,7 @@ const ISOLATED: f64 = 5.0;
 /// and the quadric's misfit)…
 const OFF_SURFACE: f64 = 20.0;
 
-/// … and this share of the target's size (the floor for a noiseless target, whose
+/// … and this share of the target's size, of its points not isolated (the floor for a noiseless target, whose
 /// points' heights are round-off: a vertex of a coarse mesh of a curved surface lies off
 /// the quadric of its neighbours by the surface's third-order terms, far less).
 const OFF_SURFACE_SIZE: f64 = 1e-2;
@@ -61,11 +62,21 @@ pub(super) fn stray_points(points: &[DVec3], tree: &RTree<Indexed>, size: f64) -
         .zip(&others)
         .map(|(p, o)| p.distance(points[o[ISOLATION_RANK - 1]]))
         .collect();
-    let stray = map_blocks(points.len(), |k| {
+    let isolated = map_blocks(points.len(), |k| {
         let mut around: Vec<f64> = others[k][..OTHERS / 2].iter().map(|&j| reach[j]).collect();
         around.sort_by(f64::total_cmp);
-        let median = around[around.len() / 2];
-        if reach[k] > ISOLATED * median {
+        reach[k] > ISOLATED * around[around.len() / 2]
+    });
+    // The floor of the off-surface test is of the size of the points not isolated: one
+    // point far off (a wrong unit, a point at the origin) would raise it past every
+    // point a little off the surface.
+    let rest: Vec<DVec3> = (0..points.len())
+        .filter(|&k| !isolated[k])
+        .map(|k| points[k])
+        .collect();
+    let floor = OFF_SURFACE_SIZE * bbox_diagonal(&rest);
+    let stray = map_blocks(points.len(), |k| {
+        if isolated[k] {
             return true;
         }
         let near: Vec<DVec3> = others[k].iter().map(|&j| points[j]).collect();
@@ -78,7 +89,7 @@ pub(super) fn stray_points(points: &[DVec3], tree: &RTree<Indexed>, size: f64) -
             / near.len() as f64)
             .sqrt();
         let height = quadric.height_above(points[k]).abs();
-        height > OFF_SURFACE * rms && height > OFF_SURFACE_SIZE * size
+        height > OFF_SURFACE * rms && height > floor
     });
     (0..points.len()).filter(|&k| stray[k]).collect()
 }
@@ -128,6 +139,21 @@ mod tests {
                 "seed {seed}"
             );
         }
+    }
+
+    #[test]
+    fn a_point_far_off_does_not_hide_the_points_a_little_off_the_surface() {
+        // A point 1 000 units away (a wrong unit, a point left at the origin of another
+        // frame) makes the points' box 60 times larger: the points 0.8 to 1 above and
+        // below the surface (4 % of its size) are stray all the same.
+        let surface = |x: f64, y: f64| 0.04 * x * x + 0.1 * y * y;
+        let mut points = scan(2000, 2e-3, 3);
+        points.extend([
+            DVec3::new(5.0, 5.0, surface(5.0, 5.0) + 1.0),
+            DVec3::new(2.0, 8.0, surface(2.0, 8.0) - 0.8),
+            DVec3::new(600.0, 600.0, 600.0),
+        ]);
+        assert_eq!(stray(&points), vec![2000, 2001, 2002]);
     }
 
     #[test]
