@@ -308,7 +308,7 @@ fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
     }
     let scan = dir.path().join("scan.xyz");
     fs::write(&scan, lines.join("\n")).unwrap();
-    let fit = |target: &std::path::Path, name: &str| {
+    let fit = |target: &std::path::Path, name: &str, extra: &[&std::ffi::OsStr]| {
         let design = dir.path().join(name);
         let out = monge()
             .arg("approximate")
@@ -316,14 +316,20 @@ fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
             .arg("-o")
             .arg(&design)
             .args(["--grid", "6x6", "--starts", "1", "--max-evaluations", "60"])
+            .args(extra)
             .output()
             .unwrap();
         assert!(out.status.success(), "{out:?}");
         (design, String::from_utf8(out.stdout).unwrap())
     };
-    let (without, stdout) = fit(&clean, "clean.json");
+    let (without, stdout) = fit(&clean, "clean.json", &[]);
     assert!(!stdout.contains("stray"), "{stdout}");
-    let (with, stdout) = fit(&scan, "scan.json");
+    let picture = dir.path().join("scan.svg");
+    let (with, stdout) = fit(
+        &scan,
+        "scan.json",
+        &["--picture".as_ref(), picture.as_os_str()],
+    );
     assert!(
         stdout.contains(
             "set aside 3 stray points (isolated from the rest, or off the surface their nearest \
@@ -335,6 +341,22 @@ fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
     assert!(stdout.contains(", point 1201 (16, 5, "), "{stdout}");
     // Set aside, they change nothing: the scan's design without them, byte for byte.
     assert_eq!(fs::read(&without).unwrap(), fs::read(&with).unwrap());
+    // The picture draws the 1 500 points kept, each coloured by its distance, and the
+    // three set aside in blue (the colour no distance takes), each in a star of three
+    // arms, and says so.
+    let svg = fs::read_to_string(&picture).unwrap();
+    let blue = |shape: &str| {
+        svg.lines()
+            .filter(|l| l.starts_with(shape) && l.contains("\"#1e64dc\""))
+            .count()
+    };
+    assert_eq!(blue("<circle"), 3, "{svg}");
+    assert_eq!(blue("<polyline"), 9, "{svg}");
+    assert_eq!(
+        svg.lines().filter(|l| l.starts_with("<circle")).count(),
+        1503
+    );
+    assert!(svg.contains("3 stray points set aside, in blue"), "{svg}");
     // `render --deviation` measures the design as the fit did, and says so.
     monge()
         .arg("render")

@@ -17,6 +17,53 @@ use crate::shared::picture::{
     cut_highlights, distance_panel, sheet, trimmed_distance_panel, Picture,
 };
 
+/// Colour of the target's stray points, which the fit sets aside.
+const STRAY_COLOR: Rgb = Rgb::new(30, 100, 220);
+
+/// How far from the box of the points kept a stray point is drawn, in the target's
+/// sizes: a point farther off would shrink the target to a speck in its panel.
+const STRAY_REACH: f64 = 1.0;
+
+/// Half the length of the arms of the star marking a stray point, in the target's sizes.
+const STRAY_STAR: f64 = 0.015;
+
+/// `target`'s stray points (indices into `points`, the points it was given) within
+/// [`STRAY_REACH`] of the box of the points it keeps, each a dot in a star of three
+/// arms along the axes (a dot alone is lost among the others), and how many lie
+/// farther.
+fn stray_marks(points: &[DVec3], target: &TargetCloud) -> (Vec<Dot>, Vec<Highlight>, usize) {
+    let kept = target.points();
+    let (low, high) = kept
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+            (l.min(*p), h.max(*p))
+        });
+    let reach = STRAY_REACH * target.size();
+    let (near, far): (Vec<DVec3>, Vec<DVec3>) = target
+        .stray()
+        .iter()
+        .map(|&k| points[k])
+        .partition(|p| p.clamp(low, high).distance(*p) <= reach);
+    let arm = STRAY_STAR * target.size();
+    let stars = near
+        .iter()
+        .flat_map(|p| {
+            [DVec3::X, DVec3::Y, DVec3::Z].map(|axis| Highlight {
+                points: vec![*p - arm * axis, *p + arm * axis],
+                color: STRAY_COLOR,
+            })
+        })
+        .collect();
+    let dots = near
+        .into_iter()
+        .map(|point| Dot {
+            point,
+            color: STRAY_COLOR,
+        })
+        .collect();
+    (dots, stars, far.len())
+}
+
 /// Colour of the boundaries between patches on the result.
 const PATCH_BOUNDARY_COLOR: Rgb = Rgb::new(0, 150, 80);
 
@@ -48,8 +95,9 @@ pub(super) fn patch_boundaries(mp: &MultiPatch) -> Vec<Highlight> {
 /// The picture: the target's points coloured by their distance to the result, then the
 /// initial guess and the result coloured by their distance to the target, all on one
 /// scale (dark red from `tolerance` if given, in model units, else from the initial
-/// guess's 95th percentile); the patch boundaries drawn on the result, and, where it
-/// is trimmed, the edges of the `trimmed` mesh (the cut).
+/// guess's 95th percentile), its stray points in blue stars (`points` are those it
+/// was given); the patch boundaries drawn on the result, and, where it is trimmed, the
+/// edges of the `trimmed` mesh (the cut).
 #[allow(clippy::too_many_arguments)] // the picture's parts, each its own
 pub(super) fn picture_bytes(
     r: &Approximation,
@@ -86,7 +134,8 @@ pub(super) fn picture_bytes(
     };
     let distances = target_distances(target, result, trimmed.map(|(mesh, _)| mesh));
     let largest = distances.iter().copied().fold(0.0, f64::max);
-    let dots = points
+    let mut dots: Vec<Dot> = target
+        .points()
         .iter()
         .zip(&distances)
         .map(|(p, d)| Dot {
@@ -94,14 +143,26 @@ pub(super) fn picture_bytes(
             color: heat(d / scale),
         })
         .collect();
+    let (near, stars, far) = stray_marks(points, target);
+    let strays = match (near.len(), far) {
+        (0, 0) => String::new(),
+        (n, 0) => format!("\n{n} stray points set aside, in blue"),
+        (0, f) => format!("\n{f} stray points set aside, too far off to draw"),
+        (n, f) => format!(
+            "\n{} stray points set aside: {n} in blue, {f} too far off to draw",
+            n + f
+        ),
+    };
+    dots.extend(near);
     let empty = QuadGrid::new(0, 0, Vec::new(), Vec::new());
     let target_panel = Panel {
         scene: Some(Scene {
             dots,
+            highlights: stars,
             ..Scene::new(empty)
         }),
         caption: format!(
-            "target, by its distance to the result\nwhite 0, dark red from {}{}\nlargest {}",
+            "target, by its distance to the result\nwhite 0, dark red from {}{}\nlargest {}{strays}",
             num(scale),
             if tolerance.is_some() {
                 " (the tolerance)"

@@ -267,6 +267,29 @@ impl TargetCloud {
         &self.stray
     }
 
+    /// The points the target keeps: those it was given but the [stray](TargetCloud::stray)
+    /// ones, in their order. [`target_distances`](super::target_distances) gives one
+    /// distance for each.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use monge_core::approximate::TargetCloud;
+    /// let mut points: Vec<DVec3> = (0..400)
+    ///     .map(|k| {
+    ///         let (x, y) = (f64::from(k % 20) * 0.5, f64::from(k / 20) * 0.5);
+    ///         DVec3::new(x, y, 0.04 * x * x + 0.1 * y * y)
+    ///     })
+    ///     .collect();
+    /// points.insert(7, DVec3::new(5.0, 5.0, 6.0)); // 2.5 above the surface
+    /// let target = TargetCloud::new(&points).unwrap();
+    /// assert_eq!(target.stray(), &[7]);
+    /// assert_eq!(target.points().len(), 400);
+    /// assert_eq!(target.points()[7], points[8]);
+    /// ```
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+
     /// Distance from `v` to the target: to the quadric fitted around the nearest target
     /// point, combined with how far `v` lies beyond the target's edge ([`beyond_edge`]).
     pub(super) fn distance_from(&self, v: DVec3) -> f64 {
