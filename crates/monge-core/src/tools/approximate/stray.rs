@@ -27,9 +27,10 @@ const ISOLATED: f64 = 5.0;
 /// and the quadric's misfit)…
 const OFF_SURFACE: f64 = 20.0;
 
-/// … and this share of the target's size, of its points not isolated (the floor for a noiseless target, whose
-/// points' heights are round-off: a vertex of a coarse mesh of a curved surface lies off
-/// the quadric of its neighbours by the surface's third-order terms, far less).
+/// … and this share of the size of the target's points not isolated (the floor for a
+/// noiseless target, whose points' heights are round-off: a vertex of a coarse mesh of a
+/// curved surface lies off the quadric of its neighbours by the surface's third-order
+/// terms, far less).
 const OFF_SURFACE_SIZE: f64 = 1e-2;
 
 /// Points closer than this share of the target's size are copies of one point.
@@ -144,8 +145,8 @@ mod tests {
     #[test]
     fn a_point_far_off_does_not_hide_the_points_a_little_off_the_surface() {
         // A point 1 000 units away (a wrong unit, a point left at the origin of another
-        // frame) makes the points' box 60 times larger: the points 0.8 to 1 above and
-        // below the surface (4 % of its size) are stray all the same.
+        // frame) makes the points' box 50 times larger: the points 0.8 and 1 below and
+        // above the surface (4 % and 5 % of its size) are stray all the same.
         let surface = |x: f64, y: f64| 0.04 * x * x + 0.1 * y * y;
         let mut points = scan(2000, 2e-3, 3);
         points.extend([
