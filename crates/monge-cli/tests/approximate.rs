@@ -282,13 +282,7 @@ fn approximate_reads_a_scans_points_and_an_stl_as_the_mesh_they_hold() {
 fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
     // 1 500 random points of a paraboloid roof, and the same with three stray points
     // among them: two above the roof (a bird, a crane), one far beyond its edge.
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform_from(0x2545_f491_4f6c_dd1d_u64);
     let roof = |x: f64, y: f64| 0.04 * x * x + 0.1 * y * y;
     let mut lines: Vec<String> = (0..1500)
         .map(|_| {
@@ -368,6 +362,16 @@ fn approximate_sets_a_scans_stray_points_aside_and_names_them() {
         .assert()
         .success()
         .stderr(predicate::str::contains("; 3 stray points set aside)"));
+}
+
+/// Uniform random numbers in [0, 1) from `seed` (xorshift64), the same on every machine.
+fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
 }
 
 /// The points of an OBJ file's `v` lines, read by hand.
@@ -899,13 +903,7 @@ fn approximate_to_a_tolerance_on_a_scan_keeps_one_patch_where_only_its_edge_read
         let rho = big + small * v.cos();
         [rho * u.cos(), rho * u.sin(), small * v.sin()]
     };
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform_from(0x9e37_79b9_7f4a_7c15_u64);
     let dir = TempDir::new().unwrap();
     let scan = dir.path().join("torus-scan.obj");
     let points: String = (0..2000)
