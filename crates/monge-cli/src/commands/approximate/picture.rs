@@ -144,13 +144,17 @@ pub(super) fn picture_bytes(
         })
         .collect();
     let (near, stars, far) = stray_marks(points, target);
+    let points_aside = |n: usize| {
+        let s = if n == 1 { "" } else { "s" };
+        format!("\n{n} stray point{s} set aside")
+    };
     let strays = match (near.len(), far) {
         (0, 0) => String::new(),
-        (n, 0) => format!("\n{n} stray points set aside, in blue"),
-        (0, f) => format!("\n{f} stray points set aside, too far off to draw"),
+        (n, 0) => format!("{}, in blue", points_aside(n)),
+        (0, f) => format!("{}, too far off to draw", points_aside(f)),
         (n, f) => format!(
-            "\n{} stray points set aside: {n} in blue, {f} too far off to draw",
-            n + f
+            "{}: {n} in blue, {f} too far off to draw",
+            points_aside(n + f)
         ),
     };
     dots.extend(near);
