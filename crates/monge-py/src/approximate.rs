@@ -369,9 +369,11 @@ fn tolerance_items(py: Python<'_>, d: &Bound<'_, PyDict>, fit: &ToleranceFit) ->
             "max_patches",
             Some(if fit.patches_helped() == Some(false) {
                 format!(
-                    "up to {n} patches tried (max_patches={n}), none {}% nearer than one patch \
-                     (steps): more patches are unlikely to reach it; split the target into \
-                     parts and approximate each, or give a larger tolerance",
+                    "up to {n} patches tried (max_patches={n}), the last layout ({} patches) \
+                     not {}% nearer than fewer patches (steps): more patches are unlikely to \
+                     reach it; split the target into parts and approximate each, or give a \
+                     larger tolerance",
+                    fit.last_layout().unwrap_or(*n),
                     100.0 * PATCHES_GAIN
                 )
             } else {

@@ -685,9 +685,11 @@ fn finish_tolerance(
     let why = match &fit.stop {
         Stop::Met => None,
         Stop::MaxPatches(n) if fit.patches_helped() == Some(false) => Some(format!(
-            "up to {n} patches tried (--max-patches {n}), none {}% nearer than one patch (the \
-             distances above): more patches are unlikely to reach it; split the target into \
-             parts and approximate each, or give a larger --tolerance",
+            "up to {n} patches tried (--max-patches {n}), the last layout ({} patches) not {}% \
+             nearer than fewer patches (the distances above): more patches are unlikely to \
+             reach it; split the target into parts and approximate each, or give a larger \
+             --tolerance",
+            fit.last_layout().unwrap_or(*n),
             num(100.0 * PATCHES_GAIN)
         )),
         Stop::MaxPatches(n) => Some(format!(

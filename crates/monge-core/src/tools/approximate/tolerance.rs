@@ -367,30 +367,42 @@ impl ToleranceFit {
         self.deviation.max() <= self.limit
     }
 
-    /// Whether the designs of several patches came nearer to the target than those of
-    /// one patch (trimmed or not) by more than [`PATCHES_GAIN`] of its largest distance
-    /// both ways; `None` where none of several patches was fitted. Where they did not,
-    /// the number of patches is not what keeps the fit from the tolerance.
+    /// Whether the last layout of several patches fitted ([`ToleranceFit::last_layout`])
+    /// came nearer to the target than the designs of fewer patches (one patch, trimmed or
+    /// not, and the layouts before it) by more than [`PATCHES_GAIN`] of their largest
+    /// distance both ways; `None` where no layout of several patches was fitted. Where it
+    /// did not, more patches are unlikely to bring the fit within the tolerance: on a roof
+    /// that one grid of curvature lines does not follow, two patches may come nearer than
+    /// one, and four or six no nearer than two.
     pub fn patches_helped(&self) -> Option<bool> {
-        let nearest = |several: bool| {
+        let last = self.last_layout()?;
+        let nearest = |wanted: &dyn Fn(usize) -> bool| {
             self.steps
                 .iter()
-                .filter(|s| (s.patches > 1) == several && s.outcome.is_ok())
+                .filter(|s| wanted(s.patches) && s.outcome.is_ok())
                 .map(|s| s.resolved)
                 .fold(f64::INFINITY, f64::min)
         };
-        let (one, several) = (nearest(false), nearest(true));
-        several
-            .is_finite()
-            .then_some(several < (1.0 - PATCHES_GAIN) * one)
+        let (fewer, most) = (nearest(&|p| p < last), nearest(&|p| p == last));
+        Some(most < (1.0 - PATCHES_GAIN) * fewer)
+    }
+
+    /// The most patches of a layout fitted (the last tried), or `None` where no layout of
+    /// several patches was fitted.
+    pub fn last_layout(&self) -> Option<usize> {
+        self.steps
+            .iter()
+            .filter(|s| s.patches > 1 && s.outcome.is_ok())
+            .map(|s| s.patches)
+            .max()
     }
 }
 
-/// The share of one patch's largest distance by which designs of several patches must
-/// come nearer for [`ToleranceFit::patches_helped`]. Measured on the free-form held-out
-/// roofs, two to six patches came 0 to 5 % nearer than one on domes with flat edges and
-/// saddle corners, whose shape one grid of curvature lines does not follow; 16 % on a
-/// Bézier roof and about 55 % on a paraboloid and a hyperbolic paraboloid (all trimmed).
+/// The share of the largest distance of fewer patches by which the last layout must come
+/// nearer for [`ToleranceFit::patches_helped`]. Measured on the free-form held-out roofs,
+/// two to six patches came 0 to 5 % nearer than one on domes with flat edges and saddle
+/// corners, whose shape one grid of curvature lines does not follow; 16 % on a Bézier
+/// roof and about 55 % on a paraboloid and a hyperbolic paraboloid (all trimmed).
 pub const PATCHES_GAIN: f64 = 0.1;
 
 /// The layouts tried after one patch, each refining the last along the direction
@@ -661,7 +673,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn patches_help_when_they_come_a_tenth_nearer_than_one_patch() {
+    fn patches_help_when_the_last_layout_comes_a_tenth_nearer_than_fewer_patches() {
         let target: Vec<DVec3> = (0..121)
             .map(|k| {
                 let (x, y) = ((k % 11) as f64, (k / 11) as f64);
@@ -695,8 +707,22 @@ mod tests {
         // Against the trimmed patch, the nearer of the two: 0.017 is 5.6 % nearer.
         fit.steps.push(step(2, false, 0.017));
         assert_eq!(fit.patches_helped(), Some(false));
+        assert_eq!(fit.last_layout(), Some(2));
+        // The last layout against the nearest with fewer patches (0.017): 0.016 is 5.9 %
+        // nearer, 0.015 11.8 %.
         fit.steps.push(step(4, false, 0.016));
+        assert_eq!(fit.patches_helped(), Some(false));
+        fit.steps.pop();
+        fit.steps.push(step(4, false, 0.015));
         assert_eq!(fit.patches_helped(), Some(true));
+        // Six patches no nearer than four: more are unlikely to help, though four did.
+        fit.steps.push(step(6, false, 0.0149));
+        assert_eq!(fit.last_layout(), Some(6));
+        assert_eq!(fit.patches_helped(), Some(false));
+        // A layout that could not be fitted is not the last one.
+        fit.steps
+            .push(Step::failed(9, false, ApproxError::PatchesNotCircular));
+        assert_eq!(fit.last_layout(), Some(6));
         fit.steps.truncate(2);
         fit.steps
             .push(Step::failed(2, false, ApproxError::PatchesNotCircular));
