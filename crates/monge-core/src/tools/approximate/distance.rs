@@ -14,7 +14,15 @@ pub(super) type Indexed = GeomWithData<[f64; 3], usize>;
 pub(super) struct MeshFaces<'a> {
     grid: &'a QuadGrid,
     tree: RTree<Indexed>,
+    /// Each face's bounding sphere (centre, radius): a point lies no nearer to the face
+    /// than to the sphere.
+    spheres: Vec<(DVec3, f64)>,
 }
+
+/// A face whose bounding sphere lies farther from a point than the nearest triangle
+/// found so far by more than this share of its radius is not measured (a margin above
+/// round-off, so that a face the sphere's bound only rounds past is measured).
+const SPHERE_MARGIN: f64 = 1e-6;
 
 /// Nearest vertices whose faces are searched for a point's nearest face.
 const FACE_CANDIDATES: usize = 4;
@@ -28,7 +36,84 @@ impl<'a> MeshFaces<'a> {
                 .map(|(i, p)| Indexed::new(p.to_array(), i))
                 .collect(),
         );
-        MeshFaces { grid, tree }
+        let (rows, cols) = (grid.rows, grid.cols);
+        let spheres = (0..rows.saturating_sub(1) * cols.saturating_sub(1))
+            .map(|k| {
+                let corners = grid.face(k / (cols - 1), k % (cols - 1));
+                let centre = corners.iter().copied().sum::<DVec3>() / 4.0;
+                let radius = corners
+                    .iter()
+                    .map(|c| c.distance(centre))
+                    .fold(0.0, f64::max);
+                (centre, radius)
+            })
+            .collect();
+        MeshFaces {
+            grid,
+            tree,
+            spheres,
+        }
+    }
+
+    /// The [`FACE_CANDIDATES`] vertices nearest to `p`, nearest first, into `out`
+    /// (fewer if the mesh has fewer); how many. The nearest vertex and the other corners
+    /// of a face around it are as many vertices, so the nearest ones lie no farther than
+    /// the farthest of those: they are sought within that radius (of the faces around the
+    /// nearest vertex, the one that makes it least), without the nearest-first iterator's
+    /// heap.
+    fn nearest_vertices(&self, p: DVec3, out: &mut [usize; FACE_CANDIDATES]) -> usize {
+        let q = p.to_array();
+        let Some(first) = self.tree.nearest_neighbor(q) else {
+            return 0;
+        };
+        let squared = |v: &[f64; 3]| {
+            let d = [v[0] - q[0], v[1] - q[1], v[2] - q[2]];
+            d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+        };
+        let (rows, cols) = (self.grid.rows, self.grid.cols);
+        let (i, j) = (first.data / cols, first.data % cols);
+        let mut radius = f64::INFINITY;
+        if rows >= 2 && cols >= 2 {
+            for fi in i.saturating_sub(1)..=i.min(rows - 2) {
+                for fj in j.saturating_sub(1)..=j.min(cols - 2) {
+                    let corners = [(fi, fj), (fi + 1, fj), (fi + 1, fj + 1), (fi, fj + 1)];
+                    let farthest = corners
+                        .iter()
+                        .map(|(a, b)| squared(&self.grid.vertices[a * cols + b].to_array()))
+                        .fold(0.0, f64::max);
+                    radius = radius.min(farthest);
+                }
+            }
+        }
+        if !radius.is_finite() {
+            let mut count = 0;
+            for (o, n) in out
+                .iter_mut()
+                .zip(self.tree.nearest_neighbor_iter(q).take(FACE_CANDIDATES))
+            {
+                *o = n.data;
+                count += 1;
+            }
+            return count;
+        }
+        // The nearest ones within the radius, nearest first (ties in the order met).
+        let mut best = [(f64::INFINITY, usize::MAX); FACE_CANDIDATES];
+        for n in self.tree.locate_within_distance(q, radius) {
+            let d = squared(n.geom());
+            if d < best[FACE_CANDIDATES - 1].0 {
+                let mut k = FACE_CANDIDATES - 1;
+                while k > 0 && d < best[k - 1].0 {
+                    best[k] = best[k - 1];
+                    k -= 1;
+                }
+                best[k] = (d, n.data);
+            }
+        }
+        let count = best.iter().take_while(|b| b.1 != usize::MAX).count();
+        for (o, b) in out.iter_mut().zip(&best[..count]) {
+            *o = b.1;
+        }
+        count
     }
 
     /// Distance from `p` to the nearest face around its nearest vertices (each planar
@@ -46,12 +131,10 @@ impl<'a> MeshFaces<'a> {
         // them), in the order they are met.
         let mut seen = [(usize::MAX, usize::MAX); 4 * FACE_CANDIDATES];
         let mut count = 0;
-        for n in self
-            .tree
-            .nearest_neighbor_iter(p.to_array())
-            .take(FACE_CANDIDATES)
-        {
-            let (i, j) = (n.data / cols, n.data % cols);
+        let mut nearest = [0; FACE_CANDIDATES];
+        let found = self.nearest_vertices(p, &mut nearest);
+        for n in &nearest[..found] {
+            let (i, j) = (n / cols, n % cols);
             for fi in i.saturating_sub(1)..=i.min(rows - 2) {
                 for fj in j.saturating_sub(1)..=j.min(cols - 2) {
                     if seen[..count].contains(&(fi, fj)) {
@@ -59,6 +142,10 @@ impl<'a> MeshFaces<'a> {
                     }
                     seen[count] = (fi, fj);
                     count += 1;
+                    let (centre, radius) = self.spheres[fi * (cols - 1) + fj];
+                    if p.distance(centre) - radius > best.1 .0 + SPHERE_MARGIN * radius {
+                        continue;
+                    }
                     for half in 0..2 {
                         let offsets = triangle_offsets(self.grid, (fi, fj, half), p);
                         if offsets.0 < best.1 .0 {
@@ -258,4 +345,54 @@ pub(super) fn max_rms(values: impl Iterator<Item = f64>) -> (f64, f64) {
         n += 1;
     }
     (max, (sum / n.max(1) as f64).sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_nearest_faces_are_those_of_the_nearest_vertices_by_brute_force() {
+        // A curved, unevenly spaced grid (part of a cylinder, its rows bunched towards one
+        // end), and points on it, near it, and far from it.
+        let (rows, cols) = (13, 9);
+        let vertices: Vec<DVec3> = (0..rows * cols)
+            .map(|k| {
+                let (i, j) = ((k / cols) as f64, (k % cols) as f64);
+                let a = 0.12 * j;
+                DVec3::new(0.05 * i * i, 3.0 * a.cos(), 3.0 * a.sin())
+            })
+            .collect();
+        let grid = QuadGrid::new(rows, cols, vertices.clone(), vec![DVec3::Z; rows * cols]);
+        let faces = MeshFaces::new(&grid);
+        let mut rng = fastrand::Rng::with_seed(7);
+        for k in 0..600 {
+            let far = [0.01, 0.3, 3.0, 30.0][k % 4];
+            let p = vertices[rng.usize(..vertices.len())]
+                + far * DVec3::new(rng.f64() - 0.5, rng.f64() - 0.5, rng.f64() - 0.5);
+            // The four nearest vertices, by sorting them all.
+            let mut order: Vec<usize> = (0..vertices.len()).collect();
+            order.sort_by(|a, b| {
+                vertices[*a]
+                    .distance_squared(p)
+                    .total_cmp(&vertices[*b].distance_squared(p))
+            });
+            let mut nearest = [0; FACE_CANDIDATES];
+            assert_eq!(faces.nearest_vertices(p, &mut nearest), FACE_CANDIDATES);
+            assert_eq!(nearest, order[..FACE_CANDIDATES], "point {k}");
+            // The nearest of every triangle of the faces around them.
+            let mut distance = f64::INFINITY;
+            for n in &order[..FACE_CANDIDATES] {
+                let (i, j) = (n / cols, n % cols);
+                for fi in i.saturating_sub(1)..=i.min(rows - 2) {
+                    for fj in j.saturating_sub(1)..=j.min(cols - 2) {
+                        for half in 0..2 {
+                            distance = distance.min(triangle_offsets(&grid, (fi, fj, half), p).0);
+                        }
+                    }
+                }
+            }
+            assert_eq!(faces.distance_from(p).0, distance, "point {k}");
+        }
+    }
 }
