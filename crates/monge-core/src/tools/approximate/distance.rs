@@ -72,33 +72,24 @@ impl<'a> MeshFaces<'a> {
         };
         let (rows, cols) = (self.grid.rows, self.grid.cols);
         let (i, j) = (first.data / cols, first.data % cols);
-        let mut radius = f64::INFINITY;
+        // (A grid of one row has no face: every vertex is then within the radius.)
+        let mut squared_radius = f64::INFINITY;
         if rows >= 2 && cols >= 2 {
             for fi in i.saturating_sub(1)..=i.min(rows - 2) {
                 for fj in j.saturating_sub(1)..=j.min(cols - 2) {
-                    let corners = [(fi, fj), (fi + 1, fj), (fi + 1, fj + 1), (fi, fj + 1)];
-                    let farthest = corners
+                    let farthest = self
+                        .grid
+                        .face(fi, fj)
                         .iter()
-                        .map(|(a, b)| squared(&self.grid.vertices[a * cols + b].to_array()))
+                        .map(|c| squared(&c.to_array()))
                         .fold(0.0, f64::max);
-                    radius = radius.min(farthest);
+                    squared_radius = squared_radius.min(farthest);
                 }
             }
         }
-        if !radius.is_finite() {
-            let mut count = 0;
-            for (o, n) in out
-                .iter_mut()
-                .zip(self.tree.nearest_neighbor_iter(q).take(FACE_CANDIDATES))
-            {
-                *o = n.data;
-                count += 1;
-            }
-            return count;
-        }
         // The nearest ones within the radius, nearest first (ties in the order met).
         let mut best = [(f64::INFINITY, usize::MAX); FACE_CANDIDATES];
-        for n in self.tree.locate_within_distance(q, radius) {
+        for n in self.tree.locate_within_distance(q, squared_radius) {
             let d = squared(n.geom());
             if d < best[FACE_CANDIDATES - 1].0 {
                 let mut k = FACE_CANDIDATES - 1;
