@@ -55,6 +55,16 @@ impl<'a> MeshFaces<'a> {
         }
     }
 
+    /// The faces `(i, j)` around vertex `k` of the grid (none on a grid of one row or
+    /// column).
+    fn faces_around(&self, k: usize) -> impl Iterator<Item = (usize, usize)> {
+        let (rows, cols) = (self.grid.rows, self.grid.cols);
+        let (i, j) = (k / cols, k % cols);
+        let fi = i.saturating_sub(1)..(i + 1).min(rows.saturating_sub(1));
+        let fj = j.saturating_sub(1)..(j + 1).min(cols.saturating_sub(1));
+        fi.flat_map(move |a| fj.clone().map(move |b| (a, b)))
+    }
+
     /// The [`FACE_CANDIDATES`] vertices nearest to `p`, nearest first, into `out`
     /// (fewer if the mesh has fewer); how many. The nearest vertex and the other corners
     /// of a face around it are as many vertices, so the nearest ones lie no farther than
@@ -66,31 +76,21 @@ impl<'a> MeshFaces<'a> {
         let Some(first) = self.tree.nearest_neighbor(q) else {
             return 0;
         };
-        let squared = |v: &[f64; 3]| {
-            let d = [v[0] - q[0], v[1] - q[1], v[2] - q[2]];
-            d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-        };
-        let (rows, cols) = (self.grid.rows, self.grid.cols);
-        let (i, j) = (first.data / cols, first.data % cols);
         // (A grid of one row has no face: every vertex is then within the radius.)
-        let mut squared_radius = f64::INFINITY;
-        if rows >= 2 && cols >= 2 {
-            for fi in i.saturating_sub(1)..=i.min(rows - 2) {
-                for fj in j.saturating_sub(1)..=j.min(cols - 2) {
-                    let farthest = self
-                        .grid
-                        .face(fi, fj)
-                        .iter()
-                        .map(|c| squared(&c.to_array()))
-                        .fold(0.0, f64::max);
-                    squared_radius = squared_radius.min(farthest);
-                }
-            }
-        }
+        let squared_radius = self
+            .faces_around(first.data)
+            .map(|(fi, fj)| {
+                self.grid
+                    .face(fi, fj)
+                    .iter()
+                    .map(|c| c.distance_squared(p))
+                    .fold(0.0, f64::max)
+            })
+            .fold(f64::INFINITY, f64::min);
         // The nearest ones within the radius, nearest first (ties in the order met).
         let mut best = [(f64::INFINITY, usize::MAX); FACE_CANDIDATES];
         for n in self.tree.locate_within_distance(q, squared_radius) {
-            let d = squared(n.geom());
+            let d = DVec3::from_array(*n.geom()).distance_squared(p);
             if d < best[FACE_CANDIDATES - 1].0 {
                 let mut k = FACE_CANDIDATES - 1;
                 while k > 0 && d < best[k - 1].0 {
@@ -116,7 +116,7 @@ impl<'a> MeshFaces<'a> {
     /// The triangle nearest to `p` among the faces around its nearest vertices, and
     /// [`triangle_offsets`] to it.
     pub(super) fn nearest(&self, p: DVec3) -> (Triangle, (f64, f64)) {
-        let (rows, cols) = (self.grid.rows, self.grid.cols);
+        let cols = self.grid.cols;
         let mut best = ((0, 0, 0), (f64::INFINITY, f64::INFINITY));
         // The faces around the nearest vertices, each once (neighbouring vertices share
         // them), in the order they are met.
@@ -124,24 +124,21 @@ impl<'a> MeshFaces<'a> {
         let mut count = 0;
         let mut nearest = [0; FACE_CANDIDATES];
         let found = self.nearest_vertices(p, &mut nearest);
-        for n in &nearest[..found] {
-            let (i, j) = (n / cols, n % cols);
-            for fi in i.saturating_sub(1)..=i.min(rows - 2) {
-                for fj in j.saturating_sub(1)..=j.min(cols - 2) {
-                    if seen[..count].contains(&(fi, fj)) {
-                        continue;
-                    }
-                    seen[count] = (fi, fj);
-                    count += 1;
-                    let (centre, radius) = self.spheres[fi * (cols - 1) + fj];
-                    if p.distance(centre) - radius > best.1 .0 + SPHERE_MARGIN * radius {
-                        continue;
-                    }
-                    for half in 0..2 {
-                        let offsets = triangle_offsets(self.grid, (fi, fj, half), p);
-                        if offsets.0 < best.1 .0 {
-                            best = ((fi, fj, half), offsets);
-                        }
+        for &n in &nearest[..found] {
+            for (fi, fj) in self.faces_around(n) {
+                if seen[..count].contains(&(fi, fj)) {
+                    continue;
+                }
+                seen[count] = (fi, fj);
+                count += 1;
+                let (centre, radius) = self.spheres[fi * (cols - 1) + fj];
+                if p.distance(centre) - radius > best.1 .0 + SPHERE_MARGIN * radius {
+                    continue;
+                }
+                for half in 0..2 {
+                    let offsets = triangle_offsets(self.grid, (fi, fj, half), p);
+                    if offsets.0 < best.1 .0 {
+                        best = ((fi, fj, half), offsets);
                     }
                 }
             }
