@@ -239,11 +239,27 @@ impl Target {
     /// `count` points at random parameters, each coordinate noised by `noise` × size
     /// (Gaussian): a scan.
     pub fn scan(&self, count: usize, noise: f64, seed: u64) -> Vec<DVec3> {
+        self.scan_with_parameters(count, noise, seed)
+            .into_iter()
+            .map(|(_, p)| p)
+            .collect()
+    }
+
+    /// [`Target::scan`], each point with the parameters `(u, v)` it was drawn at.
+    pub fn scan_with_parameters(
+        &self,
+        count: usize,
+        noise: f64,
+        seed: u64,
+    ) -> Vec<((f64, f64), DVec3)> {
         let mut rng = Rng::new(seed);
         (0..count)
             .map(|_| {
-                let p = self.at(rng.uniform(), rng.uniform());
-                p + noise * self.size * DVec3::new(rng.gauss(), rng.gauss(), rng.gauss())
+                let (u, v) = (rng.uniform(), rng.uniform());
+                let p = self.at(u, v);
+                let noised =
+                    p + noise * self.size * DVec3::new(rng.gauss(), rng.gauss(), rng.gauss());
+                ((u, v), noised)
             })
             .collect()
     }
