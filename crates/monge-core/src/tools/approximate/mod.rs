@@ -73,11 +73,14 @@
 //!    mesh's vertices to the target (to the quadric fitted around the nearest target
 //!    point, so that a random sampling's spacing does not bias it by `κd²/2`, moved
 //!    through that point by the share of its height that is not noise; plus a
-//!    guard against a vertex overhanging the target's boundary by several spacings),
+//!    guard against a vertex overhanging the target's boundary by several spacings, ten
+//!    on a scan, whose true corners lie bare),
 //!    plus that of the mesh's edges: each side of the mesh is fitted to the envelope of
-//!    the target points along it as a whole (its outermost point in each window: two a
-//!    side, more where the target's points are dense along it; every point near the
-//!    target's edge counts, however many the target has), plus
+//!    the target points along it as a whole (on a mesh its outermost point in each
+//!    window: two a side, more where the target's points are dense along it; on a scan
+//!    its outermost point along the whole side, each window only guarding against the
+//!    side swinging out beyond its points there; every point near the target's edge
+//!    counts, however many the target has), plus
 //!    the gap that a sampling leaves between its outermost points and the true edge,
 //!    estimated from the spacing of those outermost points (nil for a mesh's vertices,
 //!    about `A / (n·L)` for `n` random points over an area `A` along a length `L`), so
