@@ -182,14 +182,14 @@ pub(super) fn edge_windows(
 /// its outermost point at least its strip's depth inside.
 ///
 /// On a mesh (`sampled` false), one residual a window: the windows read its edge
-/// exactly. On a random sampling (`sampled`), one residual a side, from its outermost point along
-/// its whole length, and one a window, nil unless the side stands more than
+/// exactly. On a random sampling (`sampled`), one residual a side, from its outermost
+/// point along its whole length, and one a window, nil unless the side stands more than
 /// [`WINDOW_GUARD_GAPS`] gaps beyond the window's outermost point (a guard against a
 /// side swinging out at one end). A side is one curvature line of the surface, so its
 /// place is one number once the surface is found; the windows each read their edge off
 /// by their own gap (`A / (n·L)` along a length `L`: half a side's, twice its gap), and a
-/// side held in each bends the surface to their scatter. Held-out scans of
-/// 2 000 points on 80 samplings (seeds 1 to 16), brute force: within 1e-3 both ways
+/// side held in each bends the surface to their scatter. Held-out scans of 2 000 points
+/// on 80 samplings (seeds 1 to 16), brute force: within 1e-3 both ways
 /// 20 → 43 times (with the vertices' corner allowance,
 /// [`TargetCloud::residuals`](super::TargetCloud::residuals)), the largest 8.8e-3 →
 /// 8.0e-3; of 8 000 points (seeds 1 to 8) 34 → 35 of 40, but the largest 1.6e-3 →
