@@ -82,6 +82,20 @@ fn measure_every_held_out_target() {
     }
 }
 
+/// What the scan measurements measure, from the environment: the held-out targets with
+/// planar curvature lines whose name contains `HELDOUT` (all), scans of `HELDOUT_POINTS`
+/// points (2 000), and eight seeds from `HELDOUT_FIRST_SEED` (1).
+fn scans_chosen() -> (Vec<heldout::Target>, usize, std::ops::Range<u64>) {
+    let only = std::env::var("HELDOUT").unwrap_or_default();
+    let count = std::env::var("HELDOUT_POINTS").map_or(2000, |n| n.parse().unwrap());
+    let first: u64 = std::env::var("HELDOUT_FIRST_SEED").map_or(1, |n| n.parse().unwrap());
+    let chosen = targets()
+        .into_iter()
+        .filter(|t| t.pcl && t.name.contains(&only))
+        .collect();
+    (chosen, count, first..first + 8)
+}
+
 /// The scans of the held-out surfaces with planar curvature lines on eight random
 /// samplings each (seeds 1 to 8; 2 000 points, noise 1e-4 of the size, default
 /// settings): per sampling the larger of the two largest distances (brute force), `*`
@@ -94,16 +108,11 @@ fn measure_every_held_out_target() {
 #[test]
 #[ignore = "a measurement (a few minutes); prints one line per surface"]
 fn measure_scans_on_eight_samplings() {
-    let only = std::env::var("HELDOUT").unwrap_or_default();
-    let count = std::env::var("HELDOUT_POINTS").map_or(2000, |n| n.parse().unwrap());
-    let first: u64 = std::env::var("HELDOUT_FIRST_SEED").map_or(1, |n| n.parse().unwrap());
-    for target in targets()
-        .into_iter()
-        .filter(|t| t.pcl && t.name.contains(&only))
-    {
+    let (chosen, count, seeds) = scans_chosen();
+    for target in chosen {
         let mut line = format!("{}:", target.name);
         let (mut within, mut theta_within) = (0, 0);
-        for seed in first..first + 8 {
+        for seed in seeds.clone() {
             let points = target.scan(count, 1e-4, seed);
             match approximate(&points, &ApproxOptions::default(), &mut |_| {}) {
                 Ok(a) => {
@@ -428,27 +437,15 @@ fn patches_from_a_trimmed_patch_are_trimmed_and_read_as_measured() {
 #[test]
 #[ignore = "a measurement (half a minute); prints one line per surface"]
 fn measure_an_oracle_of_the_scans_edges() {
-    let only = std::env::var("HELDOUT").unwrap_or_default();
-    let count = std::env::var("HELDOUT_POINTS").map_or(2000, |n| n.parse().unwrap());
-    let first: u64 = std::env::var("HELDOUT_FIRST_SEED").map_or(1, |n| n.parse().unwrap());
-    let grid_of = |target: &heldout::Target, (u0, u1): (f64, f64), (v0, v1): (f64, f64)| {
-        let n = 41;
-        let vertices: Vec<DVec3> = (0..n * n)
-            .map(|k| {
-                let (s, t) = ((k / n) as f64 / 40.0, (k % n) as f64 / 40.0);
-                target.at(u0 + s * (u1 - u0), v0 + t * (v1 - v0))
-            })
-            .collect();
-        QuadGrid::new(n, n, vertices, vec![DVec3::Z; n * n])
+    let (chosen, count, seeds) = scans_chosen();
+    let grid_of = |target: &heldout::Target, u: (f64, f64), v: (f64, f64)| {
+        QuadGrid::new(41, 41, target.grid_over(41, u, v), vec![DVec3::Z; 41 * 41])
     };
-    for target in targets()
-        .into_iter()
-        .filter(|t| t.pcl && t.name.contains(&only))
-    {
+    for target in chosen {
         let (a, b) = max_both_ways(&target, &grid_of(&target, (0.0, 1.0), (0.0, 1.0)));
         let mut line = format!("{} (true domain {:.1e}):", target.name, a.max(b));
         let mut within = 0;
-        for seed in first..first + 8 {
+        for seed in seeds.clone() {
             let (u, v): (Vec<f64>, Vec<f64>) = target
                 .scan_with_parameters(count, 1e-4, seed)
                 .into_iter()
@@ -479,23 +476,14 @@ fn measure_an_oracle_of_the_scans_edges() {
 #[test]
 #[ignore = "a measurement (two minutes); prints one line per surface"]
 fn measure_the_shape_apart_from_the_edges() {
-    let only = std::env::var("HELDOUT").unwrap_or_default();
-    let first: u64 = std::env::var("HELDOUT_FIRST_SEED").map_or(1, |n| n.parse().unwrap());
-    for target in targets()
-        .into_iter()
-        .filter(|t| t.pcl && t.name.contains(&only))
-    {
-        let n = 161;
-        let extended: Vec<DVec3> = (0..n * n)
-            .map(|k| {
-                let (s, t) = ((k / n) as f64 / 160.0, (k % n) as f64 / 160.0);
-                target.at(-0.3 + 1.6 * s, -0.3 + 1.6 * t)
-            })
-            .collect();
+    let (chosen, count, seeds) = scans_chosen();
+    for target in chosen {
+        let (n, beyond) = (161, (-0.3, 1.3));
+        let extended = target.grid_over(n, beyond, beyond);
         let extended = Triangles::of_grid(&QuadGrid::new(n, n, extended, vec![DVec3::Z; n * n]));
         let mut line = format!("{} (largest both ways / shape):", target.name);
-        for seed in first..first + 8 {
-            let points = target.scan(2000, 1e-4, seed);
+        for seed in seeds.clone() {
+            let points = target.scan(count, 1e-4, seed);
             let a = approximate(&points, &ApproxOptions::default(), &mut |_| {}).unwrap();
             let (x, y) = max_both_ways(&target, &a.grid);
             let shape = a

@@ -230,9 +230,16 @@ impl Target {
 
     /// The `n × n` vertices at even parameters (a mesh's vertices).
     pub fn grid(&self, n: usize) -> Vec<DVec3> {
+        self.grid_over(n, (0.0, 1.0), (0.0, 1.0))
+    }
+
+    /// The `n × n` vertices at even parameters over `u.0..u.1` × `v.0..v.1`, within the
+    /// square or beyond it (the closed form extended).
+    pub fn grid_over(&self, n: usize, u: (f64, f64), v: (f64, f64)) -> Vec<DVec3> {
         let step = 1.0 / (n - 1) as f64;
+        let at = |(lo, hi): (f64, f64), k: usize| lo + k as f64 * step * (hi - lo);
         (0..n * n)
-            .map(|k| self.at((k / n) as f64 * step, (k % n) as f64 * step))
+            .map(|k| self.at(at(u, k / n), at(v, k % n)))
             .collect()
     }
 

@@ -209,15 +209,12 @@ pub(super) fn edge_residuals(windows: &[EdgeWindow], sampled: bool) -> Vec<f64> 
         .collect();
     // Area per point: the mean spacing of the outermost offsets times the window's length.
     let (mut sum, mut count) = (0.0, 0usize);
-    for w in windows {
+    for (w, first) in windows.iter().zip(&outer) {
         if w.offsets.len() >= EDGE_ORDER {
             let mut o = w.offsets.clone();
-            o.select_nth_unstable_by(EDGE_ORDER - 1, |a, b| b.total_cmp(a));
-            let last = o[EDGE_ORDER - 1];
-            let first = o[..EDGE_ORDER]
-                .iter()
-                .copied()
-                .fold(f64::NEG_INFINITY, f64::max);
+            let last = *o
+                .select_nth_unstable_by(EDGE_ORDER - 1, |a, b| b.total_cmp(a))
+                .1;
             sum += (first - last) / (EDGE_ORDER - 1) as f64 * w.length;
             count += 1;
         }
@@ -237,10 +234,9 @@ pub(super) fn edge_residuals(windows: &[EdgeWindow], sampled: bool) -> Vec<f64> 
             continue;
         }
         let length: f64 = these().map(|(w, _)| w.length).sum();
+        // Every side has a window at least.
         let outermost = these().map(|(_, o)| *o).fold(f64::NEG_INFINITY, f64::max);
-        if outermost.is_finite() {
-            out.push(outermost + gap(length));
-        }
+        out.push(outermost + gap(length));
         out.extend(these().map(|(w, o)| {
             let reading = o + gap(w.length);
             (reading + WINDOW_GUARD_GAPS * gap(w.length)).min(0.0)
